@@ -1,0 +1,69 @@
+//! The typed errors relief returns at its boundary.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in relief, with a message fit to show a user as one line.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A parameter is outside the range relief accepts.
+    #[error("invalid {name}: {value} (allowed: {allowed})")]
+    InvalidParam {
+        /// The parameter's name as the CLI and scene files spell it.
+        name: &'static str,
+        /// The offending value, formatted.
+        value: String,
+        /// The accepted range or set, in words.
+        allowed: String,
+    },
+    /// A scene file could not be read or parsed.
+    #[error("scene file {path}: {message}")]
+    SceneFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it, on one line.
+        message: String,
+    },
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// No GPU adapter (not even a software one) was found.
+    #[error("no GPU adapter found ({0}); on Linux install a Vulkan driver, e.g. mesa-vulkan-drivers for software rendering")]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("could not create a GPU device: {0}")]
+    Device(String),
+    /// wgpu reported a validation or out-of-memory error for work relief recorded.
+    #[error("GPU error: {0}")]
+    Gpu(String),
+    /// Reading back GPU data failed.
+    #[error("GPU readback failed: {0}")]
+    Readback(String),
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParam`].
+    pub fn invalid(name: &'static str, value: impl ToString, allowed: impl ToString) -> Self {
+        Self::InvalidParam {
+            name,
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    /// Shorthand for [`Error::Io`].
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// relief's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

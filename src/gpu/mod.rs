@@ -1,0 +1,367 @@
+//! The GPU core: [`Terrain`], a middleware that bakes into its own textures and draws into the
+//! host's render pass. One file per pass; this file holds what they share.
+
+pub(crate) mod bake;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod headless;
+pub(crate) mod normals;
+pub(crate) mod render;
+pub mod shader;
+pub mod timing;
+
+pub use bake::BakeUniforms;
+pub use normals::NormalUniforms;
+pub use render::RenderUniforms;
+
+use crate::camera::View;
+use crate::error::{Error, Result};
+use crate::params::{Dirty, Shading, TerrainParams};
+use timing::{GpuTimer, Slot};
+
+/// Compute workgroup side (8 x 8 invocations): matches `@workgroup_size` in the WGSL.
+pub(crate) const WORKGROUP: u32 = 8;
+
+/// What the host renders into: relief builds its pipeline for exactly these.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Targets {
+    /// The colour attachment's format. sRGB formats get linear output; others are encoded.
+    pub color_format: wgpu::TextureFormat,
+    /// The depth attachment's format, if the host's pass has one (relief depth-tests and
+    /// writes it, so host geometry and terrain occlude each other).
+    pub depth_format: Option<wgpu::TextureFormat>,
+    /// MSAA sample count of the pass (1 or 4 on WebGPU).
+    pub sample_count: u32,
+}
+
+impl Targets {
+    fn validate(&self) -> Result<()> {
+        if !matches!(self.sample_count, 1 | 4) {
+            return Err(Error::invalid("sample_count", self.sample_count, "1 or 4"));
+        }
+        if let Some(d) = self.depth_format {
+            if !d.is_depth_stencil_format() || !d.has_depth_aspect() {
+                return Err(Error::invalid(
+                    "depth_format",
+                    format!("{d:?}"),
+                    "a format with a depth aspect",
+                ));
+            }
+        }
+        if self.color_format.is_depth_stencil_format() {
+            return Err(Error::invalid(
+                "color_format",
+                format!("{:?}", self.color_format),
+                "a colour format",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The baked textures. Rebuilt whole when the texture size changes.
+pub struct Textures {
+    /// `rg32float`: r = normalised height in [0, 1], g = colour channel in [0, 1].
+    pub terrain: wgpu::Texture,
+    /// `rgba16float`: xyz = unit normal (y up), w = 0.
+    pub normals: wgpu::Texture,
+    pub(crate) terrain_view: wgpu::TextureView,
+    pub(crate) normal_view: wgpu::TextureView,
+}
+
+impl Textures {
+    /// Heights need 32-bit precision; rg32float is a core WebGPU storage format (write-only)
+    /// and is read with textureLoad, so float32-filterable is never needed.
+    pub const TERRAIN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+    /// Signed normals in a float format: nothing negative is lost, and it is filterable.
+    pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+    fn new(device: &wgpu::Device, size: u32) -> Self {
+        let make = |label, format| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: size,
+                    height: size,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let terrain = make("relief:bake:terrain", Self::TERRAIN_FORMAT);
+        let normals = make("relief:normals:normal-map", Self::NORMAL_FORMAT);
+        Self {
+            terrain_view: terrain.create_view(&Default::default()),
+            normal_view: normals.create_view(&Default::default()),
+            terrain,
+            normals,
+        }
+    }
+}
+
+/// relief's terrain as middleware: give it the host's device, queue and target formats; record
+/// its bake into the host's encoder ([`Terrain::encode_bake`]), write per-frame uniforms
+/// ([`Terrain::prepare`]) and draw into the host's render pass ([`Terrain::render`]).
+/// It never creates a surface, submits or presents.
+pub struct Terrain {
+    params: TerrainParams,
+    shading: Shading,
+    targets: Targets,
+    textures: Textures,
+    bake: bake::BakePass,
+    normals: normals::NormalPass,
+    mesh: render::MeshPass,
+    pending: Dirty,
+}
+
+impl Terrain {
+    /// Builds pipelines and textures for `params`; the first [`Terrain::encode_bake`] bakes.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        targets: Targets,
+        params: TerrainParams,
+    ) -> Result<Self> {
+        targets.validate()?;
+        params.validate_for(&device.limits())?;
+        let mut terrain = scoped(device, || {
+            let textures = Textures::new(device, params.size);
+            Terrain {
+                params,
+                shading: Shading::default(),
+                targets,
+                bake: bake::BakePass::new(device),
+                normals: normals::NormalPass::new(device),
+                mesh: render::MeshPass::new(device, &targets),
+                textures,
+                pending: Dirty::ALL,
+            }
+        })?;
+        terrain.bind(device);
+        terrain.bake.write(queue, &terrain.params);
+        terrain.normals.write(queue, &terrain.params);
+        Ok(terrain)
+    }
+
+    fn bind(&mut self, device: &wgpu::Device) {
+        self.bake.bind(device, &self.textures);
+        self.normals.bind(device, &self.textures);
+        self.mesh.bind(device, &self.textures);
+    }
+
+    /// The current parameters.
+    pub fn params(&self) -> &TerrainParams {
+        &self.params
+    }
+
+    /// The formats this terrain draws into.
+    pub fn targets(&self) -> &Targets {
+        &self.targets
+    }
+
+    /// The current shading.
+    pub fn shading(&self) -> &Shading {
+        &self.shading
+    }
+
+    /// Replaces the shading (lights and colours); nothing is re-baked.
+    pub fn set_shading(&mut self, shading: Shading) {
+        self.shading = shading;
+    }
+
+    /// Changes the parameters. Only what they invalidate is redone: a new size rebuilds the
+    /// textures, a noise change re-bakes, a height-scale change re-runs only the normal pass,
+    /// a shading-only change (snow, AO, grid) bakes nothing. Returns what was invalidated.
+    /// On error the terrain keeps its previous parameters.
+    pub fn set_params(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        params: TerrainParams,
+    ) -> Result<Dirty> {
+        params.validate_for(&device.limits())?;
+        let dirty = self.params.diff(&params);
+        if dirty.resize {
+            self.textures = scoped(device, || Textures::new(device, params.size))?;
+            self.bind(device);
+        }
+        self.params = params;
+        if dirty.bake {
+            self.bake.write(queue, &self.params);
+        }
+        if dirty.normals {
+            self.normals.write(queue, &self.params);
+        }
+        self.pending.resize |= dirty.resize;
+        self.pending.bake |= dirty.bake;
+        self.pending.normals |= dirty.normals;
+        Ok(dirty)
+    }
+
+    /// Whether the next [`Terrain::encode_bake`] will record any work.
+    pub fn needs_bake(&self) -> bool {
+        self.pending.any_gpu_work()
+    }
+
+    /// Records whatever bake work is owed (none if nothing changed) into the host's encoder.
+    /// Returns whether anything was recorded.
+    pub fn encode_bake(&mut self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        self.encode_bake_timed(encoder, None)
+    }
+
+    /// [`Terrain::encode_bake`], writing GPU timestamps for each pass into `timer`.
+    pub fn encode_bake_timed(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&GpuTimer>,
+    ) -> bool {
+        let size = self.params.size;
+        let mut recorded = false;
+        if self.pending.bake || self.pending.resize {
+            self.bake
+                .encode(encoder, size, timer.map(|t| t.compute_writes(Slot::Bake)));
+            recorded = true;
+        }
+        if recorded || self.pending.normals {
+            self.normals
+                .encode(encoder, size, timer.map(|t| t.compute_writes(Slot::Normals)));
+            recorded = true;
+        }
+        self.pending = Dirty::default();
+        recorded
+    }
+
+    /// Writes this frame's uniforms (camera, shading, snow, AO) through the queue.
+    pub fn prepare(&self, queue: &wgpu::Queue, view: &View) {
+        let encode = !self.targets.color_format.is_srgb();
+        let uniforms = RenderUniforms::new(&self.params, &self.shading, view, encode);
+        self.mesh.write(queue, &uniforms);
+    }
+
+    /// Draws the terrain into the host's pass, which must match [`Targets`].
+    pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.mesh.draw(pass, self.params.grid);
+    }
+
+    /// The baked textures, for reading or for the host's own passes.
+    pub fn textures(&self) -> &Textures {
+        &self.textures
+    }
+
+    /// World height of the continuous terrain surface at world (x, z), from the CPU twin.
+    ///
+    /// The tile spans x, z in [-WORLD_SIZE/2, WORLD_SIZE/2] and repeats beyond. The GPU draws
+    /// the baked texels interpolated bilinearly at the grid's vertices, then linearly across
+    /// triangles, so what is drawn differs from this by the mesh's sampling error (the tests
+    /// bound it); at texel centres the baked heights equal it to within 1e-5 of the range.
+    pub fn height_at(&self, x: f32, z: f32) -> f32 {
+        height_at(&self.params, x, z)
+    }
+}
+
+/// World height of the continuous terrain surface at world (x, z) for `params` (see
+/// [`Terrain::height_at`]).
+pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
+    let fbm = crate::noise::Fbm::from_params(params);
+    let u = [
+        f64::from(x) / crate::WORLD_SIZE + 0.5,
+        f64::from(z) / crate::WORLD_SIZE + 0.5,
+    ];
+    let (h, _) = fbm.sample(crate::noise::Channel::Height, u);
+    (h * f64::from(params.height_scale)) as f32
+}
+
+/// An sRGB colour as the linear clear colour a render pass wants.
+pub fn clear_color(srgb: [f32; 3]) -> wgpu::Color {
+    let [r, g, b] = srgb.map(|c| f64::from(crate::params::srgb_to_linear(c)));
+    wgpu::Color { r, g, b, a: 1.0 }
+}
+
+pub(crate) fn uniform_entry<T>(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<T>() as u64),
+        },
+        count: None,
+    }
+}
+
+pub(crate) fn texture_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    filterable: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+pub(crate) fn uniform_buffer<T>(device: &wgpu::Device, label: &str) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: std::mem::size_of::<T>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+pub(crate) fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+) -> wgpu::ComputePipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&format!("{label}:pipeline-layout")),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(&format!("{label}:pipeline")),
+        layout: Some(&pipeline_layout),
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// Runs `f` inside validation and out-of-memory error scopes and turns a captured wgpu error
+/// into [`Error::Gpu`]. On the web the scopes resolve asynchronously, so errors there reach
+/// the device's uncaptured-error handler instead.
+pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<T> {
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let value = f();
+    let oom = oom.pop();
+    let validation = validation.pop();
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        if let Some(e) = pollster::block_on(oom).or(pollster::block_on(validation)) {
+            return Err(Error::Gpu(
+                e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
+            ));
+        }
+    }
+    #[cfg(target_arch = "wasm32")]
+    drop((oom, validation));
+    Ok(value)
+}

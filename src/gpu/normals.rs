@@ -1,0 +1,110 @@
+//! The normal pass: wrap-around central differences of the heights into an rgba16float map.
+
+use super::{Textures, WORKGROUP};
+use crate::params::TerrainParams;
+
+/// Mirrors `NormalUniforms` in `wgsl/normals.wgsl` field by field.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct NormalUniforms {
+    /// Texture side in texels.
+    pub size: u32,
+    /// Padding.
+    pub _pad: u32,
+    /// World height of normalised height 1.
+    pub height_scale: f32,
+    /// World distance between neighbouring texels.
+    pub texel_world: f32,
+}
+
+impl NormalUniforms {
+    /// The uniforms for a validated parameter set.
+    pub fn new(p: &TerrainParams) -> Self {
+        Self {
+            size: p.size,
+            _pad: 0,
+            height_scale: p.height_scale,
+            texel_world: (crate::WORLD_SIZE / f64::from(p.size)) as f32,
+        }
+    }
+}
+
+pub(crate) struct NormalPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    uniforms: wgpu::Buffer,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+impl NormalPass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let module = super::shader::module(device, "relief:normals:shader", super::shader::NORMALS);
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:normals:bind-group-layout"),
+            entries: &[
+                super::uniform_entry::<NormalUniforms>(0, wgpu::ShaderStages::COMPUTE),
+                super::texture_entry(1, wgpu::ShaderStages::COMPUTE, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: Textures::NORMAL_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline =
+            super::compute_pipeline(device, "relief:normals", &layout, &module, "normals_main");
+        let uniforms = super::uniform_buffer::<NormalUniforms>(device, "relief:normals:uniforms");
+        Self {
+            pipeline,
+            layout,
+            uniforms,
+            bind_group: None,
+        }
+    }
+
+    pub fn bind(&mut self, device: &wgpu::Device, textures: &Textures) {
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:normals:bind-group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&textures.terrain_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&textures.normal_view),
+                },
+            ],
+        }));
+    }
+
+    pub fn write(&self, queue: &wgpu::Queue, params: &TerrainParams) {
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&NormalUniforms::new(params)));
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        size: u32,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:normals:pass"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, self.bind_group.as_ref(), &[]);
+        let groups = size.div_ceil(WORKGROUP);
+        pass.dispatch_workgroups(groups, groups, 1);
+    }
+}

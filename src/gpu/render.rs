@@ -1,0 +1,204 @@
+//! The render pass: the displaced grid, shaded with Blinn-Phong, snow and height AO.
+
+use super::{Targets, Textures};
+use crate::camera::View;
+use crate::params::{srgb_to_linear, Shading, TerrainParams};
+
+/// Mirrors `RenderUniforms` in `wgsl/render.wgsl` field by field.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct RenderUniforms {
+    /// Projection times view.
+    pub view_proj: [[f32; 4]; 4],
+    /// Camera position (w unused).
+    pub camera_pos: [f32; 4],
+    /// Unit vector towards the sun (w unused).
+    pub sun_dir: [f32; 4],
+    /// Linear sun radiance.
+    pub sun_color: [f32; 4],
+    /// Linear ambient radiance.
+    pub ambient_color: [f32; 4],
+    /// Linear albedo at the low end of the colour channel.
+    pub color_a: [f32; 4],
+    /// Linear albedo at the high end of the colour channel.
+    pub color_b: [f32; 4],
+    /// Linear snow albedo.
+    pub snow_color: [f32; 4],
+    /// World height of normalised height 1.
+    pub height_scale: f32,
+    /// Normalised snow height.
+    pub snow_height: f32,
+    /// Height-AO exponent.
+    pub ao_exponent: f32,
+    /// Blinn-Phong exponent.
+    pub shininess: f32,
+    /// Grid vertices per side.
+    pub grid: u32,
+    /// Texture side.
+    pub tex_size: u32,
+    /// 1 when the shader must sRGB-encode (the target format is not sRGB).
+    pub encode_srgb: u32,
+    /// Specular strength.
+    pub specular: f32,
+}
+
+fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
+    [
+        srgb_to_linear(c[0]) * k,
+        srgb_to_linear(c[1]) * k,
+        srgb_to_linear(c[2]) * k,
+        1.0,
+    ]
+}
+
+impl RenderUniforms {
+    /// The uniforms for one frame.
+    pub fn new(p: &TerrainParams, s: &Shading, view: &View, encode_srgb: bool) -> Self {
+        let sun = glam::Vec3::from(s.sun_direction).normalize_or(glam::Vec3::Y);
+        Self {
+            view_proj: view.view_proj.to_cols_array_2d(),
+            camera_pos: view.eye.extend(1.0).to_array(),
+            sun_dir: sun.extend(0.0).to_array(),
+            sun_color: linear(s.sun_color, s.sun_intensity),
+            ambient_color: linear(s.ambient_color, s.ambient_intensity),
+            color_a: linear(s.color_a, 1.0),
+            color_b: linear(s.color_b, 1.0),
+            snow_color: linear(s.snow_color, 1.0),
+            height_scale: p.height_scale,
+            snow_height: p.snow_height,
+            ao_exponent: p.ao_exponent,
+            shininess: s.shininess,
+            grid: p.grid,
+            tex_size: p.size,
+            encode_srgb: u32::from(encode_srgb),
+            specular: s.specular,
+        }
+    }
+}
+
+pub(crate) struct MeshPass {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniforms: wgpu::Buffer,
+    sampler: wgpu::Sampler,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+impl MeshPass {
+    pub fn new(device: &wgpu::Device, targets: &Targets) -> Self {
+        let module = super::shader::module(device, "relief:render:shader", super::shader::RENDER);
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:render:bind-group-layout"),
+            entries: &[
+                super::uniform_entry::<RenderUniforms>(0, vf),
+                super::texture_entry(1, wgpu::ShaderStages::VERTEX, false),
+                super::texture_entry(2, wgpu::ShaderStages::FRAGMENT, true),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:render:pipeline-layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("relief:render:pipeline"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
+                // Terrain can be seen from below when the camera dips under it; draw both sides.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
+                format,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: targets.sample_count,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: targets.color_format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("relief:render:normal-sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let uniforms = super::uniform_buffer::<RenderUniforms>(device, "relief:render:uniforms");
+        Self {
+            pipeline,
+            layout,
+            uniforms,
+            sampler,
+            bind_group: None,
+        }
+    }
+
+    pub fn bind(&mut self, device: &wgpu::Device, textures: &Textures) {
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:render:bind-group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&textures.terrain_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&textures.normal_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        }));
+    }
+
+    pub fn write(&self, queue: &wgpu::Queue, uniforms: &RenderUniforms) {
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(uniforms));
+    }
+
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, grid: u32) {
+        pass.push_debug_group("relief:render");
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, self.bind_group.as_ref(), &[]);
+        // One triangle strip of 2G vertices per row of cells.
+        pass.draw(0..2 * grid, 0..grid - 1);
+        pass.pop_debug_group();
+    }
+}

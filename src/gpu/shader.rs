@@ -1,0 +1,37 @@
+//! WGSL sources and the one include step that composes them.
+//!
+//! Each pass has its own file in `wgsl/`; the shared noise functions live in
+//! `wgsl/noise.wgsl`. A pass that needs them is composed as `noise.wgsl` followed by the
+//! pass's file: plain concatenation, no directives, so every file stays valid WGSL that naga
+//! can check on its own (the passes that use noise are checked composed).
+
+/// `wgsl/noise.wgsl`: hash, gradient noise and fBm.
+pub const NOISE: &str = include_str!("../../wgsl/noise.wgsl");
+/// `wgsl/bake.wgsl`: the bake pass (needs [`NOISE`]).
+pub const BAKE: &str = include_str!("../../wgsl/bake.wgsl");
+/// `wgsl/normals.wgsl`: the normal pass.
+pub const NORMALS: &str = include_str!("../../wgsl/normals.wgsl");
+/// `wgsl/render.wgsl`: the mesh render pass.
+pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
+
+/// Joins shared WGSL files and a pass's file into one module source.
+pub fn compose(parts: &[&str]) -> String {
+    parts.join("\n")
+}
+
+/// Every shader module relief builds, by name, fully composed: what the tests validate.
+pub fn all_modules() -> Vec<(&'static str, String)> {
+    vec![
+        ("noise", NOISE.to_owned()),
+        ("bake", compose(&[NOISE, BAKE])),
+        ("normals", NORMALS.to_owned()),
+        ("render", RENDER.to_owned()),
+    ]
+}
+
+pub(crate) fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}

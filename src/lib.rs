@@ -1,0 +1,65 @@
+//! # relief: procedural terrain on the GPU with wgpu
+//!
+//! relief bakes periodic gradient-noise (Perlin) fBm into textures with compute shaders,
+//! derives a wrap-around normal map, and draws a grid mesh displaced by the heights with
+//! Blinn-Phong shading, a noise-jittered snow line and height ambient occlusion.
+//!
+//! ## Shape
+//!
+//! ```text
+//! TerrainParams ──► noise (CPU twin, f64) ──► GPU: bake ─► normals ─► render
+//!                                                  ▲                   ▲
+//!   front ends: window (native + web) · CLI (render, bake) · your app (embedding)
+//! ```
+//!
+//! The core, [`Terrain`], owns no window, surface or event loop. It takes the host's
+//! `&wgpu::Device`, `&wgpu::Queue` and [`Targets`] (colour format, depth format, sample
+//! count), records its compute passes into the host's encoder ([`Terrain::encode_bake`], which
+//! records nothing when nothing changed), writes its per-frame uniforms ([`Terrain::prepare`])
+//! and draws into the host's render pass ([`Terrain::render`]). It never submits or presents.
+//! The window app, the headless `relief render`, and the tests all go through these same
+//! three calls; only the target differs.
+//!
+//! ## Conventions
+//!
+//! - World space is y-up. One tile spans x, z in [-[`WORLD_SIZE`]/2, [`WORLD_SIZE`]/2]; the
+//!   terrain is periodic and tiles without a seam.
+//! - Heights are normalised to [0, 1] and scaled by [`TerrainParams::height_scale`].
+//! - The same seed gives the same terrain on every GPU, in the browser and on the CPU twin
+//!   ([`noise`]): the hash is an integer PCG hash of integer lattice coordinates.
+//!
+//! ## Embedding
+//!
+//! ```no_run
+//! # fn frame(device: &wgpu::Device, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder,
+//! #          pass: &mut wgpu::RenderPass<'_>) -> relief::Result<()> {
+//! let targets = relief::Targets {
+//!     color_format: wgpu::TextureFormat::Bgra8UnormSrgb,
+//!     depth_format: Some(wgpu::TextureFormat::Depth32Float),
+//!     sample_count: 1,
+//! };
+//! let mut terrain = relief::Terrain::new(device, queue, targets, relief::TerrainParams::default())?;
+//! // Each frame:
+//! terrain.encode_bake(encoder); // no-op unless parameters changed
+//! terrain.prepare(queue, &relief::OrbitCamera::default().view(16.0 / 9.0));
+//! terrain.render(pass); // inside the host's render pass
+//! # Ok(()) }
+//! ```
+
+#[cfg(not(target_arch = "wasm32"))]
+pub mod cli;
+pub mod app;
+pub mod camera;
+pub mod error;
+pub mod gpu;
+pub mod noise;
+pub mod params;
+
+pub use camera::{OrbitCamera, View};
+pub use error::{Error, Result};
+pub use gpu::{height_at, Targets, Terrain, Textures};
+pub use params::{BakeInfo, Dirty, Shading, TerrainParams};
+pub use wgpu;
+
+/// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].
+pub const WORLD_SIZE: f64 = 2.0;

@@ -1,0 +1,101 @@
+// Periodic 2-D gradient (Perlin) noise and fBm, shared by the passes that need it.
+//
+// This file is prepended to a pass's own WGSL by `relief::gpu::shader::compose`; it declares
+// no bindings. Its CPU twin, in f64, is `src/noise.rs`: every constant and every step here has
+// its counterpart there, and the tests compare the two.
+//
+// Lattice coordinates are integers and hashed with PCG (Jarzynski & Olano 2020, "Hash
+// Functions for GPU Rendering"), so a seed gives the same terrain on every GPU, in the browser
+// and on the CPU. Octave `o` has period `frequency << o` lattice cells across the tile; corner
+// indices wrap modulo that period, so one tile is exactly one period of every octave.
+
+// Largest |noise| for unit gradients in 2-D: sqrt(2)/2, reached at a cell centre.
+const NOISE_MAX_ABS: f32 = 0.70710678118654752;
+const DIAG: f32 = 0.70710678118654752;
+
+// Channels are independent fBm streams under one seed.
+const CHANNEL_HEIGHT: u32 = 0u;
+const CHANNEL_COLOR: u32 = 1u;
+
+fn pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// One hash stream per (seed, channel, octave), so octaves are uncorrelated.
+fn noise_stream(seed: u32, channel: u32, octave: u32) -> u32 {
+    return pcg(seed ^ pcg(channel * 64u + octave));
+}
+
+fn lattice_hash(x: u32, y: u32, stream: u32) -> u32 {
+    return pcg(x ^ pcg(y ^ stream));
+}
+
+// Eight unit gradients: the axes and the diagonals.
+fn gradient(h: u32) -> vec2<f32> {
+    let s0 = select(1.0, -1.0, (h & 1u) != 0u);
+    let s1 = select(1.0, -1.0, (h & 2u) != 0u);
+    if (h & 4u) != 0u {
+        return vec2<f32>(s0 * DIAG, s1 * DIAG);
+    }
+    if (h & 8u) != 0u {
+        return vec2<f32>(s0, 0.0);
+    }
+    return vec2<f32>(0.0, s1);
+}
+
+fn fade(t: vec2<f32>) -> vec2<f32> {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Gradient noise at lattice cell `cell` (already in 0..period) and offset `f` in [0,1)^2.
+fn periodic_noise(cell: vec2<u32>, f: vec2<f32>, period: u32, stream: u32) -> f32 {
+    let x1 = (cell.x + 1u) % period;
+    let y1 = (cell.y + 1u) % period;
+    let n00 = dot(gradient(lattice_hash(cell.x, cell.y, stream)), f);
+    let n10 = dot(gradient(lattice_hash(x1, cell.y, stream)), f - vec2<f32>(1.0, 0.0));
+    let n01 = dot(gradient(lattice_hash(cell.x, y1, stream)), f - vec2<f32>(0.0, 1.0));
+    let n11 = dot(gradient(lattice_hash(x1, y1, stream)), f - vec2<f32>(1.0, 1.0));
+    let u = fade(f);
+    return mix(mix(n00, n10, u.x), mix(n01, n11, u.x), u.y);
+}
+
+// fBm at the centre of texel `texel` of a `size` x `size` tile, normalised to [0, 1].
+//
+// The texel's lattice position (2x+1) * period / (2 size) is split into an integer cell and a
+// fraction with integer arithmetic, so it is exact at any octave; `offset` (in tiles, already
+// reduced to [0,1) on the CPU in f64) is added in lattice units with one rounding.
+// Parameter validation keeps (2 size) * period below 2^32.
+fn fbm_texel(
+    texel: vec2<u32>,
+    size: u32,
+    frequency: u32,
+    octaves: u32,
+    gain: f32,
+    offset: vec2<f32>,
+    seed: u32,
+    channel: u32,
+) -> f32 {
+    var sum = 0.0;
+    var amplitude = 1.0;
+    var norm = 0.0;
+    let den = 2u * size;
+    for (var o = 0u; o < octaves; o++) {
+        let period = frequency << o;
+        let num = (2u * texel + vec2<u32>(1u)) * period;
+        var cell = num / den;
+        var f = vec2<f32>(num % den) / f32(den);
+        let shift = offset * f32(period);
+        let whole = floor(shift);
+        f += shift - whole;
+        let carry = f >= vec2<f32>(1.0);
+        f -= select(vec2<f32>(0.0), vec2<f32>(1.0), carry);
+        cell += vec2<u32>(whole) + select(vec2<u32>(0u), vec2<u32>(1u), carry);
+        cell %= vec2<u32>(period);
+        sum += amplitude * periodic_noise(cell, f, period, noise_stream(seed, channel, o));
+        norm += amplitude;
+        amplitude *= gain;
+    }
+    return 0.5 + 0.5 * sum / (norm * NOISE_MAX_ABS);
+}
