@@ -33,7 +33,7 @@ impl Default for OrbitCamera {
             target: Vec3::new(0.0, 0.12, 0.0),
             yaw: 0.7,
             pitch: 0.55,
-            distance: 2.7,
+            distance: 2.5,
             fov_y: 45f32.to_radians(),
         }
     }

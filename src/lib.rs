@@ -48,6 +48,7 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
 pub mod camera;
 pub mod error;

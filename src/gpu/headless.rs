@@ -163,14 +163,16 @@ pub fn read_baked(device: &wgpu::Device, queue: &wgpu::Queue, terrain: &Terrain)
 
 /// Bakes whatever is pending and waits for it.
 pub fn bake_blocking(gpu: &Gpu, terrain: &mut Terrain, timer: Option<&GpuTimer>) -> Result<Option<Timings>> {
-    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("relief:headless:bake"),
-    });
-    terrain.encode_bake_timed(&mut encoder, timer);
-    if let Some(t) = timer {
-        t.resolve(&mut encoder);
-    }
-    gpu.queue.submit([encoder.finish()]);
+    super::scoped(&gpu.device, || {
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("relief:headless:bake"),
+        });
+        terrain.encode_bake_timed(&mut encoder, timer);
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+    })?;
     match timer {
         Some(t) => t.read(&gpu.device).map(Some),
         None => {
@@ -316,27 +318,31 @@ impl Offscreen {
             ));
         }
         let device = &gpu.device;
-        let color_view = self.color.create_view(&Default::default());
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("relief:offscreen:frame"),
-        });
-        terrain.encode_bake_timed(&mut encoder, timer);
-        terrain.prepare(&gpu.queue, view);
-        {
-            let clear = super::clear_color(terrain.shading().sky_color);
-            let mut pass = self.begin_pass(
-                &mut encoder,
-                &color_view,
-                clear,
-                timer.map(|t| t.render_writes(Slot::Render)),
-            );
-            terrain.render(&mut pass);
-        }
-        let (buffer, pitch) = encode_texture_copy(device, &mut encoder, &self.color);
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        gpu.queue.submit([encoder.finish()]);
+        let buffer_pitch = super::scoped(device, || {
+            let color_view = self.color.create_view(&Default::default());
+            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("relief:offscreen:frame"),
+            });
+            terrain.encode_bake_timed(&mut encoder, timer);
+            terrain.prepare(&gpu.queue, view);
+            {
+                let clear = super::clear_color(terrain.shading().sky_color);
+                let mut pass = self.begin_pass(
+                    &mut encoder,
+                    &color_view,
+                    clear,
+                    timer.map(|t| t.render_writes(Slot::Render)),
+                );
+                terrain.render(&mut pass);
+            }
+            let copy = encode_texture_copy(device, &mut encoder, &self.color);
+            if let Some(t) = timer {
+                t.resolve(&mut encoder);
+            }
+            gpu.queue.submit([encoder.finish()]);
+            copy
+        })?;
+        let (buffer, pitch) = buffer_pitch;
         let bytes = map_read(device, &buffer)?;
         let timings = timer.map(|t| t.read(device)).transpose()?;
         Ok((unpad(&bytes, pitch, &self.color), timings))

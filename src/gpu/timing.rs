@@ -41,6 +41,9 @@ pub struct GpuTimer {
 }
 
 const QUERIES: u32 = 2 * Slot::ALL.len() as u32;
+/// Each slot's pair resolves to its own aligned block of the resolve buffer.
+const BLOCK: u64 = wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT;
+const BUFFER_SIZE: u64 = BLOCK * Slot::ALL.len() as u64;
 
 impl GpuTimer {
     /// A timer, or `None` when the device lacks `TIMESTAMP_QUERY`.
@@ -48,7 +51,6 @@ impl GpuTimer {
         if !device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
             return None;
         }
-        let size = u64::from(QUERIES) * 8;
         Some(Self {
             queries: device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("relief:timing:queries"),
@@ -57,13 +59,13 @@ impl GpuTimer {
             }),
             resolve: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:timing:resolve"),
-                size,
+                size: BUFFER_SIZE,
                 usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             }),
             readback: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:timing:readback"),
-                size,
+                size: BUFFER_SIZE,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
@@ -102,10 +104,10 @@ impl GpuTimer {
         for slot in Slot::ALL {
             if self.written.get() & (1 << slot as u32) != 0 {
                 let first = 2 * slot as u32;
-                encoder.resolve_query_set(&self.queries, first..first + 2, &self.resolve, u64::from(first) * 8);
+                encoder.resolve_query_set(&self.queries, first..first + 2, &self.resolve, BLOCK * slot as u64);
             }
         }
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, u64::from(QUERIES) * 8);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, BUFFER_SIZE);
     }
 
     /// Waits for the resolved timestamps and returns each written slot's duration.
@@ -116,7 +118,7 @@ impl GpuTimer {
         let mut out = [None; 3];
         for slot in Slot::ALL {
             if self.written.get() & (1 << slot as u32) != 0 {
-                let i = 2 * slot as usize;
+                let i = (BLOCK / 8) as usize * slot as usize;
                 let dt = ticks[i + 1].wrapping_sub(ticks[i]);
                 if ticks[i + 1] < ticks[i] {
                     return Err(Error::Readback(format!("{} timestamps out of order", slot.name())));
