@@ -49,7 +49,7 @@ enum Command {
 #[derive(Args, Debug, Default)]
 struct SceneArgs {
     /// Hash seed (0..=4294967295).
-    #[arg(long, global = true)]
+    #[arg(long, global = true, allow_hyphen_values = true)]
     seed: Option<u32>,
     /// Texture side in texels.
     #[arg(long, global = true, allow_hyphen_values = true)]

@@ -1,0 +1,79 @@
+//! Every WGSL module relief builds is valid (naga), and the Rust uniform structs have the
+//! WGSL layouts.
+
+use relief::gpu::{shader, BakeUniforms, NormalUniforms, RenderUniforms};
+use std::mem::{offset_of, size_of};
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}.wgsl does not parse:\n{}", e.emit_to_string(source)));
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{name}.wgsl does not validate: {e:?}"));
+    module
+}
+
+#[test]
+fn every_module_validates() {
+    let modules = shader::all_modules();
+    assert_eq!(modules.len(), 4);
+    for (name, source) in modules {
+        parse(name, &source);
+    }
+}
+
+/// (size, member name -> offset) of a WGSL struct as naga lays it out.
+fn layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+    for (_, ty) in module.types.iter() {
+        if ty.name.as_deref() == Some(name) {
+            if let naga::TypeInner::Struct { members, span } = &ty.inner {
+                let m = members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                    .collect();
+                return (*span, m);
+            }
+        }
+    }
+    panic!("struct {name} not found");
+}
+
+fn offset(members: &[(String, u32)], name: &str) -> usize {
+    members
+        .iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no member {name}"))
+        .1 as usize
+}
+
+#[test]
+fn uniform_structs_match_wgsl() {
+    let bake = parse("bake", &shader::compose(&[shader::NOISE, shader::BAKE]));
+    let (size, m) = layout(&bake, "BakeUniforms");
+    assert_eq!(size as usize, size_of::<BakeUniforms>());
+    assert_eq!(offset(&m, "gain"), offset_of!(BakeUniforms, gain));
+    assert_eq!(offset(&m, "offset"), offset_of!(BakeUniforms, offset));
+
+    let normals = parse("normals", shader::NORMALS);
+    let (size, m) = layout(&normals, "NormalUniforms");
+    assert_eq!(size as usize, size_of::<NormalUniforms>());
+    assert_eq!(offset(&m, "height_scale"), offset_of!(NormalUniforms, height_scale));
+    assert_eq!(offset(&m, "texel_world"), offset_of!(NormalUniforms, texel_world));
+
+    let render = parse("render", shader::RENDER);
+    let (size, m) = layout(&render, "RenderUniforms");
+    assert_eq!(size as usize, size_of::<RenderUniforms>());
+    assert_eq!(offset(&m, "camera_pos"), offset_of!(RenderUniforms, camera_pos));
+    assert_eq!(offset(&m, "snow_color"), offset_of!(RenderUniforms, snow_color));
+    assert_eq!(offset(&m, "height_scale"), offset_of!(RenderUniforms, height_scale));
+    assert_eq!(offset(&m, "grid"), offset_of!(RenderUniforms, grid));
+    assert_eq!(offset(&m, "specular"), offset_of!(RenderUniforms, specular));
+}
+
+#[test]
+fn world_size_agrees_with_render_wgsl() {
+    assert!(
+        shader::RENDER.contains(&format!("const WORLD_SIZE: f32 = {:.1};", relief::WORLD_SIZE)),
+        "render.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
+    );
+}
