@@ -205,3 +205,40 @@ fn whole_tile_scroll_and_same_seed_give_same_bytes() {
         }
     }
 }
+
+#[test]
+fn rebakes_only_what_changed_and_height_at_agrees() {
+    let gpu = common::gpu();
+    let params = TerrainParams {
+        size: 64,
+        ..Default::default()
+    };
+    let (mut terrain, baked) = common::bake(&gpu, params);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    assert!(!terrain.encode_bake(&mut encoder), "nothing changed: nothing to record");
+    let dirty = terrain
+        .set_params(&gpu.device, &gpu.queue, TerrainParams { snow_height: 0.2, ..params })
+        .unwrap();
+    assert!(!dirty.any_gpu_work() && !terrain.encode_bake(&mut encoder), "snow is shading only");
+    let dirty = terrain
+        .set_params(&gpu.device, &gpu.queue, TerrainParams { height_scale: 1.0, ..params })
+        .unwrap();
+    assert!(dirty.normals && !dirty.bake, "height scale re-runs only the normal pass");
+    assert!(terrain.encode_bake(&mut encoder));
+    // A refused change keeps the old parameters.
+    let before = *terrain.params();
+    assert!(terrain
+        .set_params(&gpu.device, &gpu.queue, TerrainParams { grid: 1, ..params })
+        .is_err());
+    assert_eq!(*terrain.params(), before);
+
+    // height_at at texel centres equals the baked height times the height scale.
+    let n = params.size;
+    for (x, y) in [(0, 0), (5, 40), (63, 63), (31, 2)] {
+        let wx = ((f64::from(x) + 0.5) / f64::from(n) - 0.5) * relief::WORLD_SIZE;
+        let wz = ((f64::from(y) + 0.5) / f64::from(n) - 0.5) * relief::WORLD_SIZE;
+        let cpu = relief::height_at(&params, wx as f32, wz as f32);
+        let gpu_h = baked.heights[(y * n + x) as usize] * params.height_scale;
+        assert!((cpu - gpu_h).abs() < 1e-5, "({x},{y}): height_at {cpu} vs baked {gpu_h}");
+    }
+}
