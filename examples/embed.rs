@@ -137,8 +137,11 @@ pub fn render_frame(gpu: &Gpu, width: u32, height: u32, draw: Draw) -> relief::R
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     terrain.encode_bake(&mut encoder);
     terrain.prepare(&gpu.queue, &view);
-    gpu.queue
-        .write_buffer(&pillar.uniforms, 0, bytemuck::bytes_of(&view.view_proj.to_cols_array()));
+    gpu.queue.write_buffer(
+        &pillar.uniforms,
+        0,
+        bytemuck::bytes_of(&view.view_proj.to_cols_array()),
+    );
     let color_view = target.color.create_view(&Default::default());
     {
         let clear = relief::gpu::clear_color(terrain.shading().sky_color);
@@ -156,13 +159,32 @@ pub fn render_frame(gpu: &Gpu, width: u32, height: u32, draw: Draw) -> relief::R
     relief::gpu::headless::read_texture(&gpu.device, &gpu.queue, &target.color)
 }
 
-#[allow(dead_code, reason = "the embedding test includes this file and calls render_frame only")]
+#[allow(
+    dead_code,
+    reason = "the embedding test includes this file and calls render_frame only"
+)]
 fn main() -> relief::Result<()> {
-    let out = std::env::args().nth(1).unwrap_or_else(|| "embed.png".into());
+    let out = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "embed.png".into());
     let gpu = Gpu::new()?;
     let (w, h) = (640, 480);
-    let pixels = render_frame(&gpu, w, h, Draw { host: true, terrain: true })?;
-    relief::cli::write_png(std::path::Path::new(&out), w, h, image::ColorType::Rgba8, &pixels)?;
+    let pixels = render_frame(
+        &gpu,
+        w,
+        h,
+        Draw {
+            host: true,
+            terrain: true,
+        },
+    )?;
+    relief::cli::write_png(
+        std::path::Path::new(&out),
+        w,
+        h,
+        image::ColorType::Rgba8,
+        &pixels,
+    )?;
     println!("wrote {out}");
     Ok(())
 }

@@ -24,7 +24,8 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// Opens the window and runs until it is closed.
 pub fn run_native(params: TerrainParams, timings: bool) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|e| Error::Device(format!("cannot open a window: {e}")))?;
+    let event_loop =
+        EventLoop::new().map_err(|e| Error::Device(format!("cannot open a window: {e}")))?;
     let mut app = App::new(params, timings);
     event_loop
         .run_app(&mut app)
@@ -91,9 +92,10 @@ impl App {
                 )
                 .map_err(|e| Error::Device(format!("cannot create a window: {e}")))?,
         );
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
-            Box::new(event_loop.owned_display_handle()),
-        ));
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(event_loop.owned_display_handle()),
+            ));
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| Error::Device(format!("cannot create a surface: {e}")))?;
@@ -124,7 +126,11 @@ impl App {
             height: size.height.max(1),
             present_mode: wgpu::PresentMode::AutoVsync,
             desired_maximum_frame_latency: 2,
-            alpha_mode: caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            alpha_mode: caps
+                .alpha_modes
+                .first()
+                .copied()
+                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
             view_formats: vec![],
             color_space: wgpu::SurfaceColorSpace::Auto,
         };
@@ -201,7 +207,8 @@ impl State {
             return; // minimised
         };
         let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
                 self.surface.configure(&self.device, &self.config);
                 return;
@@ -210,9 +217,11 @@ impl State {
         };
         let view = frame.texture.create_view(&Default::default());
         let timer = self.timer.as_ref().filter(|_| timed);
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("relief:window:frame"),
-        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("relief:window:frame"),
+            });
         self.terrain.encode_bake_timed(&mut encoder, timer);
         let aspect = self.config.width as f32 / self.config.height as f32;
         self.terrain.prepare(&self.queue, &camera.view(aspect));
@@ -224,7 +233,9 @@ impl State {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(crate::gpu::clear_color(self.terrain.shading().sky_color)),
+                        load: wgpu::LoadOp::Clear(crate::gpu::clear_color(
+                            self.terrain.shading().sky_color,
+                        )),
                         store: wgpu::StoreOp::Store,
                     },
                 })],
@@ -302,7 +313,11 @@ impl ApplicationHandler for App {
                     _ => {}
                 }
             }
-            WindowEvent::MouseInput { state, button: MouseButton::Left, .. } => {
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
                 self.drag = (state == ElementState::Pressed).then_some(self.cursor);
             }
             WindowEvent::CursorMoved { position, .. } => {
@@ -310,7 +325,10 @@ impl ApplicationHandler for App {
                 if let (Some((x0, y0)), Some(s)) = (self.drag, &self.state) {
                     let h = f64::from(s.config.height.max(1));
                     let k = std::f64::consts::PI / h;
-                    self.camera.rotate(((position.x - x0) * k) as f32, ((position.y - y0) * k) as f32);
+                    self.camera.rotate(
+                        ((position.x - x0) * k) as f32,
+                        ((position.y - y0) * k) as f32,
+                    );
                     self.drag = Some(self.cursor);
                 }
             }

@@ -91,7 +91,11 @@ fn parse_offset(s: &str) -> std::result::Result<[f64; 2], String> {
     let [x, y] = parts.as_slice() else {
         return Err("expected X,Y".into());
     };
-    let num = |t: &str| t.trim().parse::<f64>().map_err(|_| format!("{t:?} is not a number"));
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .map_err(|_| format!("{t:?} is not a number"))
+    };
     Ok([num(x)?, num(y)?])
 }
 
@@ -123,7 +127,18 @@ impl SceneArgs {
         macro_rules! set {
             ($($f:ident),*) => { $( if let Some(v) = self.$f { p.$f = v; } )* };
         }
-        set!(seed, size, grid, octaves, frequency, gain, height_scale, snow_height, ao_exponent, offset);
+        set!(
+            seed,
+            size,
+            grid,
+            octaves,
+            frequency,
+            gain,
+            height_scale,
+            snow_height,
+            ao_exponent,
+            offset
+        );
         p.validate()?;
         Ok(p)
     }
@@ -146,15 +161,29 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
 
 fn clap_error(e: clap::Error) -> i32 {
     use clap::error::{ContextKind, ContextValue, ErrorKind};
-    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
         let _ = e.print();
         return 0;
     }
     let rendered = e.render().to_string();
-    let mut line = rendered.lines().next().unwrap_or("error: bad arguments").to_owned();
+    let mut line = rendered
+        .lines()
+        .next()
+        .unwrap_or("error: bad arguments")
+        .to_owned();
     if let Some(ContextValue::String(arg)) = e.get(ContextKind::InvalidArg) {
         // "--size <SIZE>" -> "size"
-        let name = arg.trim_start_matches('-').split([' ', '=']).next().unwrap_or("").replace('-', "_");
+        let name = arg
+            .trim_start_matches('-')
+            .split([' ', '='])
+            .next()
+            .unwrap_or("")
+            .replace('-', "_");
         if let Some(range) = allowed(&name) {
             line.push_str(&format!(" (allowed: {range})"));
         }
@@ -167,7 +196,9 @@ fn run(cli: Cli) -> Result<()> {
     let params = cli.scene.resolve()?;
     match cli.command.unwrap_or(Command::Window) {
         Command::Window => crate::app::run_native(params, cli.scene.timings),
-        Command::Render { out, width, height } => render(&params, &out, width, height, cli.scene.timings),
+        Command::Render { out, width, height } => {
+            render(&params, &out, width, height, cli.scene.timings)
+        }
         Command::Bake { out_dir } => bake(&params, &out_dir, cli.scene.timings),
     }
 }
@@ -175,11 +206,22 @@ fn run(cli: Cli) -> Result<()> {
 /// MSAA samples of `relief render` images.
 pub const RENDER_SAMPLES: u32 = 4;
 
-fn render(params: &TerrainParams, out: &Path, width: u32, height: u32, timings: bool) -> Result<()> {
+fn render(
+    params: &TerrainParams,
+    out: &Path,
+    width: u32,
+    height: u32,
+    timings: bool,
+) -> Result<()> {
     check_png_path(out)?;
     let gpu = Gpu::new()?;
     let offscreen = Offscreen::new(&gpu.device, width, height, RENDER_SAMPLES)?;
-    let mut terrain = Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(RENDER_SAMPLES), *params)?;
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        *params,
+    )?;
     let timer = timer_if(timings, &gpu);
     let view = OrbitCamera::default().view(width as f32 / height as f32);
     let (pixels, t) = offscreen.render(&gpu, &mut terrain, &view, timer.as_ref())?;
@@ -190,7 +232,9 @@ fn render(params: &TerrainParams, out: &Path, width: u32, height: u32, timings: 
 }
 
 fn timer_if(wanted: bool, gpu: &Gpu) -> Option<GpuTimer> {
-    wanted.then(|| GpuTimer::new(&gpu.device, &gpu.queue)).flatten()
+    wanted
+        .then(|| GpuTimer::new(&gpu.device, &gpu.queue))
+        .flatten()
 }
 
 fn print_timings(gpu: &Gpu, t: Option<Timings>) {
@@ -220,7 +264,9 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     let (lo, hi) = baked
         .heights
         .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)));
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        });
     let span = (hi - lo).max(f32::MIN_POSITIVE);
     let height: Vec<u8> = baked
         .heights
@@ -250,11 +296,23 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     }));
 
     // Everything is written under temporary names first and renamed only when all succeeded.
-    let files: [(&str, Box<dyn Fn(&Path) -> Result<()>>); 4] = [
-        ("height.png", Box::new(|p| encode_png(p, size, size, image::ColorType::L16, &height))),
-        ("normal.png", Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &normal))),
-        ("color.png", Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &color))),
-        ("scene.toml", Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e)))),
+    let files: [(&str, FileWriter); 4] = [
+        (
+            "height.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::L16, &height)),
+        ),
+        (
+            "normal.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &normal)),
+        ),
+        (
+            "color.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &color)),
+        ),
+        (
+            "scene.toml",
+            Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
+        ),
     ];
     let mut written = Vec::new();
     for (name, write) in &files {
@@ -278,17 +336,29 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     Ok(())
 }
 
+/// Writes one output file to the path it is given.
+type FileWriter<'a> = Box<dyn Fn(&Path) -> Result<()> + 'a>;
+
 fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
     let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }
 
 fn check_png_path(out: &Path) -> Result<()> {
-    let is_png = out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let is_png = out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !is_png {
-        return Err(Error::invalid("out", out.display(), "a path ending in .png"));
+        return Err(Error::invalid(
+            "out",
+            out.display(),
+            "a path ending in .png",
+        ));
     }
-    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let parent = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     if !parent.is_dir() {
         return Err(Error::io(
             parent,
@@ -305,9 +375,11 @@ fn temp_name(path: &Path) -> PathBuf {
 }
 
 fn encode_png(path: &Path, w: u32, h: u32, color: image::ColorType, bytes: &[u8]) -> Result<()> {
-    image::save_buffer_with_format(path, bytes, w, h, color, image::ImageFormat::Png).map_err(|e| match e {
-        image::ImageError::IoError(io) => Error::io(path, io),
-        other => Error::io(path, std::io::Error::other(other.to_string())),
+    image::save_buffer_with_format(path, bytes, w, h, color, image::ImageFormat::Png).map_err(|e| {
+        match e {
+            image::ImageError::IoError(io) => Error::io(path, io),
+            other => Error::io(path, std::io::Error::other(other.to_string())),
+        }
     })
 }
 

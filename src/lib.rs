@@ -47,10 +47,10 @@
 //! ```
 
 #[cfg(not(target_arch = "wasm32"))]
-pub mod cli;
-#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
 pub mod camera;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod cli;
 pub mod error;
 pub mod gpu;
 pub mod noise;

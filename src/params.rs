@@ -195,7 +195,7 @@ impl TerrainParams {
                 return Err(Error::invalid(
                     "offset",
                     format!("{},{}", self.offset[0], self.offset[1]),
-                    format!("finite numbers with |x|, |y| <= 2^40 tiles"),
+                    "finite numbers with |x|, |y| <= 2^40 tiles",
                 ));
             }
         }
@@ -263,7 +263,8 @@ impl TerrainParams {
         let mut table: toml::Table = toml::from_str(text).map_err(|e| one_line(&e.to_string()))?;
         if let Some(bake) = table.remove("bake") {
             // Only checked for shape: a scene's bake record does not change what is baked.
-            BakeInfo::deserialize(bake).map_err(|e| format!("[bake]: {}", one_line(&e.to_string())))?;
+            BakeInfo::deserialize(bake)
+                .map_err(|e| format!("[bake]: {}", one_line(&e.to_string())))?;
         }
         TerrainParams::deserialize(table).map_err(|e| one_line(&e.to_string()))
     }
@@ -273,7 +274,9 @@ impl TerrainParams {
         let mut body = toml::to_string(self).expect("scene parameters always serialise");
         if let Some(bake) = bake {
             let table = toml::to_string(&bake).expect("bake info always serialises");
-            body.push_str("\n# Normalised heights that 0 and 65535 in height.png stand for.\n[bake]\n");
+            body.push_str(
+                "\n# Normalised heights that 0 and 65535 in height.png stand for.\n[bake]\n",
+            );
             body.push_str(&table);
         }
         format!("# relief scene file: `relief --scene FILE` reproduces this terrain.\n{body}")
@@ -306,7 +309,6 @@ pub struct BakeInfo {
     pub height_max: f64,
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -323,14 +325,20 @@ mod tests {
             ..Default::default()
         };
         let msg = p.validate().unwrap_err().to_string();
-        assert!(msg.contains("gain") && msg.contains("NaN") && msg.contains("0..=1"), "{msg}");
+        assert!(
+            msg.contains("gain") && msg.contains("NaN") && msg.contains("0..=1"),
+            "{msg}"
+        );
         let p = TerrainParams {
             frequency: 1024,
             octaves: 16,
             ..Default::default()
         };
         let msg = p.validate().unwrap_err().to_string();
-        assert!(msg.contains("octaves") && msg.contains("at most 7"), "{msg}");
+        assert!(
+            msg.contains("octaves") && msg.contains("at most 7"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -371,8 +379,14 @@ mod tests {
             offset: [1.0, -2.0],
             ..a
         };
-        assert!(!a.diff(&c).any_gpu_work(), "whole-tile scroll changes nothing");
-        let d = TerrainParams { snow_height: 0.1, ..a };
+        assert!(
+            !a.diff(&c).any_gpu_work(),
+            "whole-tile scroll changes nothing"
+        );
+        let d = TerrainParams {
+            snow_height: 0.1,
+            ..a
+        };
         assert_eq!(a.diff(&d), Dirty::default());
     }
 }

@@ -45,7 +45,10 @@ fn heights_and_colors_match_twin() {
         };
         let (_, baked) = common::bake(&gpu, params);
         let fbm = Fbm::from_params(&params);
-        for (channel, values) in [(Channel::Height, &baked.heights), (Channel::Color, &baked.colors)] {
+        for (channel, values) in [
+            (Channel::Height, &baked.heights),
+            (Channel::Color, &baked.colors),
+        ] {
             let twin = fbm.bake(channel, params.size);
             let (err, at) = max_error(values, &twin);
             eprintln!("seed {seed} octaves {octaves} freq {frequency} offset {offset:?} {channel:?}: max error {err:.2e}");
@@ -56,7 +59,9 @@ fn heights_and_colors_match_twin() {
                 twin[at]
             );
             // The bake must use the range, not collapse to a constant.
-            let (lo, hi) = twin.iter().fold((1.0f64, 0.0f64), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            let (lo, hi) = twin
+                .iter()
+                .fold((1.0f64, 0.0f64), |(lo, hi), &v| (lo.min(v), hi.max(v)));
             assert!(hi - lo > 0.2, "degenerate terrain: {lo}..{hi}");
         }
     }
@@ -78,12 +83,18 @@ fn normal_errors(gpu: &relief::gpu::headless::Gpu, params: TerrainParams) -> (f6
             for i in 0..3 {
                 max_comp = max_comp.max((f64::from(g[i]) - t[i]).abs());
             }
-            let u = [(f64::from(x) + 0.5) / f64::from(n), (f64::from(y) + 0.5) / f64::from(n)];
+            let u = [
+                (f64::from(x) + 0.5) / f64::from(n),
+                (f64::from(y) + 0.5) / f64::from(n),
+            ];
             let a = analytic_normal(&fbm, hs, u);
             // Stored normals are unit length only to f16 precision; renormalise before the
             // angle, or acos near 1 turns a 3e-4 length error into a 1.3 degree angle.
             let len = g.iter().map(|&c| f64::from(c).powi(2)).sum::<f64>().sqrt();
-            let dot = (0..3).map(|i| f64::from(g[i]) / len * a[i]).sum::<f64>().clamp(-1.0, 1.0);
+            let dot = (0..3)
+                .map(|i| f64::from(g[i]) / len * a[i])
+                .sum::<f64>()
+                .clamp(-1.0, 1.0);
             let angle = dot.acos().to_degrees();
             sum_angle += angle;
             max_angle = max_angle.max(angle);
@@ -116,18 +127,38 @@ fn normals_match_twin_and_analytic_gradient() {
         octaves: 3,
         ..base
     };
-    let r128 = normal_errors(&gpu, TerrainParams { size: 128, ..resolved });
-    let r256 = normal_errors(&gpu, TerrainParams { size: 256, ..resolved });
+    let r128 = normal_errors(
+        &gpu,
+        TerrainParams {
+            size: 128,
+            ..resolved
+        },
+    );
+    let r256 = normal_errors(
+        &gpu,
+        TerrainParams {
+            size: 256,
+            ..resolved
+        },
+    );
     for (max_comp, _, _) in [coarse, r128, r256] {
         // rgba16float keeps 11 significant bits: components in [-1, 1] round by at most
         // 2^-11 (4.9e-4); height errors (<= 1e-5) amplified by height_scale / (2 texel
         // spacing) add < 1e-4 at these sizes.
-        assert!(max_comp <= 1e-3, "normal component error {max_comp:e} exceeds 1e-3");
+        assert!(
+            max_comp <= 1e-3,
+            "normal component error {max_comp:e} exceeds 1e-3"
+        );
     }
     // Central differences are second order: doubling the resolution should cut the angle
     // error about fourfold. A wrong sign, axis swap or scale would not converge at all.
     assert!(r256.1 < 1.0, "resolved mean angle {} deg", r256.1);
-    assert!(r128.1 / r256.1 > 2.5, "no second-order convergence: {} -> {} deg", r128.1, r256.1);
+    assert!(
+        r128.1 / r256.1 > 2.5,
+        "no second-order convergence: {} -> {} deg",
+        r128.1,
+        r256.1
+    );
 }
 
 #[test]
@@ -160,7 +191,10 @@ fn tiles_without_seams() {
         mean(&interior),
         max(&interior)
     );
-    assert!(mean(&edge) < 2.0 * mean(&interior), "wrap edge is rougher than the interior");
+    assert!(
+        mean(&edge) < 2.0 * mean(&interior),
+        "wrap edge is rougher than the interior"
+    );
     assert!(max(&edge) < 3.0 * max(&interior), "a step at the wrap edge");
     // A non-periodic noise would give a jump of the order of the height range's spread.
     assert!(max(&edge) < 0.05);
@@ -193,15 +227,26 @@ fn whole_tile_scroll_and_same_seed_give_same_bytes() {
     let bits = |v: &[f32]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&a.heights), bits(&b.heights), "same seed, same bytes");
     assert_eq!(bits(&a.colors), bits(&b.colors));
-    assert_eq!(bits(&a.heights), bits(&c.heights), "whole-tile scroll must reproduce the texture");
-    assert_ne!(bits(&a.heights), bits(&d.heights), "a part-tile scroll must move the terrain");
+    assert_eq!(
+        bits(&a.heights),
+        bits(&c.heights),
+        "whole-tile scroll must reproduce the texture"
+    );
+    assert_ne!(
+        bits(&a.heights),
+        bits(&d.heights),
+        "a part-tile scroll must move the terrain"
+    );
     // Scrolling by exactly 16 texels (16/128 tile) shifts the texture by 16 columns.
     let n = 128;
     for y in 0..n {
         for x in 0..n - 16 {
             let moved = d.heights[y * n + x];
             let orig = a.heights[y * n + x + 16];
-            assert!((moved - orig).abs() < 1e-5, "scroll by 16 texels at ({x},{y}): {moved} vs {orig}");
+            assert!(
+                (moved - orig).abs() < 1e-5,
+                "scroll by 16 texels at ({x},{y}): {moved} vs {orig}"
+            );
         }
     }
 }
@@ -215,15 +260,38 @@ fn rebakes_only_what_changed_and_height_at_agrees() {
     };
     let (mut terrain, baked) = common::bake(&gpu, params);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    assert!(!terrain.encode_bake(&mut encoder), "nothing changed: nothing to record");
+    assert!(
+        !terrain.encode_bake(&mut encoder),
+        "nothing changed: nothing to record"
+    );
     let dirty = terrain
-        .set_params(&gpu.device, &gpu.queue, TerrainParams { snow_height: 0.2, ..params })
+        .set_params(
+            &gpu.device,
+            &gpu.queue,
+            TerrainParams {
+                snow_height: 0.2,
+                ..params
+            },
+        )
         .unwrap();
-    assert!(!dirty.any_gpu_work() && !terrain.encode_bake(&mut encoder), "snow is shading only");
+    assert!(
+        !dirty.any_gpu_work() && !terrain.encode_bake(&mut encoder),
+        "snow is shading only"
+    );
     let dirty = terrain
-        .set_params(&gpu.device, &gpu.queue, TerrainParams { height_scale: 1.0, ..params })
+        .set_params(
+            &gpu.device,
+            &gpu.queue,
+            TerrainParams {
+                height_scale: 1.0,
+                ..params
+            },
+        )
         .unwrap();
-    assert!(dirty.normals && !dirty.bake, "height scale re-runs only the normal pass");
+    assert!(
+        dirty.normals && !dirty.bake,
+        "height scale re-runs only the normal pass"
+    );
     assert!(terrain.encode_bake(&mut encoder));
     // A refused change keeps the old parameters.
     let before = *terrain.params();
@@ -239,6 +307,9 @@ fn rebakes_only_what_changed_and_height_at_agrees() {
         let wz = ((f64::from(y) + 0.5) / f64::from(n) - 0.5) * relief::WORLD_SIZE;
         let cpu = relief::height_at(&params, wx as f32, wz as f32);
         let gpu_h = baked.heights[(y * n + x) as usize] * params.height_scale;
-        assert!((cpu - gpu_h).abs() < 1e-5, "({x},{y}): height_at {cpu} vs baked {gpu_h}");
+        assert!(
+            (cpu - gpu_h).abs() < 1e-5,
+            "({x},{y}): height_at {cpu} vs baked {gpu_h}"
+        );
     }
 }

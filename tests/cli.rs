@@ -31,7 +31,10 @@ fn scratch(name: &str) -> PathBuf {
 
 fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
-        .map(|r| r.map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect())
+        .map(|r| {
+            r.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect()
+        })
         .unwrap_or_default();
     v.sort();
     v
@@ -41,7 +44,11 @@ fn files_in(dir: &Path) -> Vec<String> {
 fn rejects(args: &[&str], needles: &[&str]) {
     let (code, _, err) = relief(args);
     assert_eq!(code, 2, "{args:?} should exit 2; stderr: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?} should print one line, got:\n{err}");
+    assert_eq!(
+        err.lines().count(),
+        1,
+        "{args:?} should print one line, got:\n{err}"
+    );
     assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
     for n in needles {
         assert!(err.contains(n), "{args:?}: {err:?} should mention {n:?}");
@@ -61,7 +68,10 @@ fn bad_parameters_exit_2_with_one_line() {
         (&["--grid", "1"], &["grid", "1", "2..=4096"]),
         (&["--octaves", "0"], &["octaves", "0", "1..=16"]),
         (&["--octaves", "1000"], &["octaves", "1000", "1..=16"]),
-        (&["--octaves", "16", "--frequency", "8"], &["octaves", "16", "at most 14"]),
+        (
+            &["--octaves", "16", "--frequency", "8"],
+            &["octaves", "16", "at most 14"],
+        ),
         (&["--frequency", "0"], &["frequency", "0", "1..=1024"]),
         (&["--gain", "nan"], &["gain", "NaN", "0..=1"]),
         (&["--gain", "inf"], &["gain", "inf", "0..=1"]),
@@ -81,7 +91,11 @@ fn bad_parameters_exit_2_with_one_line() {
         bake.extend_from_slice(args);
         rejects(&bake, needles);
     }
-    assert!(files_in(&dir).is_empty(), "bad input left files: {:?}", files_in(&dir));
+    assert!(
+        files_in(&dir).is_empty(),
+        "bad input left files: {:?}",
+        files_in(&dir)
+    );
 }
 
 #[test]
@@ -98,26 +112,73 @@ fn bad_scene_files_and_outputs_exit_2() {
     let out = dir.join("o.png");
     let o = out.to_str().unwrap();
     let scene = |p: &Path| p.to_str().unwrap().to_owned();
-    rejects(&["render", "--out", o, "--scene", &scene(&unknown)], &["unknown.toml", "colour"]);
-    rejects(&["render", "--out", o, "--scene", &scene(&wrong)], &["wrong.toml", "octaves"]);
-    rejects(&["render", "--out", o, "--scene", &scene(&range)], &["gain", "7.5", "0..=1"]);
-    rejects(&["render", "--out", o, "--scene", &scene(&broken)], &["broken.toml"]);
-    rejects(&["render", "--out", o, "--scene", "/nonexistent/scene.toml"], &["/nonexistent/scene.toml"]);
-    rejects(&["render", "--out", "/nonexistent/dir/o.png"], &["/nonexistent/dir"]);
-    rejects(&["render", "--out", &format!("{}/o.jpg", dir.display())], &["out", ".png"]);
+    rejects(
+        &["render", "--out", o, "--scene", &scene(&unknown)],
+        &["unknown.toml", "colour"],
+    );
+    rejects(
+        &["render", "--out", o, "--scene", &scene(&wrong)],
+        &["wrong.toml", "octaves"],
+    );
+    rejects(
+        &["render", "--out", o, "--scene", &scene(&range)],
+        &["gain", "7.5", "0..=1"],
+    );
+    rejects(
+        &["render", "--out", o, "--scene", &scene(&broken)],
+        &["broken.toml"],
+    );
+    rejects(
+        &["render", "--out", o, "--scene", "/nonexistent/scene.toml"],
+        &["/nonexistent/scene.toml"],
+    );
+    rejects(
+        &["render", "--out", "/nonexistent/dir/o.png"],
+        &["/nonexistent/dir"],
+    );
+    rejects(
+        &["render", "--out", &format!("{}/o.jpg", dir.display())],
+        &["out", ".png"],
+    );
     rejects(&["render", "--out", o, "--width", "0"], &["width", "0"]);
     rejects(&["render", "--bogus"], &["--bogus"]);
     // A folder that cannot be created: its parent is a file.
     let file = dir.join("a-file");
     std::fs::write(&file, "x").unwrap();
-    rejects(&["bake", "--out-dir", &format!("{}/sub", file.display())], &["a-file"]);
+    rejects(
+        &["bake", "--out-dir", &format!("{}/sub", file.display())],
+        &["a-file"],
+    );
     // Bad values in the scene file are overridden by flags: flags win.
     let (code, _, err) = relief(&[
-        "render", "--out", o, "--scene", &scene(&range), "--gain", "0.5", "--size", "32", "--grid", "8",
-        "--width", "32", "--height", "24",
+        "render",
+        "--out",
+        o,
+        "--scene",
+        &scene(&range),
+        "--gain",
+        "0.5",
+        "--size",
+        "32",
+        "--grid",
+        "8",
+        "--width",
+        "32",
+        "--height",
+        "24",
     ]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(files_in(&dir), ["a-file", "broken.toml", "o.png", "range.toml", "unknown.toml", "wrong.toml"]);
+    assert_eq!(
+        files_in(&dir),
+        [
+            "a-file",
+            "broken.toml",
+            "o.png",
+            "range.toml",
+            "unknown.toml",
+            "wrong.toml"
+        ]
+    );
 }
 
 #[test]
@@ -128,12 +189,26 @@ fn unwritable_output_leaves_nothing() {
     std::fs::create_dir(&target).unwrap();
     std::fs::write(target.join("keep"), "x").unwrap();
     let (code, _, err) = relief(&[
-        "render", "--out", target.to_str().unwrap(), "--size", "32", "--grid", "8", "--width", "32", "--height", "24",
+        "render",
+        "--out",
+        target.to_str().unwrap(),
+        "--size",
+        "32",
+        "--grid",
+        "8",
+        "--width",
+        "32",
+        "--height",
+        "24",
     ]);
     assert_eq!(code, 2, "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("taken.png"), "{err}");
-    assert_eq!(files_in(&dir), ["taken.png"], "a temporary file was left behind");
+    assert_eq!(
+        files_in(&dir),
+        ["taken.png"],
+        "a temporary file was left behind"
+    );
 }
 
 #[test]
@@ -141,17 +216,38 @@ fn bake_writes_recoverable_heights_and_a_reproducible_scene() {
     let dir = scratch("bake");
     let a = dir.join("a");
     let (code, stdout, err) = relief(&[
-        "bake", "--out-dir", a.to_str().unwrap(), "--size", "64", "--seed", "11", "--offset", "0.25,-7.5",
+        "bake",
+        "--out-dir",
+        a.to_str().unwrap(),
+        "--size",
+        "64",
+        "--seed",
+        "11",
+        "--offset",
+        "0.25,-7.5",
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("baked 64x64"), "{stdout}");
-    assert_eq!(files_in(&a), ["color.png", "height.png", "normal.png", "scene.toml"]);
+    assert_eq!(
+        files_in(&a),
+        ["color.png", "height.png", "normal.png", "scene.toml"]
+    );
 
     let height = image::open(a.join("height.png")).unwrap();
-    assert_eq!(height.color(), image::ColorType::L16, "height.png must be 16-bit greyscale");
+    assert_eq!(
+        height.color(),
+        image::ColorType::L16,
+        "height.png must be 16-bit greyscale"
+    );
     let h = height.into_luma16();
-    let (lo, hi) = h.pixels().fold((u16::MAX, 0), |(lo, hi), p| (lo.min(p.0[0]), hi.max(p.0[0])));
-    assert_eq!((lo, hi), (0, 65535), "heights must span the full 16-bit range");
+    let (lo, hi) = h.pixels().fold((u16::MAX, 0), |(lo, hi), p| {
+        (lo.min(p.0[0]), hi.max(p.0[0]))
+    });
+    assert_eq!(
+        (lo, hi),
+        (0, 65535),
+        "heights must span the full 16-bit range"
+    );
     let normal = image::open(a.join("normal.png")).unwrap();
     assert_eq!(normal.color(), image::ColorType::Rgb8);
     // Normals point up: y (green) above 0.5 everywhere.
@@ -162,7 +258,10 @@ fn bake_writes_recoverable_heights_and_a_reproducible_scene() {
     let text = std::fs::read_to_string(&scene_path).unwrap();
     let table: toml::Table = text.parse().unwrap();
     let bake = table["bake"].as_table().unwrap();
-    let (min, max) = (bake["height_min"].as_float().unwrap(), bake["height_max"].as_float().unwrap());
+    let (min, max) = (
+        bake["height_min"].as_float().unwrap(),
+        bake["height_max"].as_float().unwrap(),
+    );
     let params = relief::TerrainParams::from_scene_file(&scene_path).unwrap();
     assert_eq!(params.seed, 11);
     assert_eq!(params.offset, [0.25, -7.5]);
@@ -172,15 +271,28 @@ fn bake_writes_recoverable_heights_and_a_reproducible_scene() {
         let twin = fbm.texel(relief::noise::Channel::Height, 64, x, y);
         // Quantisation to 16 bits: half a step of the range, plus the GPU's 1e-5.
         let tol = 0.5 / 65535.0 * (max - min) + 1e-5;
-        assert!((recovered - twin).abs() <= tol, "({x},{y}): {recovered} vs {twin}");
+        assert!(
+            (recovered - twin).abs() <= tol,
+            "({x},{y}): {recovered} vs {twin}"
+        );
     }
 
     // Re-baking from the scene file reproduces the same bytes.
     let b = dir.join("b");
-    let (code, _, err) = relief(&["bake", "--out-dir", b.to_str().unwrap(), "--scene", scene_path.to_str().unwrap()]);
+    let (code, _, err) = relief(&[
+        "bake",
+        "--out-dir",
+        b.to_str().unwrap(),
+        "--scene",
+        scene_path.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
     for f in ["height.png", "normal.png", "color.png", "scene.toml"] {
-        assert_eq!(std::fs::read(a.join(f)).unwrap(), std::fs::read(b.join(f)).unwrap(), "{f} differs");
+        assert_eq!(
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+            "{f} differs"
+        );
     }
 }
 
@@ -189,13 +301,26 @@ fn render_writes_a_png_and_reports_timings() {
     let dir = scratch("render");
     let out = dir.join("frame.png");
     let (code, stdout, err) = relief(&[
-        "render", "--out", out.to_str().unwrap(), "--width", "96", "--height", "64", "--size", "64", "--grid", "16",
+        "render",
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "96",
+        "--height",
+        "64",
+        "--size",
+        "64",
+        "--grid",
+        "16",
         "--timings",
     ]);
     assert_eq!(code, 0, "{err}");
     let img = image::open(&out).unwrap();
     assert_eq!((img.width(), img.height()), (96, 64));
-    assert!(stdout.starts_with("timings"), "--timings printed nothing: {stdout:?}");
+    assert!(
+        stdout.starts_with("timings"),
+        "--timings printed nothing: {stdout:?}"
+    );
     assert!(
         stdout.contains("render") || stdout.contains("no timestamp queries"),
         "{stdout}"

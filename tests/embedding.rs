@@ -15,23 +15,63 @@ fn is_red(p: &[u8]) -> bool {
 fn host_geometry_and_terrain_are_depth_tested_together() {
     let gpu = common::gpu();
     let (w, h) = (256, 192);
-    let host = render_frame(&gpu, w, h, Draw { host: true, terrain: false }).unwrap();
-    let terrain = render_frame(&gpu, w, h, Draw { host: false, terrain: true }).unwrap();
-    let both = render_frame(&gpu, w, h, Draw { host: true, terrain: true }).unwrap();
+    let host = render_frame(
+        &gpu,
+        w,
+        h,
+        Draw {
+            host: true,
+            terrain: false,
+        },
+    )
+    .unwrap();
+    let terrain = render_frame(
+        &gpu,
+        w,
+        h,
+        Draw {
+            host: false,
+            terrain: true,
+        },
+    )
+    .unwrap();
+    let both = render_frame(
+        &gpu,
+        w,
+        h,
+        Draw {
+            host: true,
+            terrain: true,
+        },
+    )
+    .unwrap();
     let px = |img: &[u8], i: usize| img[4 * i..4 * i + 4].to_vec();
     let n = (w * h) as usize;
     let red_alone = (0..n).filter(|&i| is_red(&px(&host, i))).count();
     let red_both = (0..n).filter(|&i| is_red(&px(&both, i))).count();
     // Pillar pixels hidden by terrain in front of them.
-    let hidden = (0..n).filter(|&i| is_red(&px(&host, i)) && !is_red(&px(&both, i))).count();
+    let hidden = (0..n)
+        .filter(|&i| is_red(&px(&host, i)) && !is_red(&px(&both, i)))
+        .count();
     // Terrain pixels covered by the pillar standing in front of them.
     let covered = (0..n)
-        .filter(|&i| px(&terrain, i) != px(&host, i) && !is_red(&px(&terrain, i)) && is_red(&px(&both, i)))
+        .filter(|&i| {
+            px(&terrain, i) != px(&host, i) && !is_red(&px(&terrain, i)) && is_red(&px(&both, i))
+        })
         .count();
     eprintln!("pillar pixels alone {red_alone}, with terrain {red_both}; hidden by terrain {hidden}; terrain covered {covered}");
-    assert!(red_alone > 200, "the host pillar must be visible on its own");
-    assert!(red_both > 100, "the pillar must stay visible above the ground");
-    assert!(hidden > 20, "terrain must hide the pillar's buried foot (depth shared with the host)");
+    assert!(
+        red_alone > 200,
+        "the host pillar must be visible on its own"
+    );
+    assert!(
+        red_both > 100,
+        "the pillar must stay visible above the ground"
+    );
+    assert!(
+        hidden > 20,
+        "terrain must hide the pillar's buried foot (depth shared with the host)"
+    );
     assert!(covered > 100, "the pillar must hide terrain behind it");
     // Outside the pillar, the frame with both is the terrain frame.
     let same = (0..n)
@@ -39,5 +79,8 @@ fn host_geometry_and_terrain_are_depth_tested_together() {
         .filter(|&i| px(&both, i) == px(&terrain, i))
         .count();
     let outside = (0..n).filter(|&i| !is_red(&px(&host, i))).count();
-    assert!(same as f64 > 0.99 * outside as f64, "terrain changed away from the pillar: {same}/{outside}");
+    assert!(
+        same as f64 > 0.99 * outside as f64,
+        "terrain changed away from the pillar: {same}/{outside}"
+    );
 }

@@ -26,7 +26,8 @@ fn scene() -> TerrainParams {
 fn render(gpu: &Gpu, params: TerrainParams) -> Vec<u8> {
     let samples = relief::cli::RENDER_SAMPLES;
     let target = Offscreen::new(&gpu.device, W, H, samples).unwrap();
-    let mut terrain = Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), params).unwrap();
+    let mut terrain =
+        Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), params).unwrap();
     let view = OrbitCamera::default().view(W as f32 / H as f32);
     target.render(gpu, &mut terrain, &view, None).unwrap().0
 }
@@ -51,19 +52,39 @@ fn golden_default_scene() {
         return;
     }
     let expected = image::open(&reference)
-        .unwrap_or_else(|e| panic!("{}: {e} (RELIEF_UPDATE_IMAGES=1 creates it)", reference.display()))
+        .unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (RELIEF_UPDATE_IMAGES=1 creates it)",
+                reference.display()
+            )
+        })
         .into_rgb8();
     assert_eq!((expected.width(), expected.height()), (W, H));
     let (error, mean, p99) = flip(expected.as_raw(), &actual);
     eprintln!("golden image FLIP: mean {mean:.4}, p99 {p99:.4}");
     // Negative controls: the threshold below must reject small real changes.
     for (what, params) in [
-        ("snow height 0.63 -> 0.60", TerrainParams { snow_height: 0.60, ..scene() }),
-        ("height scale 0.5 -> 0.45", TerrainParams { height_scale: 0.45, ..scene() }),
+        (
+            "snow height 0.63 -> 0.60",
+            TerrainParams {
+                snow_height: 0.60,
+                ..scene()
+            },
+        ),
+        (
+            "height scale 0.5 -> 0.45",
+            TerrainParams {
+                height_scale: 0.45,
+                ..scene()
+            },
+        ),
     ] {
         let (_, m, _) = flip(expected.as_raw(), &rgb(&render(&gpu, params)));
         eprintln!("control, {what}: FLIP mean {m:.4}");
-        assert!(m > 0.02, "the golden threshold cannot see a change of {what} (FLIP mean {m})");
+        assert!(
+            m > 0.02,
+            "the golden threshold cannot see a change of {what} (FLIP mean {m})"
+        );
     }
     // The reference comes from lavapipe, which reproduces it to the bit (mean 0.0000). Other
     // drivers will differ along silhouettes and in rounding (MSAA sample positions, fused
@@ -114,17 +135,31 @@ fn sky(gpu: &Gpu) -> [u8; 3] {
 fn snow_follows_snow_height() {
     let gpu = common::gpu();
     let sky = sky(&gpu);
-    let snowy = |p: &[u8; 3]| p.iter().all(|&c| c > 185) && p.iter().max().unwrap() - p.iter().min().unwrap() < 40;
+    let snowy = |p: &[u8; 3]| {
+        p.iter().all(|&c| c > 185) && p.iter().max().unwrap() - p.iter().min().unwrap() < 40
+    };
     let count = |snow_height: f32| {
-        let img = render(&gpu, TerrainParams { snow_height, ..scene() });
+        let img = render(
+            &gpu,
+            TerrainParams {
+                snow_height,
+                ..scene()
+            },
+        );
         let t = terrain_pixels(&img, sky);
         t.iter().filter(|p| snowy(p)).count() as f64 / t.len() as f64
     };
     let (low, mid, none) = (count(0.45), count(0.63), count(1.0));
     eprintln!("snow fraction of terrain pixels: snow height 0.45 -> {low:.3}, 0.63 -> {mid:.3}, 1.0 -> {none:.3}");
-    assert!(none < 0.002, "snow height 1.0 must leave (almost) no snow: {none}");
+    assert!(
+        none < 0.002,
+        "snow height 1.0 must leave (almost) no snow: {none}"
+    );
     assert!(mid > 0.01, "the default scene shows snow: {mid}");
-    assert!(low > 2.0 * mid, "lowering the snow line must add snow: {low} vs {mid}");
+    assert!(
+        low > 2.0 * mid,
+        "lowering the snow line must add snow: {low} vs {mid}"
+    );
 }
 
 #[test]
@@ -133,12 +168,28 @@ fn ambient_occlusion_darkens_with_its_exponent() {
     let sky = sky(&gpu);
     let brightness = |ao_exponent: f32| {
         // Snow off, so AO is the only change.
-        let img = render(&gpu, TerrainParams { ao_exponent, snow_height: 1.0, ..scene() });
+        let img = render(
+            &gpu,
+            TerrainParams {
+                ao_exponent,
+                snow_height: 1.0,
+                ..scene()
+            },
+        );
         let t = terrain_pixels(&img, sky);
-        t.iter().map(|p| p.iter().map(|&c| f64::from(c)).sum::<f64>()).sum::<f64>() / (3.0 * t.len() as f64)
+        t.iter()
+            .map(|p| p.iter().map(|&c| f64::from(c)).sum::<f64>())
+            .sum::<f64>()
+            / (3.0 * t.len() as f64)
     };
     let (off, default, strong) = (brightness(0.0), brightness(1.0), brightness(4.0));
     eprintln!("mean terrain value (0-255): AO exponent 0 -> {off:.1}, 1 -> {default:.1}, 4 -> {strong:.1}");
-    assert!(default < 0.9 * off, "AO exponent 1 must darken: {default} vs {off}");
-    assert!(strong < 0.6 * off, "AO exponent 4 must darken strongly: {strong} vs {off}");
+    assert!(
+        default < 0.9 * off,
+        "AO exponent 1 must darken: {default} vs {off}"
+    );
+    assert!(
+        strong < 0.6 * off,
+        "AO exponent 4 must darken strongly: {strong} vs {off}"
+    );
 }

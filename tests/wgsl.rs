@@ -7,9 +7,12 @@ use std::mem::{offset_of, size_of};
 fn parse(name: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
         .unwrap_or_else(|e| panic!("{name}.wgsl does not parse:\n{}", e.emit_to_string(source)));
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{name}.wgsl does not validate: {e:?}"));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{name}.wgsl does not validate: {e:?}"));
     module
 }
 
@@ -57,15 +60,30 @@ fn uniform_structs_match_wgsl() {
     let normals = parse("normals", shader::NORMALS);
     let (size, m) = layout(&normals, "NormalUniforms");
     assert_eq!(size as usize, size_of::<NormalUniforms>());
-    assert_eq!(offset(&m, "height_scale"), offset_of!(NormalUniforms, height_scale));
-    assert_eq!(offset(&m, "texel_world"), offset_of!(NormalUniforms, texel_world));
+    assert_eq!(
+        offset(&m, "height_scale"),
+        offset_of!(NormalUniforms, height_scale)
+    );
+    assert_eq!(
+        offset(&m, "texel_world"),
+        offset_of!(NormalUniforms, texel_world)
+    );
 
     let render = parse("render", shader::RENDER);
     let (size, m) = layout(&render, "RenderUniforms");
     assert_eq!(size as usize, size_of::<RenderUniforms>());
-    assert_eq!(offset(&m, "camera_pos"), offset_of!(RenderUniforms, camera_pos));
-    assert_eq!(offset(&m, "snow_color"), offset_of!(RenderUniforms, snow_color));
-    assert_eq!(offset(&m, "height_scale"), offset_of!(RenderUniforms, height_scale));
+    assert_eq!(
+        offset(&m, "camera_pos"),
+        offset_of!(RenderUniforms, camera_pos)
+    );
+    assert_eq!(
+        offset(&m, "snow_color"),
+        offset_of!(RenderUniforms, snow_color)
+    );
+    assert_eq!(
+        offset(&m, "height_scale"),
+        offset_of!(RenderUniforms, height_scale)
+    );
     assert_eq!(offset(&m, "grid"), offset_of!(RenderUniforms, grid));
     assert_eq!(offset(&m, "specular"), offset_of!(RenderUniforms, specular));
 }
@@ -73,7 +91,10 @@ fn uniform_structs_match_wgsl() {
 #[test]
 fn world_size_agrees_with_render_wgsl() {
     assert!(
-        shader::RENDER.contains(&format!("const WORLD_SIZE: f32 = {:.1};", relief::WORLD_SIZE)),
+        shader::RENDER.contains(&format!(
+            "const WORLD_SIZE: f32 = {:.1};",
+            relief::WORLD_SIZE
+        )),
         "render.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
     );
 }

@@ -69,7 +69,8 @@ impl BakePass {
                 },
             ],
         });
-        let pipeline = super::compute_pipeline(device, "relief:bake", &layout, &module, "bake_main");
+        let pipeline =
+            super::compute_pipeline(device, "relief:bake", &layout, &module, "bake_main");
         let uniforms = super::uniform_buffer::<BakeUniforms>(device, "relief:bake:uniforms");
         Self {
             pipeline,
@@ -97,7 +98,11 @@ impl BakePass {
     }
 
     pub fn write(&self, queue: &wgpu::Queue, params: &TerrainParams) {
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&BakeUniforms::new(params)));
+        queue.write_buffer(
+            &self.uniforms,
+            0,
+            bytemuck::bytes_of(&BakeUniforms::new(params)),
+        );
     }
 
     pub fn encode(

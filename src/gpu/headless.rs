@@ -20,14 +20,19 @@ impl Gpu {
     /// Picks the high-performance adapter (backends from `WGPU_BACKEND` if set) and creates a
     /// device with the adapter's own limits. Fails with [`Error::NoAdapter`] if there is none.
     pub fn new() -> Result<Self> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::from_env().unwrap_or(wgpu::PowerPreference::HighPerformance),
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .map_err(|e| Error::NoAdapter(e.to_string()))?;
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter =
+            pollster::block_on(
+                instance.request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::from_env()
+                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                }),
+            )
+            .map_err(|e| Error::NoAdapter(e.to_string()))?;
         let (device, queue) = pollster::block_on(request_device(&adapter))?;
         Ok(Self {
             adapter,
@@ -113,7 +118,11 @@ pub fn encode_texture_copy(
 }
 
 /// Reads a whole 2-D texture back, rows tightly packed.
-pub fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<Vec<u8>> {
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<u8>> {
     let mut encoder = device.create_command_encoder(&Default::default());
     let (buffer, pitch) = encode_texture_copy(device, &mut encoder, texture);
     queue.submit([encoder.finish()]);
@@ -144,7 +153,11 @@ pub struct BakedTerrain {
 }
 
 /// Reads back everything [`Terrain`] baked (submit its bake first).
-pub fn read_baked(device: &wgpu::Device, queue: &wgpu::Queue, terrain: &Terrain) -> Result<BakedTerrain> {
+pub fn read_baked(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    terrain: &Terrain,
+) -> Result<BakedTerrain> {
     let t = terrain.textures();
     let raw = read_texture(device, queue, &t.terrain)?;
     let rg: &[[f32; 2]] = bytemuck::cast_slice(&raw);
@@ -162,11 +175,17 @@ pub fn read_baked(device: &wgpu::Device, queue: &wgpu::Queue, terrain: &Terrain)
 }
 
 /// Bakes whatever is pending and waits for it.
-pub fn bake_blocking(gpu: &Gpu, terrain: &mut Terrain, timer: Option<&GpuTimer>) -> Result<Option<Timings>> {
+pub fn bake_blocking(
+    gpu: &Gpu,
+    terrain: &mut Terrain,
+    timer: Option<&GpuTimer>,
+) -> Result<Option<Timings>> {
     super::scoped(&gpu.device, || {
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("relief:headless:bake"),
-        });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("relief:headless:bake"),
+            });
         terrain.encode_bake_timed(&mut encoder, timer);
         if let Some(t) = timer {
             t.resolve(&mut encoder);
@@ -248,11 +267,21 @@ impl Offscreen {
                 attach | wgpu::TextureUsages::COPY_SRC,
             );
             let msaa = (sample_count > 1).then(|| {
-                make("relief:offscreen:msaa", Self::COLOR_FORMAT, sample_count, attach)
-                    .create_view(&Default::default())
+                make(
+                    "relief:offscreen:msaa",
+                    Self::COLOR_FORMAT,
+                    sample_count,
+                    attach,
+                )
+                .create_view(&Default::default())
             });
-            let depth = make("relief:offscreen:depth", Self::DEPTH_FORMAT, sample_count, attach)
-                .create_view(&Default::default());
+            let depth = make(
+                "relief:offscreen:depth",
+                Self::DEPTH_FORMAT,
+                sample_count,
+                attach,
+            )
+            .create_view(&Default::default());
             Self {
                 width,
                 height,

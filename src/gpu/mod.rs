@@ -229,8 +229,11 @@ impl Terrain {
             recorded = true;
         }
         if recorded || self.pending.normals {
-            self.normals
-                .encode(encoder, size, timer.map(|t| t.compute_writes(Slot::Normals)));
+            self.normals.encode(
+                encoder,
+                size,
+                timer.map(|t| t.compute_writes(Slot::Normals)),
+            );
             recorded = true;
         }
         self.pending = Dirty::default();
@@ -283,7 +286,10 @@ pub fn clear_color(srgb: [f32; 3]) -> wgpu::Color {
     wgpu::Color { r, g, b, a: 1.0 }
 }
 
-pub(crate) fn uniform_entry<T>(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn uniform_entry<T>(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -357,7 +363,10 @@ pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<
     {
         if let Some(e) = pollster::block_on(oom).or(pollster::block_on(validation)) {
             return Err(Error::Gpu(
-                e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
+                e.to_string()
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" "),
             ));
         }
     }

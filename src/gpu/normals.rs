@@ -89,7 +89,11 @@ impl NormalPass {
     }
 
     pub fn write(&self, queue: &wgpu::Queue, params: &TerrainParams) {
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&NormalUniforms::new(params)));
+        queue.write_buffer(
+            &self.uniforms,
+            0,
+            bytemuck::bytes_of(&NormalUniforms::new(params)),
+        );
     }
 
     pub fn encode(

@@ -104,7 +104,12 @@ impl GpuTimer {
         for slot in Slot::ALL {
             if self.written.get() & (1 << slot as u32) != 0 {
                 let first = 2 * slot as u32;
-                encoder.resolve_query_set(&self.queries, first..first + 2, &self.resolve, BLOCK * slot as u64);
+                encoder.resolve_query_set(
+                    &self.queries,
+                    first..first + 2,
+                    &self.resolve,
+                    BLOCK * slot as u64,
+                );
             }
         }
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, BUFFER_SIZE);
@@ -121,7 +126,10 @@ impl GpuTimer {
                 let i = (BLOCK / 8) as usize * slot as usize;
                 let dt = ticks[i + 1].wrapping_sub(ticks[i]);
                 if ticks[i + 1] < ticks[i] {
-                    return Err(Error::Readback(format!("{} timestamps out of order", slot.name())));
+                    return Err(Error::Readback(format!(
+                        "{} timestamps out of order",
+                        slot.name()
+                    )));
                 }
                 out[slot as usize] = Some(dt as f64 * self.period_ns * 1e-6);
             }
