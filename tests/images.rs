@@ -12,6 +12,14 @@ use relief::{OrbitCamera, Terrain, TerrainParams};
 use std::path::PathBuf;
 
 const W: u32 = 256;
+/// Largest FLIP mean accepted against the golden image.
+///
+/// The reference comes from lavapipe, which reproduces it to the bit (mean 0.0000). An NVIDIA
+/// H100 (Vulkan) renders the same scene with 1-LSB rounding differences over the whole frame,
+/// sky included, which FLIP scores 0.025 in mean (measured). The negative controls in the test
+/// (a 0.03 snow-line shift, a 10% height change) score 0.046 and 0.15 on lavapipe and 0.068 and
+/// 0.17 on the H100; 0.035 sits between.
+const GOLDEN_FLIP_MEAN: f32 = 0.035;
 const H: u32 = 192;
 
 /// The fixed scene of the golden image: the defaults at test size.
@@ -82,15 +90,11 @@ fn golden_default_scene() {
         let (_, m, _) = flip(expected.as_raw(), &rgb(&render(&gpu, params)));
         eprintln!("control, {what}: FLIP mean {m:.4}");
         assert!(
-            m > 0.02,
+            m > GOLDEN_FLIP_MEAN,
             "the golden threshold cannot see a change of {what} (FLIP mean {m})"
         );
     }
-    // The reference comes from lavapipe, which reproduces it to the bit (mean 0.0000). Other
-    // drivers will differ along silhouettes and in rounding (MSAA sample positions, fused
-    // multiply-adds); 0.02 leaves them room, while the controls above show that moving the
-    // snow line by 0.03 already scores 0.046 and a 10% height change 0.15.
-    if mean > 0.02 {
+    if mean > GOLDEN_FLIP_MEAN {
         save(&dir.join("default-256x192-actual.png"), &actual);
         let diff = error.apply_color_lut(&nv_flip::magma_lut());
         image::save_buffer(
@@ -101,7 +105,7 @@ fn golden_default_scene() {
             image::ColorType::Rgb8,
         )
         .unwrap();
-        panic!("golden image differs: FLIP mean {mean:.4} > 0.02 (see tests/images/*-actual.png, *-difference.png)");
+        panic!("golden image differs: FLIP mean {mean:.4} > {GOLDEN_FLIP_MEAN} (see tests/images/*-actual.png, *-difference.png)");
     }
 }
 
