@@ -195,7 +195,11 @@ fn clap_error(e: clap::Error) -> i32 {
 fn run(cli: Cli) -> Result<()> {
     let params = cli.scene.resolve()?;
     match cli.command.unwrap_or(Command::Window) {
-        Command::Window => crate::app::run_native(params, cli.scene.timings),
+        Command::Window => crate::app::run_native(crate::app::AppOptions {
+            params,
+            timings: cli.scene.timings,
+            ..Default::default()
+        }),
         Command::Render { out, width, height } => {
             render(&params, &out, width, height, cli.scene.timings)
         }

@@ -46,7 +46,6 @@
 //! # Ok(()) }
 //! ```
 
-#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
 pub mod camera;
 #[cfg(not(target_arch = "wasm32"))]

@@ -246,6 +246,75 @@ impl TerrainParams {
         }
     }
 
+    /// The keys [`TerrainParams::set`] accepts, in scene-file spelling.
+    pub const KEYS: [&'static str; 10] = [
+        "seed",
+        "size",
+        "grid",
+        "octaves",
+        "frequency",
+        "gain",
+        "height_scale",
+        "snow_height",
+        "ao_exponent",
+        "offset",
+    ];
+
+    /// Sets one parameter from text (`offset` as `X,Y`), as the web page's controls and URL do.
+    /// Does not validate the whole set; call [`TerrainParams::validate`] after.
+    pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
+        fn num<T: std::str::FromStr>(key: &'static str, v: &str, allowed: &str) -> Result<T> {
+            v.trim()
+                .parse()
+                .map_err(|_| Error::invalid(key, v, allowed))
+        }
+        let v = value;
+        match key {
+            "seed" => self.seed = num("seed", v, "0..=4294967295")?,
+            "size" => self.size = num("size", v, &format!("1..={MAX_SIZE}"))?,
+            "grid" => self.grid = num("grid", v, &format!("2..={MAX_GRID}"))?,
+            "octaves" => self.octaves = num("octaves", v, &format!("1..={MAX_OCTAVES}"))?,
+            "frequency" => self.frequency = num("frequency", v, &format!("1..={MAX_FREQUENCY}"))?,
+            "gain" => self.gain = num("gain", v, "0..=1")?,
+            "height_scale" => {
+                self.height_scale = num("height-scale", v, &format!("0..={MAX_HEIGHT_SCALE}"))?
+            }
+            "snow_height" => self.snow_height = num("snow-height", v, "0..=1")?,
+            "ao_exponent" => {
+                self.ao_exponent = num("ao-exponent", v, &format!("0..={MAX_AO_EXPONENT}"))?
+            }
+            "offset" => {
+                let parts: Vec<&str> = v.split(',').collect();
+                let [x, y] = parts.as_slice() else {
+                    return Err(Error::invalid("offset", v, "X,Y"));
+                };
+                self.offset = [
+                    num("offset", x, "X,Y with finite numbers")?,
+                    num("offset", y, "X,Y with finite numbers")?,
+                ];
+            }
+            _ => return Err(Error::invalid("key", key, Self::KEYS.join(", "))),
+        }
+        Ok(())
+    }
+
+    /// The value of one key as [`TerrainParams::set`] reads it.
+    pub fn get(&self, key: &str) -> Option<String> {
+        Some(match key {
+            "seed" => self.seed.to_string(),
+            "size" => self.size.to_string(),
+            "grid" => self.grid.to_string(),
+            "octaves" => self.octaves.to_string(),
+            "frequency" => self.frequency.to_string(),
+            "gain" => self.gain.to_string(),
+            "height_scale" => self.height_scale.to_string(),
+            "snow_height" => self.snow_height.to_string(),
+            "ao_exponent" => self.ao_exponent.to_string(),
+            "offset" => format!("{},{}", self.offset[0], self.offset[1]),
+            _ => return None,
+        })
+    }
+
     /// Reads a scene file (TOML; see the README for the format). Missing keys take defaults.
     pub fn from_scene_file(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::SceneFile {
@@ -359,6 +428,28 @@ mod tests {
         let err = TerrainParams::from_scene_str("seed = \"x\"\n").unwrap_err();
         assert!(err.contains("seed") || err.contains("integer"), "{err}");
         assert!(!err.contains('\n'));
+    }
+
+    #[test]
+    fn set_and_get_round_trip() {
+        let mut p = TerrainParams::default();
+        for (k, v) in [
+            ("seed", "9"),
+            ("gain", "0.25"),
+            ("offset", "1.5,-2"),
+            ("height_scale", "0.75"),
+        ] {
+            p.set(k, v).unwrap();
+            assert_eq!(p.get(k).unwrap(), v.replace("-2", "-2"));
+        }
+        let mut q = TerrainParams::default();
+        for k in TerrainParams::KEYS {
+            q.set(k, &p.get(k).unwrap()).unwrap();
+        }
+        assert_eq!(p, q);
+        let e = p.set("gain", "lots").unwrap_err().to_string();
+        assert!(e.contains("gain") && e.contains("lots"), "{e}");
+        assert!(p.set("colour", "1").is_err());
     }
 
     #[test]

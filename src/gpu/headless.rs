@@ -33,7 +33,7 @@ impl Gpu {
                 }),
             )
             .map_err(|e| Error::NoAdapter(e.to_string()))?;
-        let (device, queue) = pollster::block_on(request_device(&adapter))?;
+        let (device, queue) = pollster::block_on(super::request_device(&adapter))?;
         Ok(Self {
             adapter,
             device,
@@ -46,20 +46,6 @@ impl Gpu {
         let info = self.adapter.get_info();
         format!("{} ({:?})", info.name, info.backend)
     }
-}
-
-/// Requests a device from `adapter` with timestamps where available and the adapter's limits.
-pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
-    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
-    adapter
-        .request_device(&wgpu::DeviceDescriptor {
-            label: Some("relief:device"),
-            required_features: features,
-            required_limits: adapter.limits(),
-            ..Default::default()
-        })
-        .await
-        .map_err(|e| Error::Device(e.to_string()))
 }
 
 /// Maps a `MAP_READ` buffer, waits, and copies its contents out.

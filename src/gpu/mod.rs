@@ -280,6 +280,21 @@ pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
     (h * f64::from(params.height_scale)) as f32
 }
 
+/// Requests a device from `adapter` with timestamps where available and the adapter's limits
+/// (so large textures work where the hardware allows them).
+pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    adapter
+        .request_device(&wgpu::DeviceDescriptor {
+            label: Some("relief:device"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        })
+        .await
+        .map_err(|e| Error::Device(e.to_string()))
+}
+
 /// An sRGB colour as the linear clear colour a render pass wants.
 pub fn clear_color(srgb: [f32; 3]) -> wgpu::Color {
     let [r, g, b] = srgb.map(|c| f64::from(crate::params::srgb_to_linear(c)));

@@ -38,6 +38,7 @@ pub struct GpuTimer {
     readback: wgpu::Buffer,
     period_ns: f64,
     written: Cell<u32>,
+    resolved: Cell<u32>,
 }
 
 const QUERIES: u32 = 2 * Slot::ALL.len() as u32;
@@ -71,6 +72,7 @@ impl GpuTimer {
             }),
             period_ns: f64::from(queue.get_timestamp_period()),
             written: Cell::new(0),
+            resolved: Cell::new(0),
         })
     }
 
@@ -98,11 +100,13 @@ impl GpuTimer {
         self.written.set(self.written.get() | 1 << slot as u32);
     }
 
-    /// Resolves the timestamps written since the last [`GpuTimer::read`] into the readback
-    /// buffer; record after the timed passes, in the same or a later encoder.
+    /// Resolves the timestamps written since the last resolve into the readback buffer;
+    /// record after the timed passes, in the same or a later encoder. Do not resolve again
+    /// until the read of this one has finished.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        let written = self.written.replace(0);
         for slot in Slot::ALL {
-            if self.written.get() & (1 << slot as u32) != 0 {
+            if written & (1 << slot as u32) != 0 {
                 let first = 2 * slot as u32;
                 encoder.resolve_query_set(
                     &self.queries,
@@ -113,28 +117,57 @@ impl GpuTimer {
             }
         }
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, BUFFER_SIZE);
+        self.resolved.set(written);
     }
 
-    /// Waits for the resolved timestamps and returns each written slot's duration.
+    /// Waits for the resolved timestamps and returns each resolved slot's duration.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn read(&self, device: &wgpu::Device) -> Result<Timings> {
         let bytes = super::headless::map_read(device, &self.readback)?;
-        let ticks: &[u64] = bytemuck::cast_slice(&bytes);
-        let mut out = [None; 3];
-        for slot in Slot::ALL {
-            if self.written.get() & (1 << slot as u32) != 0 {
-                let i = (BLOCK / 8) as usize * slot as usize;
-                let dt = ticks[i + 1].wrapping_sub(ticks[i]);
-                if ticks[i + 1] < ticks[i] {
-                    return Err(Error::Readback(format!(
-                        "{} timestamps out of order",
-                        slot.name()
-                    )));
-                }
-                out[slot as usize] = Some(dt as f64 * self.period_ns * 1e-6);
-            }
-        }
-        self.written.set(0);
-        Ok(out)
+        durations(&bytes, self.resolved.get(), self.period_ns)
     }
+
+    /// Reads the resolved timestamps without blocking (submit the resolve first): `done` runs
+    /// once the GPU has finished, from `Device::poll` natively or from the browser's event
+    /// loop on the web.
+    pub fn read_async(&self, done: impl FnOnce(Result<Timings>) + wgpu::WasmNotSend + 'static) {
+        let buffer = self.readback.clone();
+        let (mask, period) = (self.resolved.get(), self.period_ns);
+        self.readback
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |r| {
+                let result = r
+                    .map_err(|e| Error::Readback(e.to_string()))
+                    .and_then(|()| {
+                        let view = buffer
+                            .slice(..)
+                            .get_mapped_range()
+                            .map_err(|e| Error::Readback(e.to_string()))?;
+                        durations(&view, mask, period)
+                    });
+                buffer.unmap();
+                done(result);
+            });
+    }
+}
+
+fn durations(bytes: &[u8], mask: u32, period_ns: f64) -> Result<Timings> {
+    let ticks: Vec<u64> = bytes
+        .chunks_exact(8)
+        .map(|c| u64::from_le_bytes(c.try_into().expect("8-byte chunks")))
+        .collect();
+    let mut out = [None; 3];
+    for slot in Slot::ALL {
+        if mask & (1 << slot as u32) != 0 {
+            let i = (BLOCK / 8) as usize * slot as usize;
+            if ticks[i + 1] < ticks[i] {
+                return Err(Error::Readback(format!(
+                    "{} timestamps out of order",
+                    slot.name()
+                )));
+            }
+            out[slot as usize] = Some((ticks[i + 1] - ticks[i]) as f64 * period_ns * 1e-6);
+        }
+    }
+    Ok(out)
 }

@@ -1,0 +1,126 @@
+// Browser test of the web page (index.html) in headless Chromium through Playwright:
+//   1. the page renders the scene given in its URL; a screenshot of the canvas is written to
+//      web/test-output/page.png for run.sh to compare with `relief render` (FLIP);
+//   2. no console errors;
+//   3. changing a control (the seed) re-bakes and changes the picture, and the URL it leaves
+//      reproduces that picture in a fresh page;
+//   4. without --enable-unsafe-webgpu the page shows the no-WebGPU message.
+// Usage: node web/test/page.mjs (from the repository root, after web/build.sh).
+
+import { chromium } from "playwright-core";
+import http from "node:http";
+import fs from "node:fs";
+import path from "node:path";
+
+const root = process.cwd();
+const out = path.join(root, "web/test-output");
+fs.mkdirSync(out, { recursive: true });
+const W = 256, H = 192;
+// The scene shared with the native render in run.sh.
+const SCENE = "seed=7&size=256&grid=128&paused=1";
+
+const types = { ".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript",
+  ".css": "text/css", ".wasm": "application/wasm", ".png": "image/png" };
+const server = http.createServer((req, res) => {
+  const url = new URL(req.url, "http://x");
+  const file = path.join(root, decodeURIComponent(url.pathname === "/" ? "/index.html" : url.pathname));
+  if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
+    res.writeHead(404).end();
+    return;
+  }
+  res.writeHead(200, { "content-type": types[path.extname(file)] || "application/octet-stream" });
+  fs.createReadStream(file).pipe(res);
+});
+await new Promise((r) => server.listen(0, "127.0.0.1", r));
+const base = `http://127.0.0.1:${server.address().port}`;
+
+const flags = ["--headless", "--no-sandbox", "--no-first-run", "--disable-background-networking",
+  "--disable-component-update", "--disable-sync", "--disable-quic"];
+let failures = 0, passes = 0;
+const check = (ok, what) => {
+  console.log(`${ok ? "ok" : "FAIL"} - ${what}`);
+  if (ok) passes++; else failures++;
+};
+
+async function withBrowser(extra, fn) {
+  const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    args: [...flags, ...extra],
+  });
+  try {
+    return await fn(browser);
+  } finally {
+    await browser.close();
+  }
+}
+
+async function openPage(browser, url, errors) {
+  const page = await browser.newPage({ viewport: { width: W, height: H }, deviceScaleFactor: 1 });
+  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("pageerror", (e) => errors.push(String(e)));
+  await page.goto(url);
+  return page;
+}
+
+// Frames are counted on <body data-frames>; wait until `n` more have been drawn.
+async function waitFrames(page, n) {
+  const now = Number(await page.evaluate(() => document.body.dataset.frames || 0));
+  await page.waitForFunction((t) => Number(document.body.dataset.frames || 0) >= t, now + n,
+    { timeout: 120000 });
+}
+
+async function shot(page, file) {
+  await page.addStyleTag({ content: "#controls { display: none !important; }" });
+  const png = await page.locator("#relief").screenshot();
+  fs.writeFileSync(path.join(out, file), png);
+  return png;
+}
+
+await withBrowser(["--enable-unsafe-webgpu"], async (browser) => {
+  const errors = [];
+  const page = await openPage(browser, `${base}/index.html?${SCENE}`, errors);
+  await page.waitForFunction(() => document.body.dataset.frames || document.body.dataset.error,
+    null, { timeout: 120000 });
+  const early = await page.evaluate(() => document.body.dataset.error || "");
+  check(early === "", `page started (error: ${early || "none"})`);
+  await waitFrames(page, 3);
+  const first = await shot(page, "page.png");
+  check(first.length > 1000, "screenshot of the canvas written to web/test-output/page.png");
+
+  // Change the seed through its control, as a user would.
+  await page.evaluate(() => { document.querySelector("#controls").style.display = ""; });
+  await page.fill('input[data-key="seed"]', "8");
+  await page.dispatchEvent('input[data-key="seed"]', "change");
+  await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=8"), null,
+    { timeout: 60000 });
+  await waitFrames(page, 3);
+  const second = await shot(page, "page-seed8.png");
+  check(!first.equals(second), "changing the seed changes the picture");
+  const url = page.url();
+  check(url.includes("seed=8"), `the URL records the change (${url})`);
+
+  const errors2 = [];
+  const again = await openPage(browser, url, errors2);
+  await waitFrames(again, 3);
+  const third = await shot(again, "page-seed8-reloaded.png");
+  check(third.equals(second), "the URL reproduces the same picture");
+  const all = [...errors, ...errors2];
+  check(all.length === 0, `no console errors (${all.join(" | ") || "none"})`);
+  fs.writeFileSync(path.join(out, "readout.txt"), await again.locator("#readout").innerText());
+});
+
+await withBrowser([], async (browser) => {
+  const errors = [];
+  const page = await openPage(browser, `${base}/index.html`, errors);
+  const box = page.locator("#no-webgpu");
+  await box.waitFor({ state: "visible", timeout: 30000 });
+  const text = await box.innerText();
+  check(/WebGPU is not available/.test(text) && /requestAdapter|navigator\.gpu/.test(text),
+    `without WebGPU the page says so: "${text.split("\n")[0]} / ${text.split("\n")[1]}"`);
+  check(errors.length === 0, `no uncaught errors without WebGPU (${errors.join(" | ") || "none"})`);
+  await page.screenshot({ path: path.join(out, "no-webgpu.png") });
+});
+
+server.close();
+console.log(`${passes} passed, ${failures} failed`);
+process.exit(failures ? 1 : 0);
