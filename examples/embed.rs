@@ -144,7 +144,7 @@ pub fn render_frame(gpu: &Gpu, width: u32, height: u32, draw: Draw) -> relief::R
     );
     let color_view = target.color.create_view(&Default::default());
     {
-        let clear = relief::gpu::clear_color(terrain.shading().sky_color);
+        let clear = relief::gpu::clear_color(terrain.shading().sky_color, targets.color_format);
         let mut pass = target.begin_pass(&mut encoder, &color_view, clear, None);
         if draw.host {
             pass.set_pipeline(&pillar.pipeline);

@@ -132,7 +132,7 @@ fn percent_decode(s: &str) -> String {
 /// Events the app receives besides winit's.
 pub enum UserEvent {
     /// The GPU state finished initialising (the web creates it asynchronously).
-    Ready(Result<State>),
+    Ready(Result<Box<State>>),
     /// The page changed a parameter.
     Set(String, String),
 }
@@ -163,6 +163,9 @@ pub struct State {
     timer: Option<GpuTimer>,
     timing_pending: Arc<Mutex<Option<Result<Timings>>>>,
     timing_busy: bool,
+    // Kept alive with the device: on the web, letting them go can lose the device.
+    _instance: wgpu::Instance,
+    _adapter: wgpu::Adapter,
     /// "name (backend)" of the adapter.
     pub describe: String,
 }
@@ -195,6 +198,12 @@ impl State {
         };
         log::info!("window on {describe}");
         let (device, queue) = crate::gpu::request_device(&adapter).await?;
+        // A window has no Result to return per frame: log what wgpu reports instead of the
+        // default handler's panic.
+        device.on_uncaptured_error(Arc::new(|e| log::error!("wgpu: {e}")));
+        device.set_device_lost_callback(|reason, message| {
+            log::error!("GPU device lost ({reason:?}): {message}")
+        });
         let caps = surface.get_capabilities(&adapter);
         let format = caps
             .formats
@@ -203,9 +212,9 @@ impl State {
             .find(|f| f.is_srgb())
             .or_else(|| caps.formats.first().copied())
             .ok_or_else(|| Error::Device("the surface supports no format".into()))?;
-        // Browsers offer only non-sRGB canvas formats but allow sRGB views of them: draw
-        // through such a view, so the web renders exactly what native does.
-        let view_format = format.add_srgb_suffix();
+        // Browsers offer only non-sRGB canvas formats. sRGB views of them are allowed, but
+        // headless Chromium (SwiftShader) wrote through such views without encoding; relief
+        // encodes in its shader instead when the target is not sRGB, which works everywhere.
         let size = window.inner_size();
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
@@ -219,15 +228,11 @@ impl State {
                 .first()
                 .copied()
                 .unwrap_or(wgpu::CompositeAlphaMode::Auto),
-            view_formats: if view_format == format {
-                vec![]
-            } else {
-                vec![view_format]
-            },
+            view_formats: vec![],
             color_space: wgpu::SurfaceColorSpace::Auto,
         };
         let targets = Targets {
-            color_format: view_format,
+            color_format: format,
             depth_format: Some(DEPTH_FORMAT),
             sample_count: SAMPLES,
         };
@@ -249,6 +254,8 @@ impl State {
             timer,
             timing_pending: Arc::new(Mutex::new(None)),
             timing_busy: false,
+            _instance: instance,
+            _adapter: adapter,
             describe,
         };
         state.resize(size.width, size.height);
@@ -285,8 +292,7 @@ impl State {
                 .create_view(&Default::default())
         };
         self.depth = Some(make("relief:window:depth", DEPTH_FORMAT));
-        let view_format = self.config.format.add_srgb_suffix();
-        self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", view_format));
+        self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", self.config.format));
     }
 
     /// Draws one frame; returns whether one was presented.
@@ -303,10 +309,7 @@ impl State {
             }
             _ => return false,
         };
-        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(self.config.format.add_srgb_suffix()),
-            ..Default::default()
-        });
+        let view = frame.texture.create_view(&Default::default());
         let pending = self.timing_pending.lock().ok().and_then(|mut p| p.take());
         if let Some(result) = pending {
             self.timing_busy = false;
@@ -319,7 +322,7 @@ impl State {
         let timer = self
             .timer
             .as_ref()
-            .filter(|_| !self.timing_busy && stats.frames % 30 == 0);
+            .filter(|_| !self.timing_busy && stats.frames.is_multiple_of(30));
         let mut encoder = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -342,6 +345,7 @@ impl State {
                     ops: wgpu::Operations {
                         load: wgpu::LoadOp::Clear(crate::gpu::clear_color(
                             self.terrain.shading().sky_color,
+                            self.config.format,
                         )),
                         store: wgpu::StoreOp::Store,
                     },
@@ -588,14 +592,14 @@ impl ApplicationHandler<UserEvent> for App {
         {
             let proxy = self.proxy.clone();
             wasm_bindgen_futures::spawn_local(async move {
-                let _ = proxy.send_event(UserEvent::Ready(future.await));
+                let _ = proxy.send_event(UserEvent::Ready(future.await.map(Box::new)));
             });
         }
     }
 
     fn user_event(&mut self, event_loop: &ActiveEventLoop, event: UserEvent) {
         match event {
-            UserEvent::Ready(Ok(state)) => self.ready(state),
+            UserEvent::Ready(Ok(state)) => self.ready(*state),
             UserEvent::Ready(Err(e)) => self.fail(event_loop, e),
             UserEvent::Set(k, v) => {
                 if let Err(e) = self.set(&k, &v) {

@@ -341,7 +341,7 @@ impl Offscreen {
             terrain.encode_bake_timed(&mut encoder, timer);
             terrain.prepare(&gpu.queue, view);
             {
-                let clear = super::clear_color(terrain.shading().sky_color);
+                let clear = super::clear_color(terrain.shading().sky_color, Self::COLOR_FORMAT);
                 let mut pass = self.begin_pass(
                     &mut encoder,
                     &color_view,

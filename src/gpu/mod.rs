@@ -295,9 +295,16 @@ pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wg
         .map_err(|e| Error::Device(e.to_string()))
 }
 
-/// An sRGB colour as the linear clear colour a render pass wants.
-pub fn clear_color(srgb: [f32; 3]) -> wgpu::Color {
-    let [r, g, b] = srgb.map(|c| f64::from(crate::params::srgb_to_linear(c)));
+/// An sRGB colour as the clear value of a `target` attachment: linear for sRGB formats
+/// (the hardware encodes), the sRGB values themselves for the others.
+pub fn clear_color(srgb: [f32; 3], target: wgpu::TextureFormat) -> wgpu::Color {
+    let [r, g, b] = srgb.map(|c| {
+        f64::from(if target.is_srgb() {
+            crate::params::srgb_to_linear(c)
+        } else {
+            c
+        })
+    });
     wgpu::Color { r, g, b, a: 1.0 }
 }
 

@@ -36,6 +36,11 @@ const base = `http://127.0.0.1:${server.address().port}`;
 
 const flags = ["--headless", "--no-sandbox", "--no-first-run", "--disable-background-networking",
   "--disable-component-update", "--disable-sync", "--disable-quic"];
+// WebGPU itself needs only --enable-unsafe-webgpu here, but presenting to a canvas in headless
+// Chromium without a GPU needs SwiftShader behind Vulkan and ANGLE: without these flags the
+// canvas's swap-chain image cannot be created and the device is lost on the first frame.
+const webgpu = ["--enable-unsafe-webgpu", "--enable-features=Vulkan", "--use-angle=vulkan",
+  "--use-vulkan=swiftshader", "--enable-unsafe-swiftshader"];
 let failures = 0, passes = 0;
 const check = (ok, what) => {
   console.log(`${ok ? "ok" : "FAIL"} - ${what}`);
@@ -69,14 +74,16 @@ async function waitFrames(page, n) {
     { timeout: 120000 });
 }
 
+// A screenshot of the canvas alone: the controls that float over it are hidden meanwhile.
 async function shot(page, file) {
-  await page.addStyleTag({ content: "#controls { display: none !important; }" });
+  const tag = await page.addStyleTag({ content: "#controls { display: none !important; }" });
   const png = await page.locator("#relief").screenshot();
+  await tag.evaluate((t) => t.remove());
   fs.writeFileSync(path.join(out, file), png);
   return png;
 }
 
-await withBrowser(["--enable-unsafe-webgpu"], async (browser) => {
+await withBrowser(webgpu, async (browser) => {
   const errors = [];
   const page = await openPage(browser, `${base}/index.html?${SCENE}`, errors);
   await page.waitForFunction(() => document.body.dataset.frames || document.body.dataset.error,
@@ -88,7 +95,6 @@ await withBrowser(["--enable-unsafe-webgpu"], async (browser) => {
   check(first.length > 1000, "screenshot of the canvas written to web/test-output/page.png");
 
   // Change the seed through its control, as a user would.
-  await page.evaluate(() => { document.querySelector("#controls").style.display = ""; });
   await page.fill('input[data-key="seed"]', "8");
   await page.dispatchEvent('input[data-key="seed"]', "change");
   await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=8"), null,
@@ -107,6 +113,18 @@ await withBrowser(["--enable-unsafe-webgpu"], async (browser) => {
   const all = [...errors, ...errors2];
   check(all.length === 0, `no console errors (${all.join(" | ") || "none"})`);
   fs.writeFileSync(path.join(out, "readout.txt"), await again.locator("#readout").innerText());
+
+  // The picture for the README (not a check): the whole page, controls included.
+  try {
+    const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
+    await full.goto(`${base}/index.html?paused=1`);
+    await waitFrames(full, 3);
+    await full.waitForFunction(() => /fps/.test(document.querySelector("#readout").textContent), null,
+      { timeout: 60000 });
+    await full.screenshot({ path: path.join(out, "page-full.png") });
+  } catch (e) {
+    console.log(`note: no full-page screenshot (${String(e).split("\n")[0]})`);
+  }
 });
 
 await withBrowser([], async (browser) => {
@@ -116,7 +134,7 @@ await withBrowser([], async (browser) => {
   await box.waitFor({ state: "visible", timeout: 30000 });
   const text = await box.innerText();
   check(/WebGPU is not available/.test(text) && /requestAdapter|navigator\.gpu/.test(text),
-    `without WebGPU the page says so: "${text.split("\n")[0]} / ${text.split("\n")[1]}"`);
+    `without WebGPU the page says so: "${text.split("\n").filter((l) => l.trim()).slice(0, 2).join(" / ")}"`);
   check(errors.length === 0, `no uncaught errors without WebGPU (${errors.join(" | ") || "none"})`);
   await page.screenshot({ path: path.join(out, "no-webgpu.png") });
 });
