@@ -52,8 +52,10 @@ pub mod camera;
 pub mod cli;
 pub mod error;
 pub mod gpu;
+pub mod metrics;
 pub mod noise;
 pub mod params;
+pub mod raycast;
 
 pub use camera::{OrbitCamera, View};
 pub use error::{Error, Result};

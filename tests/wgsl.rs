@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 4);
+    assert_eq!(modules.len(), 6);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -69,7 +69,7 @@ fn uniform_structs_match_wgsl() {
         offset_of!(NormalUniforms, texel_world)
     );
 
-    let render = parse("render", shader::RENDER);
+    let render = parse("render", &shader::compose(&[shader::SHADE, shader::RENDER]));
     let (size, m) = layout(&render, "RenderUniforms");
     assert_eq!(size as usize, size_of::<RenderUniforms>());
     assert_eq!(
@@ -91,10 +91,10 @@ fn uniform_structs_match_wgsl() {
 #[test]
 fn world_size_agrees_with_render_wgsl() {
     assert!(
-        shader::RENDER.contains(&format!(
+        shader::SHADE.contains(&format!(
             "const WORLD_SIZE: f32 = {:.1};",
             relief::WORLD_SIZE
         )),
-        "render.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
+        "shade.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
     );
 }

@@ -99,3 +99,67 @@ fn fbm_texel(
     }
     return 0.5 + 0.5 * sum / (norm * NOISE_MAX_ABS);
 }
+
+// fade'(t), for analytic gradients.
+fn fade_derivative(t: vec2<f32>) -> vec2<f32> {
+    return 30.0 * t * t * (t - 1.0) * (t - 1.0);
+}
+
+// Gradient noise at any lattice position `p` with its derivative: (value, d/dpx, d/dpy).
+fn periodic_noise_grad(p: vec2<f32>, period: u32, stream: u32) -> vec3<f32> {
+    let fl = floor(p);
+    let f = p - fl;
+    let per = i32(period);
+    let c = vec2<i32>(fl);
+    let x0 = u32(((c.x % per) + per) % per);
+    let y0 = u32(((c.y % per) + per) % per);
+    let x1 = (x0 + 1u) % period;
+    let y1 = (y0 + 1u) % period;
+    let ga = gradient(lattice_hash(x0, y0, stream));
+    let gb = gradient(lattice_hash(x1, y0, stream));
+    let gc = gradient(lattice_hash(x0, y1, stream));
+    let gd = gradient(lattice_hash(x1, y1, stream));
+    let a = dot(ga, f);
+    let b = dot(gb, f - vec2<f32>(1.0, 0.0));
+    let cc = dot(gc, f - vec2<f32>(0.0, 1.0));
+    let d = dot(gd, f - vec2<f32>(1.0, 1.0));
+    let u = fade(f);
+    let du = fade_derivative(f);
+    let k = a - b - cc + d;
+    let value = a + u.x * (b - a) + u.y * (cc - a) + u.x * u.y * k;
+    var grad = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.x * u.y * (ga - gb - gc + gd);
+    grad += du * vec2<f32>((b - a) + u.y * k, (cc - a) + u.x * k);
+    return vec3<f32>(value, grad);
+}
+
+// Normalised fBm at continuous tile position `u` (one tile = [0,1)^2, before the offset) and
+// its gradient with respect to u: (h, dh/du.x, dh/du.y). Sums the first `octaves` octaves but
+// normalises by `norm_octaves` of them, so truncating octaves (as the seed's ray marcher does
+// while stepping) keeps the same height scale.
+fn fbm_grad(
+    u: vec2<f32>,
+    frequency: u32,
+    octaves: u32,
+    norm_octaves: u32,
+    gain: f32,
+    offset: vec2<f32>,
+    seed: u32,
+    channel: u32,
+) -> vec3<f32> {
+    // The noise is periodic in the tile, so wrapping keeps f32 lattice positions small.
+    let q = fract(u + offset);
+    var sum = vec3<f32>(0.0);
+    var amplitude = 1.0;
+    var norm = 0.0;
+    for (var o = 0u; o < norm_octaves; o++) {
+        if o < octaves {
+            let period = frequency << o;
+            let n = periodic_noise_grad(q * f32(period), period, noise_stream(seed, channel, o));
+            sum += amplitude * vec3<f32>(n.x, n.yz * f32(period));
+        }
+        norm += amplitude;
+        amplitude *= gain;
+    }
+    let scale = 0.5 / (norm * NOISE_MAX_ABS);
+    return vec3<f32>(0.5 + scale * sum.x, scale * sum.yz);
+}

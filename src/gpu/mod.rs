@@ -5,6 +5,7 @@ pub(crate) mod bake;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod headless;
 pub(crate) mod normals;
+pub mod raymarch;
 pub(crate) mod render;
 pub mod shader;
 pub mod timing;

@@ -86,7 +86,11 @@ pub(crate) struct MeshPass {
 
 impl MeshPass {
     pub fn new(device: &wgpu::Device, targets: &Targets) -> Self {
-        let module = super::shader::module(device, "relief:render:shader", super::shader::RENDER);
+        let module = super::shader::module(
+            device,
+            "relief:render:shader",
+            &super::shader::compose(&[super::shader::SHADE, super::shader::RENDER]),
+        );
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:render:bind-group-layout"),

@@ -11,8 +11,13 @@ pub const NOISE: &str = include_str!("../../wgsl/noise.wgsl");
 pub const BAKE: &str = include_str!("../../wgsl/bake.wgsl");
 /// `wgsl/normals.wgsl`: the normal pass.
 pub const NORMALS: &str = include_str!("../../wgsl/normals.wgsl");
-/// `wgsl/render.wgsl`: the mesh render pass.
+/// `wgsl/shade.wgsl`: render uniforms and the shading every renderer shares.
+pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
+/// `wgsl/render.wgsl`: the mesh render pass (needs [`SHADE`]).
 pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
+/// `wgsl/raymarch.wgsl`: the ray casters, reference and the seed's march (needs [`NOISE`] and
+/// [`SHADE`]).
+pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
 
 /// Joins shared WGSL files and a pass's file into one module source.
 pub fn compose(parts: &[&str]) -> String {
@@ -25,7 +30,9 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("noise", NOISE.to_owned()),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", NORMALS.to_owned()),
-        ("render", RENDER.to_owned()),
+        ("shade", SHADE.to_owned()),
+        ("render", compose(&[SHADE, RENDER])),
+        ("raymarch", compose(&[NOISE, SHADE, RAYMARCH])),
     ]
 }
 
