@@ -78,6 +78,9 @@ struct SceneArgs {
     /// Scroll offset in tiles, as X,Y (1,0 is one whole tile: the same terrain).
     #[arg(long, global = true, allow_hyphen_values = true, value_parser = parse_offset)]
     offset: Option<[f64; 2]>,
+    /// Normal map method: differences (central differences of the heights) or analytic.
+    #[arg(long, global = true)]
+    normals: Option<crate::params::NormalMethod>,
     /// Scene file (TOML) to start from; flags override it.
     #[arg(long, global = true)]
     scene: Option<PathBuf>,
@@ -112,6 +115,7 @@ fn allowed(arg: &str) -> Option<String> {
         "height_scale" => format!("0..={MAX_HEIGHT_SCALE}"),
         "ao_exponent" => format!("0..={MAX_AO_EXPONENT}"),
         "offset" => "X,Y with finite numbers".into(),
+        "normals" => "differences or analytic".into(),
         "width" | "height" => "1..=the device's texture limit".into(),
         _ => return None,
     })

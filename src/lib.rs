@@ -60,7 +60,7 @@ pub mod raycast;
 pub use camera::{OrbitCamera, View};
 pub use error::{Error, Result};
 pub use gpu::{height_at, Targets, Terrain, Textures};
-pub use params::{BakeInfo, Dirty, Shading, TerrainParams};
+pub use params::{BakeInfo, Dirty, NormalMethod, Shading, TerrainParams};
 pub use wgpu;
 
 /// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].

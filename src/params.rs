@@ -51,6 +51,39 @@ pub struct TerrainParams {
     pub ao_exponent: f32,
     /// Scroll offset in tiles; 1.0 is one whole tile and gives the same texture as 0.0.
     pub offset: [f64; 2],
+    /// How the normal map is made.
+    pub normals: NormalMethod,
+}
+
+/// How the normal pass makes the normal map.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NormalMethod {
+    /// Wrap-around central differences of the baked heights (two texels apart).
+    #[default]
+    Differences,
+    /// The analytic gradient of the fBm at each texel centre.
+    Analytic,
+}
+
+impl std::str::FromStr for NormalMethod {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s.trim() {
+            "differences" => Ok(Self::Differences),
+            "analytic" => Ok(Self::Analytic),
+            other => Err(Error::invalid("normals", other, "differences or analytic")),
+        }
+    }
+}
+
+impl std::fmt::Display for NormalMethod {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Differences => "differences",
+            Self::Analytic => "analytic",
+        })
+    }
 }
 
 impl Default for TerrainParams {
@@ -66,6 +99,7 @@ impl Default for TerrainParams {
             snow_height: 0.63,
             ao_exponent: 1.0,
             offset: [0.0, 0.0],
+            normals: NormalMethod::Differences,
         }
     }
 }
@@ -241,13 +275,13 @@ impl TerrainParams {
         Dirty {
             resize,
             bake,
-            normals: bake || self.height_scale != new.height_scale,
+            normals: bake || self.height_scale != new.height_scale || self.normals != new.normals,
             grid: self.grid != new.grid,
         }
     }
 
     /// The keys [`TerrainParams::set`] accepts, in scene-file spelling.
-    pub const KEYS: [&'static str; 10] = [
+    pub const KEYS: [&'static str; 11] = [
         "seed",
         "size",
         "grid",
@@ -258,6 +292,7 @@ impl TerrainParams {
         "snow_height",
         "ao_exponent",
         "offset",
+        "normals",
     ];
 
     /// Sets one parameter from text (`offset` as `X,Y`), as the web page's controls and URL do.
@@ -293,6 +328,7 @@ impl TerrainParams {
                     num("offset", y, "X,Y with finite numbers")?,
                 ];
             }
+            "normals" => self.normals = v.parse()?,
             _ => return Err(Error::invalid("key", key, Self::KEYS.join(", "))),
         }
         Ok(())
@@ -311,6 +347,7 @@ impl TerrainParams {
             "snow_height" => self.snow_height.to_string(),
             "ao_exponent" => self.ao_exponent.to_string(),
             "offset" => format!("{},{}", self.offset[0], self.offset[1]),
+            "normals" => self.normals.to_string(),
             _ => return None,
         })
     }

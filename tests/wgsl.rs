@@ -57,7 +57,10 @@ fn uniform_structs_match_wgsl() {
     assert_eq!(offset(&m, "gain"), offset_of!(BakeUniforms, gain));
     assert_eq!(offset(&m, "offset"), offset_of!(BakeUniforms, offset));
 
-    let normals = parse("normals", shader::NORMALS);
+    let normals = parse(
+        "normals",
+        &shader::compose(&[shader::NOISE, shader::NORMALS]),
+    );
     let (size, m) = layout(&normals, "NormalUniforms");
     assert_eq!(size as usize, size_of::<NormalUniforms>());
     assert_eq!(

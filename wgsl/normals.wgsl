@@ -1,14 +1,22 @@
-// Normal pass: wrap-around central differences of the baked heights into a signed
-// rgba16float normal map (xyz = unit normal, y up; w unused). The tile is periodic, so the
-// neighbours of an edge texel are on the opposite edge.
+// Normal pass: a signed rgba16float normal map (xyz = unit normal, y up; w unused) by one of
+// two methods. 0: wrap-around central differences of the baked heights (the tile is periodic,
+// so the neighbours of an edge texel are on the opposite edge). 1: the analytic gradient of the
+// fBm at the texel centre (composed after noise.wgsl).
 
 struct NormalUniforms {
     size: u32,
-    _pad: u32,
+    method: u32,
     // World height of normalised height 1.
     height_scale: f32,
     // World distance between neighbouring texels.
     texel_world: f32,
+    frequency: u32,
+    octaves: u32,
+    seed: u32,
+    gain: f32,
+    // Scroll offset in tiles, reduced to [0, 1).
+    offset: vec2<f32>,
+    _pad: vec2<u32>,
 }
 
 @group(0) @binding(0) var<uniform> normals: NormalUniforms;
@@ -23,6 +31,14 @@ fn height(x: u32, y: u32) -> f32 {
 fn normals_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normals.size;
     if id.x >= n || id.y >= n {
+        return;
+    }
+    if normals.method == 1u {
+        let u = (vec2<f32>(id.xy) + 0.5) / f32(n);
+        let g = fbm_grad(u, normals.frequency, normals.octaves, normals.octaves, normals.gain, normals.offset, normals.seed, CHANNEL_HEIGHT);
+        // World x = (u - 0.5) * WORLD_SIZE, and WORLD_SIZE = size * texel_world.
+        let slope = g.yz * normals.height_scale / (f32(n) * normals.texel_world);
+        textureStore(normal_out, vec2<i32>(id.xy), vec4<f32>(normalize(vec3<f32>(-slope.x, 1.0, -slope.y)), 0.0));
         return;
     }
     let xl = (id.x + n - 1u) % n;

@@ -9,22 +9,44 @@ use crate::params::TerrainParams;
 pub struct NormalUniforms {
     /// Texture side in texels.
     pub size: u32,
-    /// Padding.
-    pub _pad: u32,
+    /// 0: central differences, 1: analytic gradient.
+    pub method: u32,
     /// World height of normalised height 1.
     pub height_scale: f32,
     /// World distance between neighbouring texels.
     pub texel_world: f32,
+    /// Lattice cells across the tile at octave 0.
+    pub frequency: u32,
+    /// Octave count.
+    pub octaves: u32,
+    /// Hash seed.
+    pub seed: u32,
+    /// Amplitude ratio between octaves.
+    pub gain: f32,
+    /// Scroll offset in tiles, reduced to [0, 1).
+    pub offset: [f32; 2],
+    /// Padding to the WGSL struct's size.
+    pub _pad: [u32; 2],
 }
 
 impl NormalUniforms {
     /// The uniforms for a validated parameter set.
     pub fn new(p: &TerrainParams) -> Self {
+        let off = p.reduced_offset();
         Self {
             size: p.size,
-            _pad: 0,
+            method: match p.normals {
+                crate::params::NormalMethod::Differences => 0,
+                crate::params::NormalMethod::Analytic => 1,
+            },
             height_scale: p.height_scale,
             texel_world: (crate::WORLD_SIZE / f64::from(p.size)) as f32,
+            frequency: p.frequency,
+            octaves: p.octaves,
+            seed: p.seed,
+            gain: p.gain,
+            offset: [off[0] as f32, off[1] as f32],
+            _pad: [0; 2],
         }
     }
 }
@@ -38,7 +60,11 @@ pub(crate) struct NormalPass {
 
 impl NormalPass {
     pub fn new(device: &wgpu::Device) -> Self {
-        let module = super::shader::module(device, "relief:normals:shader", super::shader::NORMALS);
+        let module = super::shader::module(
+            device,
+            "relief:normals:shader",
+            &super::shader::compose(&[super::shader::NOISE, super::shader::NORMALS]),
+        );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:normals:bind-group-layout"),
             entries: &[

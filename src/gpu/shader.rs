@@ -9,7 +9,7 @@
 pub const NOISE: &str = include_str!("../../wgsl/noise.wgsl");
 /// `wgsl/bake.wgsl`: the bake pass (needs [`NOISE`]).
 pub const BAKE: &str = include_str!("../../wgsl/bake.wgsl");
-/// `wgsl/normals.wgsl`: the normal pass.
+/// `wgsl/normals.wgsl`: the normal pass (needs [`NOISE`]).
 pub const NORMALS: &str = include_str!("../../wgsl/normals.wgsl");
 /// `wgsl/shade.wgsl`: render uniforms and the shading every renderer shares.
 pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
@@ -29,7 +29,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
     vec![
         ("noise", NOISE.to_owned()),
         ("bake", compose(&[NOISE, BAKE])),
-        ("normals", NORMALS.to_owned()),
+        ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),
         ("render", compose(&[SHADE, RENDER])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH])),
