@@ -43,6 +43,17 @@ enum Command {
         #[arg(long)]
         out_dir: PathBuf,
     },
+    /// Speed against accuracy: sweep render methods and knobs on the default scene, measure
+    /// GPU time and error against the reference ray caster; write bench.csv, bench.png and
+    /// bench.svg.
+    Bench {
+        /// Output folder (created if missing).
+        #[arg(long, default_value = "bench-out")]
+        out_dir: PathBuf,
+        /// A small sweep at a small image size (about a minute on a software GPU).
+        #[arg(long)]
+        quick: bool,
+    },
 }
 
 /// Scene options shared by every command; they override `--scene`.
@@ -208,6 +219,7 @@ fn run(cli: Cli) -> Result<()> {
             render(&params, &out, width, height, cli.scene.timings)
         }
         Command::Bake { out_dir } => bake(&params, &out_dir, cli.scene.timings),
+        Command::Bench { out_dir, quick } => bench(&out_dir, quick),
     }
 }
 
@@ -346,6 +358,80 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
 
 /// Writes one output file to the path it is given.
 type FileWriter<'a> = Box<dyn Fn(&Path) -> Result<()> + 'a>;
+
+struct Bar(indicatif::ProgressBar);
+
+impl crate::bench::Progress for Bar {
+    fn start(&mut self, index: usize, _total: usize, config: &crate::bench::Config) {
+        self.0.set_position(index as u64);
+        let c = config;
+        self.0.set_message(match c.method {
+            crate::bench::Method::Mesh => format!(
+                "mesh {} / {} / {}",
+                c.params.size, c.params.grid, c.params.normals
+            ),
+            m => format!(
+                "{} step {} octaves {}",
+                m.name(),
+                c.march.step_factor,
+                c.march.march_octaves
+            ),
+        });
+    }
+}
+
+fn bench(dir: &Path, quick: bool) -> Result<()> {
+    use crate::bench;
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let gpu = Gpu::new()?;
+    let info = gpu.adapter.get_info();
+    let options = if quick {
+        bench::Options::QUICK
+    } else {
+        bench::Options::FULL
+    };
+    let configs = bench::sweep(quick);
+    if GpuTimer::new(&gpu.device, &gpu.queue).is_none() {
+        println!(
+            "note: {} has no timestamp queries: GPU times are empty, only wall times are measured",
+            gpu.describe()
+        );
+    }
+    println!(
+        "relief bench{} on {}: {} configurations at {}x{}, reference at {}x supersampling",
+        if quick { " --quick" } else { "" },
+        gpu.describe(),
+        configs.len(),
+        options.width,
+        options.height,
+        options.supersample
+    );
+    let bar = indicatif::ProgressBar::new(configs.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let mut progress = Bar(bar);
+    let start = std::time::Instant::now();
+    let rows = bench::run(&gpu, &configs, &options, &mut progress)?;
+    progress.0.finish_and_clear();
+    print!("{}", bench::table(&rows));
+    let csv = bench::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
+    let csv_path = dir.join("bench.csv");
+    let tmp = temp_name(&csv_path);
+    std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
+    let title = format!(
+        "relief: error against GPU time on {} ({:?})",
+        info.name, info.backend
+    );
+    bench::chart(&rows, &title, &dir.join("bench"))?;
+    println!(
+        "wrote {}, bench.png and bench.svg in {:.0} s",
+        csv_path.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
 
 fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
     let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);

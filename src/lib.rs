@@ -47,6 +47,8 @@
 //! ```
 
 pub mod app;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod bench;
 pub mod camera;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cli;

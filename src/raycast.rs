@@ -46,19 +46,26 @@ impl Surface {
         if t0 > t1 {
             return None;
         }
-        let rate = (self.lipschitz * rd.truncate_y_len() - rd.y).max(1e-9);
         let clearance = |t: f64| {
             let p = ro + t * rd;
             p.y - self.height(p.x, p.z)
         };
+        // A sheet, as the mesh is: a ray entering below it hits where it first crosses it.
+        let below = clearance(t0) < 0.0;
+        let slope = self.lipschitz * rd.truncate_y_len();
+        let rate = if below {
+            slope + rd.y.abs()
+        } else {
+            (slope - rd.y).max(1e-9)
+        };
         let (mut t, mut t_prev) = (t0, t0);
         for _ in 0..1_000_000 {
             let f = clearance(t);
-            if f <= 0.0 {
+            if (f <= 0.0) != below {
                 let (mut lo, mut hi) = (t_prev, t);
                 for _ in 0..60 {
                     let mid = 0.5 * (lo + hi);
-                    if clearance(mid) > 0.0 {
+                    if (clearance(mid) <= 0.0) == below {
                         lo = mid;
                     } else {
                         hi = mid;
@@ -70,7 +77,7 @@ impl Surface {
                 return None;
             }
             t_prev = t;
-            t += (f / rate).max(1e-9);
+            t += (f.abs() / rate).max(1e-9);
         }
         None
     }

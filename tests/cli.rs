@@ -327,3 +327,74 @@ fn render_writes_a_png_and_reports_timings() {
     );
     assert_eq!(files_in(&dir), ["frame.png"]);
 }
+
+#[test]
+fn bench_quick_writes_a_csv_and_a_chart() {
+    let dir = scratch("bench");
+    let (code, stdout, err) = relief(&["bench", "--quick", "--out-dir", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("<- default"),
+        "the table marks the default: {stdout}"
+    );
+    let csv = std::fs::read_to_string(dir.join("bench.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    for column in [
+        "device",
+        "backend",
+        "method",
+        "size",
+        "grid",
+        "normals",
+        "step_factor",
+        "render_ms",
+        "wall_ms",
+        "flip_mean",
+        "missed",
+        "mesh_rms",
+    ] {
+        assert!(header.contains(&column), "CSV lacks {column}");
+    }
+    assert_eq!(
+        lines.len(),
+        1 + 7,
+        "seven configurations in the quick sweep"
+    );
+    let rows: Vec<Vec<String>> = lines[1..].iter().map(|l| csv_fields(l)).collect();
+    for row in &rows {
+        assert_eq!(row.len(), header.len(), "{row:?}");
+    }
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
+    for m in ["mesh", "raymarch-fragment", "raymarch-compute"] {
+        assert!(methods.contains(&m), "no {m} row");
+    }
+    for row in &rows {
+        let flip: f64 = row[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
+    }
+    let png = image::open(dir.join("bench.png")).unwrap();
+    assert_eq!((png.width(), png.height()), (960, 640));
+    let svg = std::fs::read_to_string(dir.join("bench.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("Pareto front") && svg.contains("default"));
+}
+
+/// Splits one CSV line, honouring double quotes (device names contain commas).
+fn csv_fields(line: &str) -> Vec<String> {
+    let (mut out, mut cur, mut quoted) = (Vec::new(), String::new(), false);
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                cur.push('"');
+                chars.next();
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cur)),
+            c => cur.push(c),
+        }
+    }
+    out.push(cur);
+    out
+}

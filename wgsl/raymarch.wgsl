@@ -71,19 +71,25 @@ fn intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
     }
     var t = span.x;
     if ray.method == 0u {
-        // The clearance f(t) = y - h(xz) shrinks no faster than lipschitz * |rd.xz| - rd.y.
-        let rate = max(ray.lipschitz * length(rd.xz) - rd.y, 1e-6);
+        // The surface is a sheet, as the mesh is: a ray that enters the box's side below it
+        // (under the terrain) hits where it first crosses the sheet from below.
+        let below = ro.y + t * rd.y - r.height_scale * surface((ro + t * rd).xz, ray.octaves).x < 0.0;
+        // How fast the clearance f(t) = y - h(xz) can approach zero: above the sheet it falls
+        // no faster than lipschitz * |rd.xz| - rd.y; below, it rises no faster than
+        // lipschitz * |rd.xz| + |rd.y|.
+        let slope = ray.lipschitz * length(rd.xz);
+        let rate = select(max(slope - rd.y, 1e-6), slope + abs(rd.y), below);
         var t_prev = t;
         for (var i = 0u; i < ray.max_steps; i++) {
             let p = ro + t * rd;
             let f = p.y - r.height_scale * surface(p.xz, ray.octaves).x;
-            if f <= 0.0 {
+            if (f <= 0.0) != below {
                 var lo = t_prev;
                 var hi = t;
                 for (var k = 0; k < 24; k++) {
                     let mid = 0.5 * (lo + hi);
                     let q = ro + mid * rd;
-                    if q.y - r.height_scale * surface(q.xz, ray.octaves).x > 0.0 {
+                    if (q.y - r.height_scale * surface(q.xz, ray.octaves).x <= 0.0) == below {
                         lo = mid;
                     } else {
                         hi = mid;
@@ -97,7 +103,7 @@ fn intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
             t_prev = t;
             // A floor on the step keeps grazing rays moving; it can only skip slivers thinner
             // than 1e-6 world units plus 1e-5 of the distance.
-            t += max(f / rate, 1e-6 + 1e-5 * t);
+            t += max(abs(f) / rate, 1e-6 + 1e-5 * t);
         }
         return UNRESOLVED;
     }
@@ -108,7 +114,7 @@ fn intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
             return t;
         }
         t += ray.step_factor * f;
-        if t > span.y {
+        if t > span.y || t < span.x {
             return MISS;
         }
     }

@@ -200,6 +200,7 @@ pub struct Offscreen {
     pub color: wgpu::Texture,
     msaa: Option<wgpu::TextureView>,
     depth: wgpu::TextureView,
+    depth_texture: wgpu::Texture,
     targets: Targets,
 }
 
@@ -261,19 +262,25 @@ impl Offscreen {
                 )
                 .create_view(&Default::default())
             });
-            let depth = make(
+            // Single-sampled depth can be read back (see `Offscreen::read_depth`).
+            let depth_usage = if sample_count == 1 {
+                attach | wgpu::TextureUsages::COPY_SRC
+            } else {
+                attach
+            };
+            let depth_texture = make(
                 "relief:offscreen:depth",
                 Self::DEPTH_FORMAT,
                 sample_count,
-                attach,
-            )
-            .create_view(&Default::default());
+                depth_usage,
+            );
             Self {
                 width,
                 height,
                 color,
                 msaa,
-                depth,
+                depth: depth_texture.create_view(&Default::default()),
+                depth_texture,
                 targets,
             }
         })
@@ -306,7 +313,11 @@ impl Offscreen {
                 view: &self.depth,
                 depth_ops: Some(wgpu::Operations {
                     load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
+                    store: if self.msaa.is_none() {
+                        wgpu::StoreOp::Store
+                    } else {
+                        wgpu::StoreOp::Discard
+                    },
                 }),
                 stencil_ops: None,
             }),
@@ -361,5 +372,51 @@ impl Offscreen {
         let bytes = map_read(device, &buffer)?;
         let timings = timer.map(|t| t.read(device)).transpose()?;
         Ok((unpad(&bytes, pitch, &self.color), timings))
+    }
+}
+
+impl Offscreen {
+    /// The depth buffer of the last frame (single-sampled targets only), row-major.
+    pub fn read_depth(&self, gpu: &Gpu) -> Result<Vec<f32>> {
+        if self.msaa.is_some() {
+            return Err(Error::invalid(
+                "sample_count",
+                self.targets.sample_count,
+                "1 to read depth back",
+            ));
+        }
+        let (w, h) = (self.width, self.height);
+        let pitch = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:offscreen:depth-readback"),
+            size: u64::from(pitch) * u64::from(h),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.depth_texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::DepthOnly,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(pitch),
+                    rows_per_image: Some(h),
+                },
+            },
+            self.depth_texture.size(),
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = map_read(&gpu.device, &buffer)?;
+        Ok(bytes
+            .chunks(pitch as usize)
+            .take(h as usize)
+            .flat_map(|row| bytemuck::cast_slice::<u8, f32>(&row[..(w * 4) as usize]).to_vec())
+            .collect())
     }
 }

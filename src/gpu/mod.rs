@@ -205,6 +205,12 @@ impl Terrain {
         Ok(dirty)
     }
 
+    /// Marks every pass as owed, so the next [`Terrain::encode_bake`] redoes the whole bake
+    /// (for benchmarks, or after the host lost the textures' contents).
+    pub fn invalidate(&mut self) {
+        self.pending = Dirty::ALL;
+    }
+
     /// Whether the next [`Terrain::encode_bake`] will record any work.
     pub fn needs_bake(&self) -> bool {
         self.pending.any_gpu_work()

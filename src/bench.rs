@@ -1,0 +1,726 @@
+//! `relief bench`: speed against accuracy. Sweeps render methods and their knobs, measures GPU
+//! time per pass (timestamps: warm-up, then the median) and wall time, measures error against
+//! the ground truth (the reference ray caster's supersampled image, the twin's continuous
+//! surface and analytic normals), and writes a CSV and a chart.
+
+use crate::error::{Error, Result};
+use crate::gpu::headless::{self, Gpu, Offscreen};
+use crate::gpu::raymarch::{RayMarcher, RayMethod, RayPath, SeedMarch};
+use crate::gpu::timing::{GpuTimer, Slot};
+use crate::metrics::{self, Coverage};
+use crate::params::{NormalMethod, Shading, TerrainParams};
+use crate::{OrbitCamera, Terrain, View};
+use std::fmt::Write as _;
+use std::path::Path;
+use web_time::Instant;
+
+/// How a configuration draws the terrain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// relief's pipeline: baked textures, displaced grid mesh, 4x MSAA.
+    Mesh,
+    /// The seed's heightfield ray march in a full-screen fragment shader.
+    RayFragment,
+    /// The same march in a compute shader.
+    RayCompute,
+}
+
+impl Method {
+    /// Name in the CSV and the chart.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Mesh => "mesh",
+            Method::RayFragment => "raymarch-fragment",
+            Method::RayCompute => "raymarch-compute",
+        }
+    }
+}
+
+/// One point of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    /// How it is drawn.
+    pub method: Method,
+    /// The scene and, for the mesh, texture size, grid and normal method.
+    pub params: TerrainParams,
+    /// The ray march's knobs (ray methods only).
+    pub march: SeedMarch,
+}
+
+impl Config {
+    fn is_default(&self) -> bool {
+        self.method == Method::Mesh && self.params == TerrainParams::default()
+    }
+}
+
+/// What the sweep measures with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// Frames before timing.
+    pub warmup: u32,
+    /// Timed frames (the median is reported).
+    pub frames: u32,
+    /// The reference is cast at this many times the resolution per axis and averaged down.
+    pub supersample: u32,
+    /// Mesh-error sample points.
+    pub mesh_samples: usize,
+}
+
+impl Options {
+    /// The full sweep's settings.
+    pub const FULL: Self = Self {
+        width: 1920,
+        height: 1080,
+        warmup: 5,
+        frames: 21,
+        supersample: 3,
+        mesh_samples: 65536,
+    };
+    /// `--quick`: small enough for lavapipe in CI.
+    pub const QUICK: Self = Self {
+        width: 192,
+        height: 108,
+        warmup: 1,
+        frames: 3,
+        supersample: 2,
+        mesh_samples: 8192,
+    };
+}
+
+/// The configurations of a sweep: the mesh over texture size, grid and normal method; the
+/// seed's ray march over path, step factor and marching octaves. The scene is otherwise the
+/// default one, so every configuration is measured against the same reference.
+pub fn sweep(quick: bool) -> Vec<Config> {
+    let base = TerrainParams::default();
+    let normals = [NormalMethod::Differences, NormalMethod::Analytic];
+    let (sizes, grids, steps, octaves) = if quick {
+        (&[256, 1024][..], &[64, 256][..], &[0.5][..], &[5][..])
+    } else {
+        (
+            &[512, 1024, 2048, 4096][..],
+            &[128, 256, 512, 1024][..],
+            &[0.3, 0.5, 0.8][..],
+            &[4, 6, 8][..],
+        )
+    };
+    let mut out = Vec::new();
+    for &size in sizes {
+        for &grid in grids {
+            for n in normals {
+                if quick && n == NormalMethod::Analytic && (size, grid) != (base.size, base.grid) {
+                    continue;
+                }
+                out.push(Config {
+                    method: Method::Mesh,
+                    params: TerrainParams {
+                        size,
+                        grid,
+                        normals: n,
+                        ..base
+                    },
+                    march: SeedMarch::default(),
+                });
+            }
+        }
+    }
+    for method in [Method::RayFragment, Method::RayCompute] {
+        for &step_factor in steps {
+            for &march_octaves in octaves {
+                out.push(Config {
+                    method,
+                    params: base,
+                    march: SeedMarch {
+                        step_factor,
+                        march_octaves,
+                        normal_octaves: base.octaves,
+                        ..SeedMarch::default()
+                    },
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Everything measured for one configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The configuration.
+    pub config: Config,
+    /// Median GPU time of the bake pass (mesh only).
+    pub bake_ms: Option<f64>,
+    /// Median GPU time of the normal pass (mesh only).
+    pub normals_ms: Option<f64>,
+    /// Median GPU time of drawing one frame (the render pass or the ray cast).
+    pub render_ms: Option<f64>,
+    /// Median wall time of a whole frame (submit to completion), bake included for the mesh.
+    pub wall_ms: f64,
+    /// Mesh vertical error (mesh only).
+    pub mesh: Option<metrics::MeshError>,
+    /// Normal map error (mesh only).
+    pub normals: Option<metrics::NormalError>,
+    /// FLIP mean against the reference image.
+    pub flip_mean: f64,
+    /// FLIP 99th percentile.
+    pub flip_p99: f64,
+    /// Terrain coverage and depth against the reference.
+    pub coverage: Coverage,
+}
+
+impl Row {
+    /// GPU time of a frame that re-bakes everything (what the chart plots for the mesh), or
+    /// the draw alone when there is no bake.
+    pub fn frame_gpu_ms(&self) -> Option<f64> {
+        let draw = self.render_ms?;
+        Some(draw + self.bake_ms.unwrap_or(0.0) + self.normals_ms.unwrap_or(0.0))
+    }
+}
+
+/// Where rows go as they are measured.
+pub trait Progress {
+    /// Called before each configuration.
+    fn start(&mut self, index: usize, total: usize, config: &Config);
+}
+
+/// Runs the sweep on `gpu` and returns one row per configuration.
+pub fn run(
+    gpu: &Gpu,
+    configs: &[Config],
+    options: &Options,
+    progress: &mut dyn Progress,
+) -> Result<Vec<Row>> {
+    let timer = GpuTimer::new(&gpu.device, &gpu.queue);
+    let view = OrbitCamera::default().view(options.width as f32 / options.height as f32);
+    let shading = Shading::default();
+    let reference = Reference::new(gpu, &TerrainParams::default(), &shading, &view, options)?;
+    let mut rows = Vec::with_capacity(configs.len());
+    for (i, config) in configs.iter().enumerate() {
+        progress.start(i, configs.len(), config);
+        rows.push(match config.method {
+            Method::Mesh => mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?,
+            Method::RayFragment | Method::RayCompute => ray_row(
+                gpu,
+                config,
+                options,
+                &view,
+                &shading,
+                timer.as_ref(),
+                &reference,
+            )?,
+        });
+    }
+    Ok(rows)
+}
+
+/// The ground truth image: the reference ray cast, supersampled, and its distances.
+pub struct Reference {
+    /// RGB8 at the bench's size.
+    pub rgb: Vec<u8>,
+    /// Distance per pixel at the bench's size (negative for sky).
+    pub distance: Vec<f32>,
+}
+
+impl Reference {
+    /// Casts the reference for `params` through `view`.
+    pub fn new(
+        gpu: &Gpu,
+        params: &TerrainParams,
+        shading: &Shading,
+        view: &View,
+        options: &Options,
+    ) -> Result<Self> {
+        let ss = options.supersample.max(1);
+        let big = RayMarcher::new(&gpu.device, options.width * ss, options.height * ss)?;
+        big.prepare(&gpu.queue, params, shading, view, RayMethod::Reference);
+        let small = RayMarcher::new(&gpu.device, options.width, options.height)?;
+        small.prepare(&gpu.queue, params, shading, view, RayMethod::Reference);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        big.encode(&mut encoder, RayPath::Compute, None);
+        small.encode(&mut encoder, RayPath::Compute, None);
+        gpu.queue.submit([encoder.finish()]);
+        let color = headless::read_texture(&gpu.device, &gpu.queue, &big.color)?;
+        let color = metrics::downsample_srgb(&color, options.width * ss, options.height * ss, ss);
+        let distance = headless::read_texture(&gpu.device, &gpu.queue, &small.distance)?;
+        let distance: Vec<f32> = bytemuck::cast_slice(&distance).to_vec();
+        if distance.iter().any(|&d| d == -2.0) {
+            log::warn!("the reference left some rays unresolved");
+        }
+        Ok(Self {
+            rgb: metrics::rgb(&color),
+            distance,
+        })
+    }
+}
+
+/// Relative depth difference beyond which a pixel counts as hit at the wrong depth.
+pub const DEPTH_TOLERANCE: f64 = 0.01;
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
+}
+
+fn wait(gpu: &Gpu) -> Result<()> {
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| Error::Readback(e.to_string()))
+}
+
+fn mesh_row(
+    gpu: &Gpu,
+    config: &Config,
+    options: &Options,
+    view: &View,
+    timer: Option<&GpuTimer>,
+    reference: &Reference,
+) -> Result<Row> {
+    let samples = crate::cli::RENDER_SAMPLES;
+    let target = Offscreen::new(&gpu.device, options.width, options.height, samples)?;
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(samples),
+        config.params,
+    )?;
+    let color_view = target.color.create_view(&Default::default());
+    let (mut bake, mut normals, mut render, mut wall) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for frame in 0..options.warmup + options.frames {
+        terrain.invalidate();
+        let start = Instant::now();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        terrain.encode_bake_timed(&mut encoder, timer);
+        terrain.prepare(&gpu.queue, view);
+        {
+            let clear =
+                crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
+            let mut pass = target.begin_pass(
+                &mut encoder,
+                &color_view,
+                clear,
+                timer.map(|t| t.render_writes(Slot::Render)),
+            );
+            terrain.render(&mut pass);
+        }
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        wait(gpu)?;
+        let elapsed = start.elapsed().as_secs_f64() * 1e3;
+        let times = timer.map(|t| t.read(&gpu.device)).transpose()?;
+        if frame >= options.warmup {
+            wall.push(elapsed);
+            if let Some(t) = times {
+                bake.extend(t[Slot::Bake as usize]);
+                normals.extend(t[Slot::Normals as usize]);
+                render.extend(t[Slot::Render as usize]);
+            }
+        }
+    }
+    let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
+    let (flip_mean, flip_p99) = metrics::image_error(
+        &reference.rgb,
+        &metrics::rgb(&image),
+        options.width,
+        options.height,
+    );
+
+    // Distances from a single-sampled render's depth buffer.
+    let single = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
+    let mut terrain1 = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(1),
+        config.params,
+    )?;
+    single.render(gpu, &mut terrain1, view, None)?;
+    let depth = single.read_depth(gpu)?;
+    let vp = view.view_proj.as_dmat4();
+    let eye = view.eye.as_dvec3();
+    let distance: Vec<f32> = depth
+        .iter()
+        .enumerate()
+        .map(|(i, &d)| {
+            if d >= 1.0 {
+                return -1.0;
+            }
+            let (x, y) = (i as u32 % options.width, i as u32 / options.width);
+            let p =
+                crate::raycast::unproject(vp, options.width, options.height, x, y, f64::from(d));
+            (p - eye).length() as f32
+        })
+        .collect();
+
+    let baked = headless::read_baked(&gpu.device, &gpu.queue, &terrain)?;
+    let texels: Vec<f64> = baked.heights.iter().map(|&h| f64::from(h)).collect();
+    let mesh = metrics::mesh_error(
+        &config.params,
+        &texels,
+        Some((view, options.width, options.height)),
+        options.mesh_samples,
+    );
+    let normal_error = metrics::normal_error(&config.params, &baked.normals);
+    Ok(Row {
+        config: *config,
+        bake_ms: median(bake),
+        normals_ms: median(normals),
+        render_ms: median(render),
+        wall_ms: median(wall).unwrap_or(f64::NAN),
+        mesh: Some(mesh),
+        normals: Some(normal_error),
+        flip_mean,
+        flip_p99,
+        coverage: metrics::coverage(&reference.distance, &distance, DEPTH_TOLERANCE),
+    })
+}
+
+fn ray_row(
+    gpu: &Gpu,
+    config: &Config,
+    options: &Options,
+    view: &View,
+    shading: &Shading,
+    timer: Option<&GpuTimer>,
+    reference: &Reference,
+) -> Result<Row> {
+    let rm = RayMarcher::new(&gpu.device, options.width, options.height)?;
+    rm.prepare(
+        &gpu.queue,
+        &config.params,
+        shading,
+        view,
+        RayMethod::SeedMarch(config.march),
+    );
+    let path = if config.method == Method::RayFragment {
+        RayPath::Fragment
+    } else {
+        RayPath::Compute
+    };
+    let (mut render, mut wall) = (Vec::new(), Vec::new());
+    for frame in 0..options.warmup + options.frames {
+        let start = Instant::now();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        rm.encode(&mut encoder, path, timer);
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        wait(gpu)?;
+        let elapsed = start.elapsed().as_secs_f64() * 1e3;
+        let times = timer.map(|t| t.read(&gpu.device)).transpose()?;
+        if frame >= options.warmup {
+            wall.push(elapsed);
+            if let Some(t) = times {
+                render.extend(t[Slot::Render as usize]);
+            }
+        }
+    }
+    let image = headless::read_texture(&gpu.device, &gpu.queue, &rm.color)?;
+    let distance = headless::read_texture(&gpu.device, &gpu.queue, &rm.distance)?;
+    let distance: &[f32] = bytemuck::cast_slice(&distance);
+    let (flip_mean, flip_p99) = metrics::image_error(
+        &reference.rgb,
+        &metrics::rgb(&image),
+        options.width,
+        options.height,
+    );
+    Ok(Row {
+        config: *config,
+        bake_ms: None,
+        normals_ms: None,
+        render_ms: median(render),
+        wall_ms: median(wall).unwrap_or(f64::NAN),
+        mesh: None,
+        normals: None,
+        flip_mean,
+        flip_p99,
+        coverage: metrics::coverage(&reference.distance, distance, DEPTH_TOLERANCE),
+    })
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |x| format!("{x:.6}"))
+}
+
+/// The CSV: a header and one row per configuration, every knob, metric and timing, with the
+/// device and backend.
+pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> String {
+    let mut out = String::from(
+        "device,backend,method,default,width,height,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,\
+         bake_ms,normals_ms,render_ms,frame_gpu_ms,wall_ms,mesh_rms,mesh_max,mesh_rms_px,mesh_max_px,normal_mean_deg,normal_p99_deg,\
+         flip_mean,flip_p99,missed,extra,wrong_depth\n",
+    );
+    let quote = |s: &str| format!("\"{}\"", s.replace('"', "\"\""));
+    for r in rows {
+        let c = &r.config;
+        let ray = c.method != Method::Mesh;
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            quote(device),
+            quote(backend),
+            c.method.name(),
+            c.is_default(),
+            options.width,
+            options.height,
+            if ray { String::new() } else { c.params.size.to_string() },
+            if ray { String::new() } else { c.params.grid.to_string() },
+            c.params.octaves,
+            if ray { String::new() } else { c.params.normals.to_string() },
+            if ray { c.march.step_factor.to_string() } else { String::new() },
+            if ray { c.march.hit_k.to_string() } else { String::new() },
+            if ray { c.march.march_octaves.to_string() } else { String::new() },
+            if ray { c.march.normal_octaves.to_string() } else { String::new() },
+            opt(r.bake_ms),
+            opt(r.normals_ms),
+            opt(r.render_ms),
+            opt(r.frame_gpu_ms()),
+            r.wall_ms,
+            opt(r.mesh.map(|m| m.rms)),
+            opt(r.mesh.map(|m| m.max)),
+            opt(r.mesh.map(|m| m.rms_px)),
+            opt(r.mesh.map(|m| m.max_px)),
+            opt(r.normals.map(|n| n.mean_deg)),
+            opt(r.normals.map(|n| n.p99_deg)),
+            r.flip_mean,
+            r.flip_p99,
+            r.coverage.missed,
+            r.coverage.extra,
+            r.coverage.wrong_depth,
+        );
+    }
+    out
+}
+
+/// A short table for the terminal.
+pub fn table(rows: &[Row]) -> String {
+    let mut out = format!(
+        "{:<18} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
+        "method",
+        "size",
+        "grid",
+        "normals",
+        "step",
+        "oct",
+        "gpu ms",
+        "wall ms",
+        "FLIP",
+        "missed",
+        "mesh px"
+    );
+    for r in rows {
+        let c = &r.config;
+        let ray = c.method != Method::Mesh;
+        let dash = |b: bool, s: String| if b { "-".to_owned() } else { s };
+        let _ = writeln!(
+            out,
+            "{:<18} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10.3} {:>9.4} {:>8.4} {:>8}{}",
+            c.method.name(),
+            dash(ray, c.params.size.to_string()),
+            dash(ray, c.params.grid.to_string()),
+            dash(ray, c.params.normals.to_string()),
+            dash(!ray, format!("{}", c.march.step_factor)),
+            if ray {
+                c.march.march_octaves
+            } else {
+                c.params.octaves
+            },
+            r.frame_gpu_ms()
+                .map_or("n/a".to_owned(), |v| format!("{v:.4}")),
+            r.wall_ms,
+            r.flip_mean,
+            r.coverage.missed,
+            r.mesh
+                .map_or("-".to_owned(), |m| format!("{:.3}", m.rms_px)),
+            if c.is_default() { "  <- default" } else { "" },
+        );
+    }
+    out
+}
+
+/// Indices of the rows on the Pareto front of (GPU time, FLIP mean): no other row is both
+/// faster and more accurate.
+pub fn pareto(rows: &[Row]) -> Vec<usize> {
+    let pts: Vec<(usize, f64, f64)> = rows
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| r.frame_gpu_ms().map(|t| (i, t, r.flip_mean)))
+        .collect();
+    let mut front: Vec<usize> = pts
+        .iter()
+        .filter(|&&(i, t, e)| {
+            !pts.iter()
+                .any(|&(j, t2, e2)| j != i && t2 <= t && e2 <= e && (t2 < t || e2 < e))
+        })
+        .map(|&(i, _, _)| i)
+        .collect();
+    front.sort_by(|&a, &b| {
+        rows[a]
+            .frame_gpu_ms()
+            .unwrap_or(0.0)
+            .total_cmp(&rows[b].frame_gpu_ms().unwrap_or(0.0))
+    });
+    front
+}
+
+/// Writes the chart (error against GPU time, log axes, a series per method, the Pareto front,
+/// the default labelled) as `stem.png` and `stem.svg`.
+pub fn chart(rows: &[Row], title: &str, stem: &Path) -> Result<()> {
+    let font = load_font()?;
+    plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font)
+        .map_err(|_| Error::Device("could not register the chart font".into()))?;
+    let svg = stem.with_extension("svg");
+    let png = stem.with_extension("png");
+    draw_chart(
+        plotters::backend::SVGBackend::new(&svg, (960, 640)),
+        rows,
+        title,
+    )
+    .map_err(|e| Error::io(&svg, std::io::Error::other(e)))?;
+    draw_chart(
+        plotters::backend::BitMapBackend::new(&png, (960, 640)),
+        rows,
+        title,
+    )
+    .map_err(|e| Error::io(&png, std::io::Error::other(e)))?;
+    Ok(())
+}
+
+/// Fonts the chart may use, first found wins (Debian's fonts-dejavu-core, or Liberation);
+/// `RELIEF_FONT` names another TrueType file to try first.
+pub const FONT_PATHS: [&str; 3] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+    "/usr/share/fonts/truetype/noto/NotoSans-Regular.ttf",
+];
+
+fn load_font() -> Result<&'static [u8]> {
+    let from_env = std::env::var("RELIEF_FONT").ok();
+    for p in from_env.as_deref().into_iter().chain(FONT_PATHS) {
+        if let Ok(bytes) = std::fs::read(p) {
+            return Ok(Box::leak(bytes.into_boxed_slice()));
+        }
+    }
+    Err(Error::io(
+        FONT_PATHS[0],
+        std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            "no font for the chart: install fonts-dejavu-core",
+        ),
+    ))
+}
+
+fn draw_chart<DB: plotters::prelude::DrawingBackend>(
+    backend: DB,
+    rows: &[Row],
+    title: &str,
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let pts: Vec<(f64, f64, &Row)> = rows
+        .iter()
+        .filter_map(|r| r.frame_gpu_ms().map(|t| (t, r.flip_mean.max(1e-4), r)))
+        .collect();
+    if pts.is_empty() {
+        return Err("no timed rows to chart (does the adapter have timestamp queries?)".into());
+    }
+    let (tmin, tmax) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    let (emin, emax) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(
+            (tmin / 1.5..tmax * 1.5).log_scale(),
+            (emin / 1.5..emax * 1.5).log_scale(),
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_labels(10)
+        .y_labels(10)
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .x_desc("GPU time per frame, ms (mesh: full re-bake + draw)")
+        .y_desc("FLIP mean vs reference")
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let series = [
+        (Method::Mesh, RGBColor(31, 119, 180)),
+        (Method::RayFragment, RGBColor(214, 39, 40)),
+        (Method::RayCompute, RGBColor(44, 160, 44)),
+    ];
+    for (method, color) in series {
+        let mine: Vec<(f64, f64)> = pts
+            .iter()
+            .filter(|p| p.2.config.method == method)
+            .map(|p| (p.0, p.1))
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        chart
+            .draw_series(mine.iter().map(|&p| Circle::new(p, 5, color.filled())))
+            .map_err(|e| e.to_string())?
+            .label(method.name())
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
+    }
+    let front: Vec<(f64, f64)> = pareto(rows)
+        .into_iter()
+        .filter_map(|i| {
+            rows[i]
+                .frame_gpu_ms()
+                .map(|t| (t, rows[i].flip_mean.max(1e-4)))
+        })
+        .collect();
+    chart
+        .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))
+        .map_err(|e| e.to_string())?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+    chart
+        .draw_series(
+            front
+                .iter()
+                .map(|&p| Circle::new(p, 8, BLACK.stroke_width(1))),
+        )
+        .map_err(|e| e.to_string())?;
+    for p in pts.iter().filter(|p| p.2.config.is_default()) {
+        chart
+            .draw_series(std::iter::once(Text::new(
+                "default: mesh 1024 / 256",
+                (p.0 / 2.2, p.1 * 1.12),
+                ("sans-serif", 15).into_font().color(&BLACK),
+            )))
+            .map_err(|e| e.to_string())?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    root.present().map_err(|e| e.to_string())?;
+    Ok(())
+}
