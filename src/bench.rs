@@ -62,6 +62,9 @@ pub struct Options {
     pub height: u32,
     /// Frames before timing.
     pub warmup: u32,
+    /// Least time spent on warm-up frames, back to back, so the GPU reaches its working clocks
+    /// before timing (an idle H100 drops its clocks within milliseconds).
+    pub warmup_ms: f64,
     /// Timed frames (the median is reported).
     pub frames: u32,
     /// The reference is cast at this many times the resolution per axis and averaged down.
@@ -76,6 +79,7 @@ impl Options {
         width: 1920,
         height: 1080,
         warmup: 5,
+        warmup_ms: 500.0,
         frames: 21,
         supersample: 3,
         mesh_samples: 65536,
@@ -85,6 +89,7 @@ impl Options {
         width: 192,
         height: 108,
         warmup: 1,
+        warmup_ms: 0.0,
         frames: 3,
         supersample: 2,
         mesh_samples: 8192,
@@ -274,6 +279,46 @@ fn wait(gpu: &Gpu) -> Result<()> {
         .map_err(|e| Error::Readback(e.to_string()))
 }
 
+/// Runs `frame` back to back for the warm-up (at least `warmup` frames and `warmup_ms`), then
+/// `frames` timed frames, each submitted and waited for; returns the GPU timings and the wall
+/// time of each timed frame.
+fn measure(
+    gpu: &Gpu,
+    options: &Options,
+    timer: Option<&GpuTimer>,
+    mut frame: impl FnMut(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
+) -> Result<(Vec<crate::gpu::timing::Timings>, Vec<f64>)> {
+    let start = Instant::now();
+    let mut n = 0;
+    while n < options.warmup || start.elapsed().as_secs_f64() * 1e3 < options.warmup_ms {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        frame(&mut encoder, None);
+        gpu.queue.submit([encoder.finish()]);
+        n += 1;
+        if n % 16 == 0 {
+            // Keep a bounded amount of work in flight.
+            wait(gpu)?;
+        }
+    }
+    wait(gpu)?;
+    let (mut times, mut wall) = (Vec::new(), Vec::new());
+    for _ in 0..options.frames {
+        let start = Instant::now();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        frame(&mut encoder, timer);
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        wait(gpu)?;
+        wall.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Some(t) = timer {
+            times.push(t.read(&gpu.device)?);
+        }
+    }
+    Ok((times, wall))
+}
+
 fn mesh_row(
     gpu: &Gpu,
     config: &Config,
@@ -291,41 +336,26 @@ fn mesh_row(
         config.params,
     )?;
     let color_view = target.color.create_view(&Default::default());
-    let (mut bake, mut normals, mut render, mut wall) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for frame in 0..options.warmup + options.frames {
+    let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
         terrain.invalidate();
-        let start = Instant::now();
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        terrain.encode_bake_timed(&mut encoder, timer);
+        terrain.encode_bake_timed(encoder, timer);
         terrain.prepare(&gpu.queue, view);
-        {
-            let clear =
-                crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
-            let mut pass = target.begin_pass(
-                &mut encoder,
-                &color_view,
-                clear,
-                timer.map(|t| t.render_writes(Slot::Render)),
-            );
-            terrain.render(&mut pass);
-        }
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        wait(gpu)?;
-        let elapsed = start.elapsed().as_secs_f64() * 1e3;
-        let times = timer.map(|t| t.read(&gpu.device)).transpose()?;
-        if frame >= options.warmup {
-            wall.push(elapsed);
-            if let Some(t) = times {
-                bake.extend(t[Slot::Bake as usize]);
-                normals.extend(t[Slot::Normals as usize]);
-                render.extend(t[Slot::Render as usize]);
-            }
-        }
-    }
+        let clear = crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
+        let mut pass = target.begin_pass(
+            encoder,
+            &color_view,
+            clear,
+            timer.map(|t| t.render_writes(Slot::Render)),
+        );
+        terrain.render(&mut pass);
+    })?;
+    let slot = |s: Slot| {
+        times
+            .iter()
+            .filter_map(|t| t[s as usize])
+            .collect::<Vec<f64>>()
+    };
+    let (bake, normals, render) = (slot(Slot::Bake), slot(Slot::Normals), slot(Slot::Render));
     let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
     let (flip_mean, flip_p99) = metrics::image_error(
         &reference.rgb,
@@ -405,25 +435,13 @@ fn ray_row(
     } else {
         RayPath::Compute
     };
-    let (mut render, mut wall) = (Vec::new(), Vec::new());
-    for frame in 0..options.warmup + options.frames {
-        let start = Instant::now();
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        rm.encode(&mut encoder, path, timer);
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        wait(gpu)?;
-        let elapsed = start.elapsed().as_secs_f64() * 1e3;
-        let times = timer.map(|t| t.read(&gpu.device)).transpose()?;
-        if frame >= options.warmup {
-            wall.push(elapsed);
-            if let Some(t) = times {
-                render.extend(t[Slot::Render as usize]);
-            }
-        }
-    }
+    let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
+        rm.encode(encoder, path, timer)
+    })?;
+    let render: Vec<f64> = times
+        .iter()
+        .filter_map(|t| t[Slot::Render as usize])
+        .collect();
     let image = headless::read_texture(&gpu.device, &gpu.queue, &rm.color)?;
     let distance = headless::read_texture(&gpu.device, &gpu.queue, &rm.distance)?;
     let distance: &[f32] = bytemuck::cast_slice(&distance);

@@ -96,7 +96,7 @@ impl MeshPass {
             label: Some("relief:render:bind-group-layout"),
             entries: &[
                 super::uniform_entry::<RenderUniforms>(0, vf),
-                super::texture_entry(1, wgpu::ShaderStages::VERTEX, false),
+                super::texture_entry(1, wgpu::ShaderStages::VERTEX_FRAGMENT, false),
                 super::texture_entry(2, wgpu::ShaderStages::FRAGMENT, true),
                 wgpu::BindGroupLayoutEntry {
                     binding: 3,
