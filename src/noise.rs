@@ -73,10 +73,19 @@ pub fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2]) 
     let y0 = (fl[1] as i64).rem_euclid(period_i) as u32;
     let x1 = (x0 + 1) % period;
     let y1 = (y0 + 1) % period;
-    let ga = gradient(lattice_hash(x0, y0, stream));
-    let gb = gradient(lattice_hash(x1, y0, stream));
-    let gc = gradient(lattice_hash(x0, y1, stream));
-    let gd = gradient(lattice_hash(x1, y1, stream));
+    let corners = [
+        gradient(lattice_hash(x0, y0, stream)),
+        gradient(lattice_hash(x1, y0, stream)),
+        gradient(lattice_hash(x0, y1, stream)),
+        gradient(lattice_hash(x1, y1, stream)),
+    ];
+    cell_noise(corners, f)
+}
+
+/// Gradient noise inside one cell with corner gradients `g` (in the order (0,0), (1,0), (0,1),
+/// (1,1)) at position `f` in [0,1)^2: the value and its derivative.
+pub fn cell_noise(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2]) {
+    let [ga, gb, gc, gd] = g;
     let a = ga[0] * f[0] + ga[1] * f[1];
     let b = gb[0] * (f[0] - 1.0) + gb[1] * f[1];
     let c = gc[0] * f[0] + gc[1] * (f[1] - 1.0);
@@ -307,7 +316,7 @@ mod tests {
                                     (f64::from(i) + 0.5) / f64::from(n),
                                     (f64::from(j) + 0.5) / f64::from(n),
                                 ];
-                                let g = corner_gradient([*ga, *gb, *gc, *gd], f);
+                                let (_, g) = cell_noise([*ga, *gb, *gc, *gd], f);
                                 max = max.max((g[0] * g[0] + g[1] * g[1]).sqrt());
                             }
                         }
@@ -319,28 +328,6 @@ mod tests {
             max > 1.9 && max < NOISE_MAX_GRADIENT,
             "max |grad n| = {max}"
         );
-    }
-
-    /// The derivative of gradient noise for given corner gradients at cell position f.
-    fn corner_gradient(g: [[f64; 2]; 4], f: [f64; 2]) -> [f64; 2] {
-        let [ga, gb, gc, gd] = g;
-        let a = ga[0] * f[0] + ga[1] * f[1];
-        let b = gb[0] * (f[0] - 1.0) + gb[1] * f[1];
-        let c = gc[0] * f[0] + gc[1] * (f[1] - 1.0);
-        let d = gd[0] * (f[0] - 1.0) + gd[1] * (f[1] - 1.0);
-        let (ux, uy) = (fade(f[0]), fade(f[1]));
-        let (dux, duy) = (fade_derivative(f[0]), fade_derivative(f[1]));
-        let k = a - b - c + d;
-        let mut out = [0.0; 2];
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = ga[i]
-                + ux * (gb[i] - ga[i])
-                + uy * (gc[i] - ga[i])
-                + ux * uy * (ga[i] - gb[i] - gc[i] + gd[i]);
-        }
-        out[0] += dux * ((b - a) + uy * k);
-        out[1] += duy * ((c - a) + ux * k);
-        out
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! The bake pass: fBm height and colour channels into one rg32float texture.
 
-use super::{shader, Textures, WORKGROUP};
+use super::{shader, Textures};
 use crate::params::TerrainParams;
 
 /// Mirrors `BakeUniforms` in `wgsl/bake.wgsl` field by field.
@@ -111,13 +111,13 @@ impl BakePass {
         size: u32,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("relief:bake:pass"),
-            timestamp_writes: timestamps,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, self.bind_group.as_ref(), &[]);
-        let groups = size.div_ceil(WORKGROUP);
-        pass.dispatch_workgroups(groups, groups, 1);
+        super::dispatch_square(
+            encoder,
+            "relief:bake:pass",
+            &self.pipeline,
+            self.bind_group.as_ref(),
+            size,
+            timestamps,
+        );
     }
 }

@@ -76,11 +76,21 @@ pub fn encode_texture_copy(
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
 ) -> (wgpu::Buffer, u32) {
+    encode_aspect_copy(device, encoder, texture, wgpu::TextureAspect::All)
+}
+
+/// [`encode_texture_copy`] of one aspect (`DepthOnly` for a depth buffer).
+fn encode_aspect_copy(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    aspect: wgpu::TextureAspect,
+) -> (wgpu::Buffer, u32) {
     let (w, h) = (texture.width(), texture.height());
     let bpp = texture
         .format()
-        .block_copy_size(None)
-        .expect("colour formats have a block size");
+        .block_copy_size(Some(aspect))
+        .expect("copyable formats have a block size");
     let pitch = (w * bpp).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("relief:readback"),
@@ -89,7 +99,10 @@ pub fn encode_texture_copy(
         mapped_at_creation: false,
     });
     encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
+        wgpu::TexelCopyTextureInfo {
+            aspect,
+            ..texture.as_image_copy()
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout {
@@ -386,30 +399,12 @@ impl Offscreen {
             ));
         }
         let (w, h) = (self.width, self.height);
-        let pitch = (w * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("relief:offscreen:depth-readback"),
-            size: u64::from(pitch) * u64::from(h),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &self.depth_texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::DepthOnly,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(pitch),
-                    rows_per_image: Some(h),
-                },
-            },
-            self.depth_texture.size(),
+        let (buffer, pitch) = encode_aspect_copy(
+            &gpu.device,
+            &mut encoder,
+            &self.depth_texture,
+            wgpu::TextureAspect::DepthOnly,
         );
         gpu.queue.submit([encoder.finish()]);
         let bytes = map_read(&gpu.device, &buffer)?;

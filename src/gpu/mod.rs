@@ -379,6 +379,26 @@ pub(crate) fn compute_pipeline(
     })
 }
 
+/// Records one compute pass that runs `pipeline` over a `size` x `size` texture, one
+/// invocation per texel in [`WORKGROUP`]-square groups.
+pub(crate) fn dispatch_square(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    pipeline: &wgpu::ComputePipeline,
+    bind_group: Option<&wgpu::BindGroup>,
+    size: u32,
+    timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+) {
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes: timestamps,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    let groups = size.div_ceil(WORKGROUP);
+    pass.dispatch_workgroups(groups, groups, 1);
+}
+
 /// Runs `f` inside validation and out-of-memory error scopes and turns a captured wgpu error
 /// into [`Error::Gpu`]. On the web the scopes resolve asynchronously, so errors there reach
 /// the device's uncaptured-error handler instead.

@@ -1,6 +1,6 @@
 //! The normal pass: wrap-around central differences of the heights into an rgba16float map.
 
-use super::{Textures, WORKGROUP};
+use super::Textures;
 use crate::params::TerrainParams;
 
 /// Mirrors `NormalUniforms` in `wgsl/normals.wgsl` field by field.
@@ -128,13 +128,13 @@ impl NormalPass {
         size: u32,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("relief:normals:pass"),
-            timestamp_writes: timestamps,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, self.bind_group.as_ref(), &[]);
-        let groups = size.div_ceil(WORKGROUP);
-        pass.dispatch_workgroups(groups, groups, 1);
+        super::dispatch_square(
+            encoder,
+            "relief:normals:pass",
+            &self.pipeline,
+            self.bind_group.as_ref(),
+            size,
+            timestamps,
+        );
     }
 }
