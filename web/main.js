@@ -42,10 +42,6 @@ async function main() {
     return noWebGPU("navigator.gpu.requestAdapter() returned null: WebGPU is disabled or no GPU adapter is available.");
   }
 
-  // Held for the page's lifetime: in headless Chromium a collected probe adapter was seen
-  // to take the page's WebGPU instance, and relief's device with it, down.
-  window.reliefProbeAdapter = adapter;
-
   let relief;
   try {
     relief = await import("./pkg/relief.js");

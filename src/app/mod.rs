@@ -163,7 +163,7 @@ pub struct State {
     timer: Option<GpuTimer>,
     timing_pending: Arc<Mutex<Option<Result<Timings>>>>,
     timing_busy: bool,
-    // Kept alive with the device: on the web, letting them go can lose the device.
+    // The instance and adapter the surface and device came from, kept for the window's life.
     _instance: wgpu::Instance,
     _adapter: wgpu::Adapter,
     /// "name (backend)" of the adapter.
