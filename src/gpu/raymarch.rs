@@ -252,24 +252,11 @@ impl RayMarcher {
             super::uniform_buffer::<RenderUniforms>(device, "relief:raymarch:render-uniforms");
         let ray_uniforms =
             super::uniform_buffer::<RayUniforms>(device, "relief:raymarch:ray-uniforms");
-        let texture = |label, format| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
-        };
+        let usage = wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC;
+        let texture =
+            |label, format| super::texture_2d(device, label, (width, height), format, usage);
         let color = texture("relief:raymarch:color", Self::COLOR_FORMAT);
         let distance = texture("relief:raymarch:distance", Self::DISTANCE_FORMAT);
         let color_view = color.create_view(&Default::default());
