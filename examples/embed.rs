@@ -1,13 +1,35 @@
 //! Embedding relief in a host app that draws its own geometry into the same render pass and
-//! depth buffer. Headless here (an offscreen target) so it runs anywhere; a windowed host does
-//! the same with its surface texture.
+//! depth buffer, using relief's core alone (`relief = { default-features = false }`): the host
+//! makes its own device, target textures and readback, as any wgpu app does. Headless here (an
+//! offscreen target) so it runs anywhere; a windowed host does the same with its surface
+//! texture. The pillar stands on the terrain: its foot is placed with `Terrain::height_at`.
 //!
 //!     cargo run --example embed -- embed.png
 
-use relief::gpu::headless::{Gpu, Offscreen};
 use relief::{wgpu, OrbitCamera, Terrain, TerrainParams};
 
-/// The host's own object: a red pillar standing in the middle of the terrain, its foot below
+/// The host's GPU: its own device and queue (relief only borrows them).
+pub struct Host {
+    /// The host's device.
+    pub device: wgpu::Device,
+    /// The host's queue.
+    pub queue: wgpu::Queue,
+}
+
+impl Host {
+    /// Any adapter will do; the host owns this choice, not relief.
+    pub fn new() -> Result<Self, String> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&Default::default()))
+            .map_err(|e| format!("no GPU adapter: {e}"))?;
+        let (device, queue) = pollster::block_on(adapter.request_device(&Default::default()))
+            .map_err(|e| format!("no GPU device: {e}"))?;
+        Ok(Self { device, queue })
+    }
+}
+
+/// The host's own object: a red pillar standing on the terrain at its centre, its foot below
 /// the ground, drawn by the host's own pipeline.
 pub struct Pillar {
     pipeline: wgpu::RenderPipeline,
@@ -16,7 +38,8 @@ pub struct Pillar {
 }
 
 const PILLAR_WGSL: &str = r#"
-@group(0) @binding(0) var<uniform> view_proj: mat4x4<f32>;
+struct Uniforms { view_proj: mat4x4<f32>, ground: vec4<f32> }
+@group(0) @binding(0) var<uniform> u: Uniforms;
 
 struct Out { @builtin(position) clip: vec4<f32>, @location(0) shade: f32 }
 
@@ -24,8 +47,8 @@ struct Out { @builtin(position) clip: vec4<f32>, @location(0) shade: f32 }
 fn vs(@builtin(vertex_index) i: u32) -> Out {
     // 6 faces x 2 triangles of a box from (-w, y0, -w) to (w, y1, w).
     let w = 0.06;
-    let y0 = -0.3;
-    let y1 = 0.9;
+    let y0 = -0.2;
+    let y1 = 0.6;
     let face = i / 6u;
     let corner = array<vec2<f32>, 6>(vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0),
                                      vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0))[i % 6u];
@@ -38,9 +61,9 @@ fn vs(@builtin(vertex_index) i: u32) -> Out {
         case 4u: { p = vec3(corner.x, corner.y, 1.0); }
         default: { p = vec3(corner.x, corner.y, -1.0); }
     }
-    let world = vec3(p.x * w, mix(y0, y1, p.y * 0.5 + 0.5), p.z * w);
+    let world = vec3(p.x * w, u.ground.x + mix(y0, y1, p.y * 0.5 + 0.5), p.z * w);
     var out: Out;
-    out.clip = view_proj * vec4(world, 1.0);
+    out.clip = u.view_proj * vec4(world, 1.0);
     out.shade = 0.6 + 0.4 * f32(face % 3u) / 2.0;
     return out;
 }
@@ -60,7 +83,7 @@ impl Pillar {
         });
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("host:pillar:uniforms"),
-            size: 64,
+            size: 80,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -119,33 +142,122 @@ pub struct Draw {
     pub terrain: bool,
 }
 
+/// The host's MSAA sample count and formats; relief is built for exactly these.
+const SAMPLES: u32 = 4;
+const TARGETS: relief::Targets = relief::Targets {
+    color_format: wgpu::TextureFormat::Rgba8UnormSrgb,
+    depth_format: Some(wgpu::TextureFormat::Depth32Float),
+    sample_count: SAMPLES,
+};
+
+fn target(
+    host: &Host,
+    label: &str,
+    (w, h): (u32, u32),
+    format: wgpu::TextureFormat,
+    samples: u32,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    host.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// Renders one frame of the host scene into an RGBA8 image.
-pub fn render_frame(gpu: &Gpu, width: u32, height: u32, draw: Draw) -> relief::Result<Vec<u8>> {
-    let samples = 4;
-    let target = Offscreen::new(&gpu.device, width, height, samples)?;
-    let targets = Offscreen::targets(samples);
+pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<Vec<u8>, String> {
+    let (device, queue) = (&host.device, &host.queue);
     let params = TerrainParams {
         size: 256,
         grid: 128,
         ..Default::default()
     };
-    let mut terrain = Terrain::new(&gpu.device, &gpu.queue, targets, params)?;
-    let pillar = Pillar::new(&gpu.device, &targets);
+    let mut terrain = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+    let pillar = Pillar::new(device, &TARGETS);
     let view = OrbitCamera::default().view(width as f32 / height as f32);
+    // The host's own geometry sits on the terrain: relief answers where the ground is.
+    let ground = terrain.height_at(0.0, 0.0);
+
+    let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let size = (width, height);
+    let resolved = target(
+        host,
+        "host:color",
+        size,
+        TARGETS.color_format,
+        1,
+        attach | wgpu::TextureUsages::COPY_SRC,
+    );
+    let msaa = target(
+        host,
+        "host:msaa",
+        size,
+        TARGETS.color_format,
+        SAMPLES,
+        attach,
+    );
+    let depth = target(
+        host,
+        "host:depth",
+        size,
+        wgpu::TextureFormat::Depth32Float,
+        SAMPLES,
+        attach,
+    );
 
     // The host's frame: its encoder, its pass, its depth buffer; relief records into them.
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let mut encoder = device.create_command_encoder(&Default::default());
     terrain.encode_bake(&mut encoder);
-    terrain.prepare(&gpu.queue, &view);
-    gpu.queue.write_buffer(
+    terrain.prepare(queue, &view);
+    queue.write_buffer(
         &pillar.uniforms,
         0,
-        bytemuck::bytes_of(&view.view_proj.to_cols_array()),
+        bytemuck::cast_slice(
+            &[
+                view.view_proj.to_cols_array().as_slice(),
+                &[ground, 0.0, 0.0, 0.0],
+            ]
+            .concat(),
+        ),
     );
-    let color_view = target.color.create_view(&Default::default());
     {
-        let clear = relief::gpu::clear_color(terrain.shading().sky_color, targets.color_format);
-        let mut pass = target.begin_pass(&mut encoder, &color_view, clear, None);
+        let clear = relief::gpu::clear_color(terrain.shading().sky_color, TARGETS.color_format);
+        let msaa_view = msaa.create_view(&Default::default());
+        let resolved_view = resolved.create_view(&Default::default());
+        let depth_view = depth.create_view(&Default::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("host:pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &msaa_view,
+                depth_slice: None,
+                resolve_target: Some(&resolved_view),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
         if draw.host {
             pass.set_pipeline(&pillar.pipeline);
             pass.set_bind_group(0, &pillar.bind_group, &[]);
@@ -155,22 +267,60 @@ pub fn render_frame(gpu: &Gpu, width: u32, height: u32, draw: Draw) -> relief::R
             terrain.render(&mut pass);
         }
     }
-    gpu.queue.submit([encoder.finish()]);
-    relief::gpu::headless::read_texture(&gpu.device, &gpu.queue, &target.color)
+    // The host reads its image back its own way.
+    let pitch = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("host:readback"),
+        size: u64::from(pitch) * u64::from(height),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        resolved.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(pitch),
+                rows_per_image: Some(height),
+            },
+        },
+        resolved.size(),
+    );
+    queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| e.to_string())?;
+    rx.recv()
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
+    let mapped = buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| e.to_string())?;
+    Ok(mapped
+        .chunks(pitch as usize)
+        .flat_map(|row| &row[..(width * 4) as usize])
+        .copied()
+        .collect())
 }
 
 #[allow(
     dead_code,
     reason = "the embedding test includes this file and calls render_frame only"
 )]
-fn main() -> relief::Result<()> {
+fn main() -> Result<(), String> {
     let out = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "embed.png".into());
-    let gpu = Gpu::new()?;
+    let host = Host::new()?;
     let (w, h) = (640, 480);
     let pixels = render_frame(
-        &gpu,
+        &host,
         w,
         h,
         Draw {
@@ -178,13 +328,7 @@ fn main() -> relief::Result<()> {
             terrain: true,
         },
     )?;
-    relief::cli::write_png(
-        std::path::Path::new(&out),
-        w,
-        h,
-        image::ColorType::Rgba8,
-        &pixels,
-    )?;
+    image::save_buffer(&out, &pixels, w, h, image::ColorType::Rgba8).map_err(|e| e.to_string())?;
     println!("wrote {out}");
     Ok(())
 }

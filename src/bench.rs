@@ -48,8 +48,29 @@ pub struct Config {
 }
 
 impl Config {
-    fn is_default(&self) -> bool {
-        self.method == Method::Mesh && self.params == TerrainParams::default()
+    /// Whether this is relief's default way of drawing the scene: the mesh at the default
+    /// texture size, grid and normal method.
+    pub fn is_default(&self) -> bool {
+        let d = TerrainParams::default();
+        self.method == Method::Mesh
+            && (self.params.size, self.params.grid, self.params.normals)
+                == (d.size, d.grid, d.normals)
+    }
+
+    /// A few words naming the configuration, for progress and chart labels.
+    pub fn label(&self) -> String {
+        match self.method {
+            Method::Mesh => format!(
+                "mesh {} / {} / {}",
+                self.params.size, self.params.grid, self.params.normals
+            ),
+            m => format!(
+                "{} step {} octaves {}",
+                m.name(),
+                self.march.step_factor,
+                self.march.march_octaves
+            ),
+        }
     }
 }
 
@@ -96,11 +117,12 @@ impl Options {
     };
 }
 
-/// The configurations of a sweep: the mesh over texture size, grid and normal method; the
-/// seed's ray march over path, step factor and marching octaves. The scene is otherwise the
-/// default one, so every configuration is measured against the same reference.
-pub fn sweep(quick: bool) -> Vec<Config> {
-    let base = TerrainParams::default();
+/// The configurations of a sweep over `base` (the scene the user gave): the mesh over texture
+/// size, grid and normal method; the seed's ray march over path, step factor and marching
+/// octaves (at most the scene's). Everything else is `base`, so every configuration is
+/// measured against the same reference.
+pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
+    let base = *base;
     let normals = [NormalMethod::Differences, NormalMethod::Analytic];
     let (sizes, grids, steps, octaves) = if quick {
         (&[256, 1024][..], &[64, 256][..], &[0.5][..], &[5][..])
@@ -116,7 +138,8 @@ pub fn sweep(quick: bool) -> Vec<Config> {
     for &size in sizes {
         for &grid in grids {
             for n in normals {
-                if quick && n == NormalMethod::Analytic && (size, grid) != (base.size, base.grid) {
+                let d = TerrainParams::default();
+                if quick && n == NormalMethod::Analytic && (size, grid) != (d.size, d.grid) {
                     continue;
                 }
                 out.push(Config {
@@ -134,7 +157,13 @@ pub fn sweep(quick: bool) -> Vec<Config> {
     }
     for method in [Method::RayFragment, Method::RayCompute] {
         for &step_factor in steps {
+            let mut seen = Vec::new();
             for &march_octaves in octaves {
+                let march_octaves = march_octaves.min(base.octaves);
+                if seen.contains(&march_octaves) {
+                    continue;
+                }
+                seen.push(march_octaves);
                 out.push(Config {
                     method,
                     params: base,
@@ -194,6 +223,7 @@ pub trait Progress {
 /// Runs the sweep on `gpu` and returns one row per configuration.
 pub fn run(
     gpu: &Gpu,
+    scene: &TerrainParams,
     configs: &[Config],
     options: &Options,
     progress: &mut dyn Progress,
@@ -201,7 +231,7 @@ pub fn run(
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let view = OrbitCamera::default().view(options.width as f32 / options.height as f32);
     let shading = Shading::default();
-    let reference = Reference::new(gpu, &TerrainParams::default(), &shading, &view, options)?;
+    let reference = Reference::new(gpu, scene, &shading, &view, options)?;
     let mut rows = Vec::with_capacity(configs.len());
     for (i, config) in configs.iter().enumerate() {
         progress.start(i, configs.len(), config);
@@ -327,7 +357,7 @@ fn mesh_row(
     timer: Option<&GpuTimer>,
     reference: &Reference,
 ) -> Result<Row> {
-    let samples = crate::cli::RENDER_SAMPLES;
+    let samples = crate::gpu::headless::RENDER_SAMPLES;
     let target = Offscreen::new(&gpu.device, options.width, options.height, samples)?;
     let mut terrain = Terrain::new(
         &gpu.device,
@@ -473,7 +503,7 @@ fn opt(v: Option<f64>) -> String {
 /// device and backend.
 pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
-        "device,backend,method,default,width,height,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,\
+        "device,backend,method,default,width,height,seed,frequency,gain,height_scale,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,\
          bake_ms,normals_ms,render_ms,frame_gpu_ms,wall_ms,mesh_rms,mesh_max,mesh_rms_px,mesh_max_px,normal_mean_deg,normal_p99_deg,\
          flip_mean,flip_p99,missed,extra,wrong_depth\n",
     );
@@ -483,13 +513,17 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
         let ray = c.method != Method::Mesh;
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
             quote(device),
             quote(backend),
             c.method.name(),
             c.is_default(),
             options.width,
             options.height,
+            c.params.seed,
+            c.params.frequency,
+            c.params.gain,
+            c.params.height_scale,
             if ray { String::new() } else { c.params.size.to_string() },
             if ray { String::new() } else { c.params.grid.to_string() },
             c.params.octaves,
@@ -599,13 +633,13 @@ pub fn chart(rows: &[Row], title: &str, stem: &Path) -> Result<()> {
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     draw_chart(
-        plotters::backend::SVGBackend::new(&svg, (960, 640)),
+        plotters::backend::SVGBackend::new(&svg, CHART_SIZE),
         rows,
         title,
     )
     .map_err(|e| Error::io(&svg, std::io::Error::other(e)))?;
     draw_chart(
-        plotters::backend::BitMapBackend::new(&png, (960, 640)),
+        plotters::backend::BitMapBackend::new(&png, CHART_SIZE),
         rows,
         title,
     )
@@ -637,6 +671,37 @@ fn load_font() -> Result<&'static [u8]> {
     ))
 }
 
+/// Tick values for a log axis over `lo..hi`: 1-2-5 per decade, or every integer multiple when
+/// the range is too short for that to give `min_count` ticks.
+pub fn log_ticks(lo: f64, hi: f64, min_count: usize) -> Vec<f64> {
+    let mantissas: [&[f64]; 3] = [
+        &[1.0, 2.0, 5.0],
+        &[1.0, 2.0, 3.0, 5.0, 7.0],
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+    ];
+    let (d0, d1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let mut ticks = Vec::new();
+    for m in mantissas {
+        ticks = (d0..=d1)
+            .flat_map(|d| m.iter().map(move |k| k * 10f64.powi(d)))
+            .filter(|v| (lo..=hi).contains(v))
+            .collect();
+        if ticks.len() >= min_count {
+            break;
+        }
+    }
+    ticks
+}
+
+/// A tick's label: as few digits as the value needs ("0.05", "2", "100").
+pub fn tick_label(v: f64) -> String {
+    let decimals = (-v.log10().floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// The chart's size in pixels (PNG and SVG).
+pub const CHART_SIZE: (u32, u32) = (960, 640);
+
 fn draw_chart<DB: plotters::prelude::DrawingBackend>(
     backend: DB,
     rows: &[Row],
@@ -661,25 +726,26 @@ where
     let (emin, emax) = pts
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let (t0, t1) = (tmin / 1.4, tmax * 1.4);
+    let (e0, e1) = (emin / 1.25, emax * 1.25);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
         .build_cartesian_2d(
-            (tmin / 1.5..tmax * 1.5).log_scale(),
-            (emin / 1.5..emax * 1.5).log_scale(),
+            (t0..t1).log_scale().with_key_points(log_ticks(t0, t1, 5)),
+            (e0..e1).log_scale().with_key_points(log_ticks(e0, e1, 4)),
         )
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .x_labels(10)
-        .y_labels(10)
-        .x_label_formatter(&|v| format!("{v:.3}"))
-        .y_label_formatter(&|v| format!("{v:.3}"))
-        .x_desc("GPU time per frame, ms (mesh: full re-bake + draw)")
-        .y_desc("FLIP mean vs reference")
-        .label_style(("sans-serif", 14))
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| tick_label(*v))
+        .x_desc("GPU time per frame, ms (log; mesh: full re-bake + draw)")
+        .y_desc("FLIP mean against the reference (log)")
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 15))
         .draw()
         .map_err(|e| e.to_string())?;
     let series = [
@@ -722,13 +788,27 @@ where
                 .map(|&p| Circle::new(p, 8, BLACK.stroke_width(1))),
         )
         .map_err(|e| e.to_string())?;
+    // The default: a ring of its own and its label right beside it.
     for p in pts.iter().filter(|p| p.2.config.is_default()) {
+        let label = format!("default ({})", p.2.config.label());
+        // Beside the marker, on whichever side has room for the text.
+        let (px, _) = chart.backend_coord(&(p.0, p.1));
+        let width = (label.chars().count() as f64 * 7.6) as i32;
+        let dx = if px + 14 + width > CHART_SIZE.0 as i32 - 16 {
+            -14 - width
+        } else {
+            14
+        };
         chart
-            .draw_series(std::iter::once(Text::new(
-                "default: mesh 1024 / 256",
-                (p.0 / 2.2, p.1 * 1.12),
-                ("sans-serif", 15).into_font().color(&BLACK),
-            )))
+            .draw_series(std::iter::once(
+                EmptyElement::at((p.0, p.1))
+                    + Circle::new((0, 0), 11, RGBColor(255, 127, 14).stroke_width(3))
+                    + Text::new(
+                        label,
+                        (dx, -24),
+                        ("sans-serif", 15).into_font().color(&BLACK),
+                    ),
+            ))
             .map_err(|e| e.to_string())?;
     }
     chart
@@ -741,4 +821,27 @@ where
         .map_err(|e| e.to_string())?;
     root.present().map_err(|e| e.to_string())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chart_ticks_are_dense_short_and_distinct() {
+        // The H100 sweep's range: most points between 0.7 and 12 ms.
+        let x = log_ticks(0.5, 140.0, 5);
+        assert!(x.iter().filter(|&&v| v < 100.0).count() >= 6, "{x:?}");
+        let labels: Vec<String> = x.iter().map(|&v| tick_label(v)).collect();
+        assert!(labels.iter().all(|l| l.len() <= 4), "{labels:?}");
+        let mut unique = labels.clone();
+        unique.dedup();
+        assert_eq!(unique, labels);
+        assert_eq!(tick_label(0.5), "0.5");
+        assert_eq!(tick_label(20.0), "20");
+        // A FLIP range inside one decade still gets several labels.
+        let y = log_ticks(0.03, 0.09, 4);
+        assert!(y.len() >= 4, "{y:?}");
+        assert_eq!(tick_label(y[0]), "0.03");
+    }
 }

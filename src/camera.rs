@@ -78,8 +78,43 @@ impl OrbitCamera {
 
     /// Zooms by `steps` wheel notches (positive moves closer).
     pub fn zoom(&mut self, steps: f32) {
-        self.distance =
-            (self.distance * 0.9f32.powf(steps)).clamp(Self::MIN_DISTANCE, Self::MAX_DISTANCE);
+        if steps.is_finite() {
+            self.distance =
+                (self.distance * 0.9f32.powf(steps)).clamp(Self::MIN_DISTANCE, Self::MAX_DISTANCE);
+        }
+    }
+
+    /// Raises the camera (by pitching it up about its target) until the eye is at least
+    /// `clearance` above `ground(x, z)` there, and above 0 everywhere (the tile's lowest
+    /// possible height): no view from inside or underneath the terrain. Returns whether it
+    /// moved.
+    pub fn keep_above(&mut self, ground: impl Fn(f32, f32) -> f32, clearance: f32) -> bool {
+        let r = clearance.max(0.0);
+        // The ground under the eye and around it (the near plane has a size too).
+        let floor = |eye: Vec3| {
+            [(0.0, 0.0), (r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)]
+                .iter()
+                .map(|(dx, dz)| ground(eye.x + dx, eye.z + dz))
+                .fold(0.0f32, f32::max)
+        };
+        let ok = |cam: &Self| {
+            let eye = cam.eye();
+            eye.y >= floor(eye) + clearance
+        };
+        if ok(self) {
+            return false;
+        }
+        let start = self.pitch;
+        // Pitch up in small steps: the ground under the eye changes as it moves.
+        while !ok(self) && self.pitch < Self::MAX_PITCH {
+            self.pitch = (self.pitch + 0.005).min(Self::MAX_PITCH);
+        }
+        // Straight above the target and still too low (the target is inside a mountain):
+        // back away until the eye clears the peak.
+        while !ok(self) && self.distance < Self::MAX_DISTANCE {
+            self.distance = (self.distance * 1.05).min(Self::MAX_DISTANCE);
+        }
+        self.pitch != start || !ok(self)
     }
 }
 
@@ -93,6 +128,43 @@ mod tests {
         let v = cam.view(16.0 / 9.0);
         let c = v.view_proj.project_point3(cam.target);
         assert!(c.x.abs() < 1e-5 && c.y.abs() < 1e-5 && (0.0..1.0).contains(&c.z));
+    }
+
+    #[test]
+    fn the_camera_never_goes_under_the_ground() {
+        // A bumpy tile over [-1, 1]^2 up to 0.6 high, nothing outside.
+        let ground = |x: f32, z: f32| {
+            if x.abs() <= 1.0 && z.abs() <= 1.0 {
+                0.3 + 0.3 * (x * 7.0).sin() * (z * 5.0).cos()
+            } else {
+                0.0
+            }
+        };
+        let clearance = 0.05;
+        for yaw in [0.0f32, 0.7, 2.0, 4.0] {
+            for pitch in [-1.5f32, -0.6, -0.1, 0.0, 0.1, 0.55, 1.2] {
+                for steps in [-30.0f32, -5.0, 0.0, 5.0, 10.0, 40.0] {
+                    let mut cam = OrbitCamera {
+                        yaw,
+                        pitch,
+                        ..Default::default()
+                    };
+                    cam.zoom(steps);
+                    let before = cam;
+                    cam.keep_above(ground, clearance);
+                    let eye = cam.eye();
+                    assert!(
+                        eye.y >= ground(eye.x, eye.z) + clearance - 1e-4 && eye.y > 0.0,
+                        "yaw {yaw} pitch {pitch} zoom {steps}: eye {eye}"
+                    );
+                    assert!(cam.pitch >= before.pitch);
+                }
+            }
+        }
+        // A view from well above is left alone.
+        let mut cam = OrbitCamera::default();
+        assert!(!cam.keep_above(ground, clearance));
+        assert_eq!(cam, OrbitCamera::default());
     }
 
     #[test]

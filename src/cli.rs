@@ -1,230 +1,420 @@
-//! The `relief` command line: `window` (the default), `render` and `bake`, all through the
-//! same core path. Every user error ends in exit status 2 and one line on stderr.
+//! The `relief` command line: `window` (the default), `render`, `bake` and `bench`, all
+//! through the same core path. The scene flags are built from the parameter table
+//! ([`crate::params::PARAMS`]) and the window's own table ([`crate::app::OPTIONS`]), so every
+//! parameter has its flag, its help line and its error text from one place. Every user error
+//! ends in exit status 2 and one line on stderr of at most [`MAX_ERROR_CHARS`] characters.
 
+use crate::app::{AppOptions, Script, OPTIONS};
 use crate::error::{Error, Result};
-use crate::gpu::headless::{self, Gpu, Offscreen};
+use crate::gpu::headless::{self, Gpu, Offscreen, MAX_IMAGE, RENDER_SAMPLES, TILE};
 use crate::gpu::timing::{GpuTimer, Slot, Timings};
-use crate::params::{BakeInfo, Shading, TerrainParams};
+use crate::params::{params, srgb_to_linear, SceneParam, Shading, TerrainParams};
+use crate::scene::BakeInfo;
+use crate::table::{self, Kind, Param, Value};
 use crate::{OrbitCamera, Terrain};
-use clap::{Args, Parser, Subcommand};
+use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::path::{Path, PathBuf};
 
-/// Procedural terrain on the GPU: Perlin fBm baked by compute shaders, drawn as a displaced
-/// mesh with Blinn-Phong, snow and height AO.
-#[derive(Parser, Debug)]
-#[command(name = "relief", version, about)]
-pub struct Cli {
-    #[command(subcommand)]
-    command: Option<Command>,
-    #[command(flatten)]
-    scene: SceneArgs,
-}
+/// Longest error line the CLI prints.
+pub const MAX_ERROR_CHARS: usize = 200;
 
-#[derive(Subcommand, Debug)]
-enum Command {
-    /// Open a window with the scene (the default): drag to orbit, wheel to zoom,
-    /// Space pauses the scroll, R re-seeds, Escape quits.
-    Window,
-    /// Render one frame offscreen to a PNG, through the same code path as the window.
-    Render {
-        /// Output PNG file.
-        #[arg(long)]
-        out: PathBuf,
-        /// Image width in pixels.
-        #[arg(long, default_value_t = 1280)]
-        width: u32,
-        /// Image height in pixels.
-        #[arg(long, default_value_t = 720)]
-        height: u32,
-    },
-    /// Bake the textures and write height.png (16-bit), normal.png, color.png and scene.toml.
-    Bake {
-        /// Output folder (created if missing).
-        #[arg(long)]
-        out_dir: PathBuf,
-    },
-    /// Speed against accuracy: sweep render methods and knobs on the default scene, measure
-    /// GPU time and error against the reference ray caster; write bench.csv, bench.png and
-    /// bench.svg.
-    Bench {
-        /// Output folder (created if missing).
-        #[arg(long, default_value = "bench-out")]
-        out_dir: PathBuf,
-        /// A small sweep at a small image size (about a minute on a software GPU).
-        #[arg(long)]
-        quick: bool,
-    },
-}
+/// Image sides `relief render` accepts.
+const IMAGE_SIDE: Kind = Kind::Int {
+    min: 1,
+    max: MAX_IMAGE,
+};
 
-/// Scene options shared by every command; they override `--scene`.
-#[derive(Args, Debug, Default)]
-struct SceneArgs {
-    /// Hash seed (0..=4294967295).
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    seed: Option<u32>,
-    /// Texture side in texels.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    size: Option<u32>,
-    /// Grid vertices per side.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    grid: Option<u32>,
-    /// fBm octaves.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    octaves: Option<u32>,
-    /// Lattice cells across the tile at the first octave.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    frequency: Option<u32>,
-    /// Amplitude ratio between octaves.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    gain: Option<f32>,
-    /// World height of normalised height 1 (the tile is 2 units wide).
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    height_scale: Option<f32>,
-    /// Normalised height (0..1) above which snow lies.
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    snow_height: Option<f32>,
-    /// Exponent k of the height ambient occlusion h^k (0 turns it off).
-    #[arg(long, global = true, allow_hyphen_values = true)]
-    ao_exponent: Option<f32>,
-    /// Scroll offset in tiles, as X,Y (1,0 is one whole tile: the same terrain).
-    #[arg(long, global = true, allow_hyphen_values = true, value_parser = parse_offset)]
-    offset: Option<[f64; 2]>,
-    /// Normal map method: differences (central differences of the heights) or analytic.
-    #[arg(long, global = true)]
-    normals: Option<crate::params::NormalMethod>,
-    /// Scene file (TOML) to start from; flags override it.
-    #[arg(long, global = true)]
-    scene: Option<PathBuf>,
-    /// Print GPU pass times (needs timestamp queries on the adapter).
-    #[arg(long, global = true)]
-    timings: bool,
-}
+/// Scene keys that `relief bench` sweeps itself, so it refuses them as flags.
+pub const BENCH_SWEEPS: [&str; 3] = ["size", "grid", "normals"];
 
-fn parse_offset(s: &str) -> std::result::Result<[f64; 2], String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    let [x, y] = parts.as_slice() else {
-        return Err("expected X,Y".into());
+fn flag_help<T>(p: &Param<T>, default: &T) -> String {
+    let default = match p.kind {
+        Kind::Bool => String::new(),
+        _ => format!(" [default: {}]", (p.get)(default)),
     };
-    let num = |t: &str| {
-        t.trim()
-            .parse::<f64>()
-            .map_err(|_| format!("{t:?} is not a number"))
-    };
-    Ok([num(x)?, num(y)?])
+    format!("{}{default} [allowed: {}]", p.doc, p.allowed())
 }
 
-/// The allowed range of a CLI argument, for parse errors clap reports before validation.
-fn allowed(arg: &str) -> Option<String> {
-    use crate::params::*;
-    Some(match arg {
-        "seed" => "0..=4294967295".into(),
-        "size" => format!("1..={MAX_SIZE}"),
-        "grid" => format!("2..={MAX_GRID}"),
-        "octaves" => format!("1..={MAX_OCTAVES}"),
-        "frequency" => format!("1..={MAX_FREQUENCY}"),
-        "gain" | "snow_height" => "0..=1".into(),
-        "height_scale" => format!("0..={MAX_HEIGHT_SCALE}"),
-        "ao_exponent" => format!("0..={MAX_AO_EXPONENT}"),
-        "offset" => "X,Y with finite numbers".into(),
-        "normals" => "differences or analytic".into(),
-        "width" | "height" => "1..=the device's texture limit".into(),
-        _ => return None,
-    })
-}
-
-impl SceneArgs {
-    /// The scene file (or defaults) with the flags applied, validated.
-    fn resolve(&self) -> Result<TerrainParams> {
-        let mut p = match &self.scene {
-            Some(path) => TerrainParams::from_scene_file(path)?,
-            None => TerrainParams::default(),
-        };
-        macro_rules! set {
-            ($($f:ident),*) => { $( if let Some(v) = self.$f { p.$f = v; } )* };
-        }
-        set!(
-            seed,
-            size,
-            grid,
-            octaves,
-            frequency,
-            gain,
-            height_scale,
-            snow_height,
-            ao_exponent,
-            offset
-        );
-        p.validate()?;
-        Ok(p)
+fn value_arg<T>(p: &Param<T>, default: &T) -> Arg {
+    let arg = Arg::new(p.key)
+        .long(p.flag())
+        .global(true)
+        .help(flag_help(p, default));
+    match p.kind {
+        Kind::Bool => arg.action(ArgAction::SetTrue),
+        Kind::Pair { .. } => arg.value_name("X,Y").allow_hyphen_values(true),
+        _ => arg.value_name("VALUE").allow_hyphen_values(true),
     }
 }
 
+/// The command-line interface: subcommands, and the flags of both parameter tables.
+pub fn command() -> Command {
+    let mut cmd = Command::new("relief")
+        .args_override_self(true)
+        .version(env!("CARGO_PKG_VERSION"))
+        .about(
+            "Procedural terrain on the GPU: Perlin fBm baked by compute shaders, drawn as a \
+             displaced mesh with Blinn-Phong, snow and height AO.",
+        )
+        .subcommand(Command::new("window").about(
+            "Open a window with the scene (the default): drag to orbit, wheel to zoom, Space \
+             pauses the scroll, R re-seeds, Escape quits",
+        ))
+        .subcommand(
+            Command::new("render")
+                .about("Render one frame offscreen to a PNG, through the same code path as the window")
+                .arg(Arg::new("out").long("out").required(true).value_name("FILE.png").help("output PNG file"))
+                .arg(
+                    Arg::new("width")
+                        .long("width")
+                        .default_value("1280")
+                        .allow_hyphen_values(true)
+                        .value_name("PIXELS")
+                        .help(format!("image width [allowed: {}]", IMAGE_SIDE.allowed())),
+                )
+                .arg(
+                    Arg::new("height")
+                        .long("height")
+                        .default_value("720")
+                        .allow_hyphen_values(true)
+                        .value_name("PIXELS")
+                        .help(format!("image height [allowed: {}]", IMAGE_SIDE.allowed())),
+                ),
+        )
+        .subcommand(
+            Command::new("bake")
+                .about("Bake the textures; write height.png (16-bit), normal.png, color.png and scene.toml")
+                .arg(
+                    Arg::new("out-dir")
+                        .long("out-dir")
+                        .required(true)
+                        .value_name("DIR")
+                        .help("output folder (created if missing)"),
+                ),
+        )
+        .subcommand(
+            Command::new("bench")
+                .about(
+                    "Speed against accuracy: sweep texture size, grid and normal method of the \
+                     mesh and the knobs of the seed's ray march on the scene the other flags \
+                     give; write bench.csv, bench.png and bench.svg",
+                )
+                .arg(
+                    Arg::new("out-dir")
+                        .long("out-dir")
+                        .default_value("bench-out")
+                        .value_name("DIR")
+                        .help("output folder (created if missing)"),
+                )
+                .arg(
+                    Arg::new("quick")
+                        .long("quick")
+                        .action(ArgAction::SetTrue)
+                        .help("a small sweep at a small image size (about a minute on a software GPU)"),
+                ),
+        );
+    let scene = TerrainParams::default();
+    for p in params() {
+        cmd = cmd.arg(value_arg(p, &scene));
+    }
+    let app = AppOptions::default();
+    for p in &OPTIONS {
+        cmd = cmd.arg(value_arg(p, &app).help(format!("window only: {}", flag_help(p, &app))));
+    }
+    cmd.arg(
+        Arg::new("scene")
+            .long("scene")
+            .global(true)
+            .value_name("FILE")
+            .help("scene file (TOML) to start from; flags override it"),
+    )
+    .arg(
+        Arg::new("timings")
+            .long("timings")
+            .global(true)
+            .action(ArgAction::SetTrue)
+            .help("print GPU pass times (needs timestamp queries on the adapter)"),
+    )
+    .arg(
+        Arg::new("exit-after")
+            .long("exit-after")
+            .global(true)
+            .value_name("SECONDS")
+            .allow_hyphen_values(true)
+            .help(format!(
+                "window only: close the window after this long [allowed: {}]",
+                EXIT_AFTER.allowed()
+            )),
+    )
+    .arg(
+        // Tests the window's recovery from a lost GPU device (a driver reset, say).
+        Arg::new("test-lose-device")
+            .long("test-lose-device")
+            .global(true)
+            .hide(true)
+            .value_name("FRAMES")
+            .allow_hyphen_values(true),
+    )
+}
+
+/// `--exit-after`'s range.
+const EXIT_AFTER: Kind = Kind::Float {
+    min: 0.0,
+    max: 86400.0,
+};
+
 /// Runs the CLI on `args` and returns the process exit status.
 pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {
-    let cli = match Cli::try_parse_from(args) {
-        Ok(cli) => cli,
+    let matches = match command().try_get_matches_from(args) {
+        Ok(m) => m,
         Err(e) => return clap_error(e),
     };
-    match run(cli) {
+    match run(&matches) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("{}", error_line(&e.to_string()));
             2
         }
     }
 }
 
+/// `error: ` and the message on one line of at most [`MAX_ERROR_CHARS`] characters.
+pub fn error_line(message: &str) -> String {
+    table::shorten_to(&format!("error: {message}"), MAX_ERROR_CHARS)
+}
+
 fn clap_error(e: clap::Error) -> i32 {
     use clap::error::{ContextKind, ContextValue, ErrorKind};
-    if matches!(
-        e.kind(),
+    match e.kind() {
         ErrorKind::DisplayHelp
-            | ErrorKind::DisplayVersion
-            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
-    ) {
-        let _ = e.print();
-        return 0;
-    }
-    let rendered = e.render().to_string();
-    let mut line = rendered
-        .lines()
-        .next()
-        .unwrap_or("error: bad arguments")
-        .to_owned();
-    if let Some(ContextValue::String(arg)) = e.get(ContextKind::InvalidArg) {
-        // "--size <SIZE>" -> "size"
-        let name = arg
-            .trim_start_matches('-')
-            .split([' ', '='])
-            .next()
-            .unwrap_or("")
-            .replace('-', "_");
-        if let Some(range) = allowed(&name) {
-            line.push_str(&format!(" (allowed: {range})"));
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            return 0;
         }
+        _ => {}
     }
-    eprintln!("{line}");
+    let names = |kind| match e.get(kind) {
+        Some(ContextValue::Strings(v)) => v.join(", "),
+        Some(ContextValue::String(s)) => s.clone(),
+        _ => String::new(),
+    };
+    let message = match e.kind() {
+        ErrorKind::MissingRequiredArgument => {
+            format!(
+                "missing {}",
+                names(ContextKind::InvalidArg).replace(['<', '>'], "")
+            )
+        }
+        ErrorKind::UnknownArgument => format!(
+            "unknown option {} (relief --help lists them)",
+            table::shorten(&names(ContextKind::InvalidArg))
+        ),
+        ErrorKind::InvalidSubcommand => format!(
+            "unknown command {} (commands: window, render, bake, bench)",
+            table::shorten(&names(ContextKind::InvalidSubcommand))
+        ),
+        ErrorKind::ArgumentConflict => format!(
+            "{} given more than once",
+            table::shorten(&names(ContextKind::InvalidArg))
+        ),
+        _ => {
+            let rendered = e.render().to_string();
+            let first = rendered.lines().next().unwrap_or("bad arguments");
+            first.trim_start_matches("error: ").to_owned()
+        }
+    };
+    eprintln!("{}", error_line(&message));
     2
 }
 
-fn run(cli: Cli) -> Result<()> {
-    let params = cli.scene.resolve()?;
-    match cli.command.unwrap_or(Command::Window) {
-        Command::Window => crate::app::run_native(crate::app::AppOptions {
-            params,
-            timings: cli.scene.timings,
-            ..Default::default()
-        }),
-        Command::Render { out, width, height } => {
-            render(&params, &out, width, height, cli.scene.timings)
-        }
-        Command::Bake { out_dir } => bake(&params, &out_dir, cli.scene.timings),
-        Command::Bench { out_dir, quick } => bench(&out_dir, quick),
+/// Which command runs, with what it was given.
+enum Run {
+    Window,
+    Render {
+        out: PathBuf,
+        width: u32,
+        height: u32,
+    },
+    Bake {
+        out_dir: PathBuf,
+    },
+    Bench {
+        out_dir: PathBuf,
+        quick: bool,
+    },
+}
+
+fn string(m: &ArgMatches, id: &str) -> Option<String> {
+    m.try_get_one::<String>(id).ok().flatten().cloned()
+}
+
+fn given(m: &ArgMatches, id: &str) -> bool {
+    m.value_source(id) == Some(clap::parser::ValueSource::CommandLine)
+}
+
+/// Parses `--flag VALUE` of a table row, naming the flag in the error.
+fn flag_value<T>(p: &Param<T>, text: &str) -> Result<Value> {
+    p.parse(text)
+        .map_err(|_| Error::invalid(format!("--{}", p.flag()), table::shorten(text), p.allowed()))
+}
+
+fn image_side(m: &ArgMatches, id: &str) -> Result<u32> {
+    let text = string(m, id).unwrap_or_default();
+    match IMAGE_SIDE.parse(&text) {
+        Some(Value::Int(v)) => Ok(v),
+        _ => Err(Error::invalid(
+            format!("--{id}"),
+            table::shorten(&text),
+            IMAGE_SIDE.allowed(),
+        )),
     }
 }
 
-/// MSAA samples of `relief render` images.
-pub const RENDER_SAMPLES: u32 = 4;
+/// The scene: defaults, then the scene file, then the flags, then checked as a whole.
+fn resolve_scene(m: &ArgMatches) -> Result<TerrainParams> {
+    let mut p = TerrainParams::default();
+    let flagged = |row: &SceneParam| given(m, row.key);
+    if let Some(path) = string(m, "scene") {
+        let path = PathBuf::from(path);
+        let entries = crate::scene::read_entries(&path)?;
+        for (row, text) in entries.iter().filter(|(row, _)| !flagged(row)) {
+            row.set_text(&mut p, text).map_err(|e| Error::SceneFile {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+        }
+    }
+    for row in params().filter(|r| flagged(r)) {
+        let text = string(m, row.key).unwrap_or_default();
+        (row.set)(&mut p, flag_value(row, &text)?);
+    }
+    p.validate().map_err(|e| match e {
+        // The only rule between parameters: name the flag if that is where octaves came from.
+        Error::InvalidParam {
+            name,
+            value,
+            allowed,
+        } if given(m, &name) => {
+            Error::invalid(format!("--{}", name.replace('_', "-")), value, allowed)
+        }
+        other => other,
+    })?;
+    Ok(p)
+}
+
+fn resolve_app(m: &ArgMatches, params: TerrainParams) -> Result<AppOptions> {
+    let mut o = AppOptions {
+        params,
+        timings: m.get_flag("timings"),
+        ..Default::default()
+    };
+    for row in OPTIONS.iter().filter(|r| given(m, r.key)) {
+        let text = match row.kind {
+            Kind::Bool => "1".to_owned(),
+            _ => string(m, row.key).unwrap_or_default(),
+        };
+        (row.set)(&mut o, flag_value(row, &text)?);
+    }
+    Ok(o)
+}
+
+fn script(m: &ArgMatches) -> Result<Script> {
+    let exit_after = match string(m, "exit-after") {
+        Some(text) => match EXIT_AFTER.parse(&text) {
+            Some(Value::Float(s)) => Some(f64::from(s)),
+            _ => {
+                return Err(Error::invalid(
+                    "--exit-after",
+                    table::shorten(&text),
+                    EXIT_AFTER.allowed(),
+                ))
+            }
+        },
+        None => None,
+    };
+    let frames = Kind::Int {
+        min: 1,
+        max: u32::MAX,
+    };
+    let lose_device_after = match string(m, "test-lose-device") {
+        Some(text) => match frames.parse(&text) {
+            Some(Value::Int(n)) => Some(u64::from(n)),
+            _ => {
+                return Err(Error::invalid(
+                    "--test-lose-device",
+                    table::shorten(&text),
+                    frames.allowed(),
+                ))
+            }
+        },
+        None => None,
+    };
+    Ok(Script {
+        exit_after,
+        lose_device_after,
+    })
+}
+
+/// Refuses flags that mean nothing to the command that runs, so none is silently ignored.
+fn refuse_flags(m: &ArgMatches, command: &str, flags: &[&str], why: &str) -> Result<()> {
+    match flags.iter().find(|f| given(m, f)) {
+        Some(f) => Err(Error::Usage(format!(
+            "--{} does not apply to relief {command}: {why}",
+            f.replace('_', "-")
+        ))),
+        None => Ok(()),
+    }
+}
+
+fn run(top: &ArgMatches) -> Result<()> {
+    let (name, m) = top.subcommand().unwrap_or(("window", top));
+    let window_only: Vec<&str> = OPTIONS
+        .iter()
+        .map(|p| p.key)
+        .chain(["exit-after", "test-lose-device"])
+        .collect();
+    let run = match name {
+        "render" => Run::Render {
+            out: PathBuf::from(string(m, "out").unwrap_or_default()),
+            width: image_side(m, "width")?,
+            height: image_side(m, "height")?,
+        },
+        "bake" => Run::Bake {
+            out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
+        },
+        "bench" => Run::Bench {
+            out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
+            quick: m.get_flag("quick"),
+        },
+        _ => Run::Window,
+    };
+    if !matches!(run, Run::Window) {
+        refuse_flags(m, name, &window_only, "it sets the window's animation")?;
+    }
+    if matches!(run, Run::Bench { .. }) {
+        refuse_flags(
+            m,
+            name,
+            &BENCH_SWEEPS,
+            "the benchmark sweeps size, grid and normals",
+        )?;
+        refuse_flags(
+            m,
+            name,
+            &["timings"],
+            "the benchmark always measures GPU time",
+        )?;
+    }
+    let params = resolve_scene(m)?;
+    let timings = m.get_flag("timings");
+    match run {
+        Run::Window => crate::app::run_native(resolve_app(m, params)?, script(m)?),
+        Run::Render { out, width, height } => render(&params, &out, width, height, timings),
+        Run::Bake { out_dir } => bake(&params, &out_dir, timings),
+        Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
+    }
+}
 
 fn render(
     params: &TerrainParams,
@@ -235,7 +425,6 @@ fn render(
 ) -> Result<()> {
     check_png_path(out)?;
     let gpu = Gpu::new()?;
-    let offscreen = Offscreen::new(&gpu.device, width, height, RENDER_SAMPLES)?;
     let mut terrain = Terrain::new(
         &gpu.device,
         &gpu.queue,
@@ -244,7 +433,14 @@ fn render(
     )?;
     let timer = timer_if(timings, &gpu);
     let view = OrbitCamera::default().view(width as f32 / height as f32);
-    let (pixels, t) = offscreen.render(&gpu, &mut terrain, &view, timer.as_ref())?;
+    let (pixels, t) = headless::render_image(
+        &gpu,
+        &mut terrain,
+        &view,
+        (width, height),
+        TILE,
+        timer.as_ref(),
+    )?;
     if timings {
         print_timings(&gpu, t);
     }
@@ -269,8 +465,29 @@ fn print_timings(gpu: &Gpu, t: Option<Timings>) {
     println!("timings on {}: {}", gpu.describe(), parts.join(", "));
 }
 
+/// The albedo `color.png` shows for a colour-channel value: the two albedos mixed in linear
+/// light, as the renderer mixes them, then encoded to sRGB.
+pub fn albedo_srgb8(shading: &Shading, channel: f32) -> [u8; 3] {
+    let t = smoothstep(0.2, 0.8, channel);
+    [0, 1, 2].map(|i| {
+        let a = srgb_to_linear(shading.color_a[i]);
+        let b = srgb_to_linear(shading.color_b[i]);
+        (linear_to_srgb(a + (b - a) * t) * 255.0).round() as u8
+    })
+}
+
+/// Linear component to sRGB-encoded, as the shader's `srgb_encode`.
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
 fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    check_out_dir(dir)?;
     let gpu = Gpu::new()?;
     let mut terrain = Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
     let timer = timer_if(timings, &gpu);
@@ -278,44 +495,69 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     if timings {
         print_timings(&gpu, t);
     }
-    let baked = headless::read_baked(&gpu.device, &gpu.queue, &terrain)?;
     let size = params.size;
+    let texels = size as usize * size as usize;
+    let shading = Shading::default();
 
-    let (lo, hi) = baked
-        .heights
+    // Read back in bands, converting each band at once: a 16384² bake is 4 GiB on the GPU,
+    // and only the heights (needed twice, for their range) are kept as floats.
+    let mut heights = Vec::with_capacity(texels);
+    let mut color = Vec::with_capacity(texels * 3);
+    let textures = terrain.textures();
+    headless::read_texture_bands(
+        &gpu.device,
+        &gpu.queue,
+        &textures.terrain,
+        headless::MAX_READBACK_BYTES,
+        |_, rows| {
+            for rg in bytemuck::cast_slice::<u8, [f32; 2]>(rows) {
+                heights.push(rg[0]);
+                color.extend(albedo_srgb8(&shading, rg[1]));
+            }
+        },
+    )?;
+    let mut normal = Vec::with_capacity(texels * 3);
+    headless::read_texture_bands(
+        &gpu.device,
+        &gpu.queue,
+        &textures.normals,
+        headless::MAX_READBACK_BYTES,
+        |_, rows| {
+            for n in bytemuck::cast_slice::<u8, [u16; 4]>(rows) {
+                normal.extend([0, 1, 2].map(|i| {
+                    let c = half::f16::from_bits(n[i]).to_f32();
+                    ((c * 0.5 + 0.5) * 255.0).round().clamp(0.0, 255.0) as u8
+                }));
+            }
+        },
+    )?;
+    drop(terrain);
+
+    let (lo, hi) = heights
         .iter()
         .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
             (lo.min(h), hi.max(h))
         });
-    let span = (hi - lo).max(f32::MIN_POSITIVE);
-    let height: Vec<u8> = baked
-        .heights
+    // A flat bake has no range to spread over 0..65535: every texel is written as 0, and the
+    // scene file's height_min = height_max says so.
+    let span = hi - lo;
+    let height: Vec<u8> = heights
         .iter()
-        .flat_map(|&h| (((h - lo) / span * 65535.0).round() as u16).to_ne_bytes())
-        .collect();
-    let normal: Vec<u8> = baked
-        .normals
-        .iter()
-        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 255.0).round().clamp(0.0, 255.0) as u8))
-        .collect();
-    let shading = Shading::default();
-    let color: Vec<u8> = baked
-        .colors
-        .iter()
-        .flat_map(|&c| {
-            let t = smoothstep(0.2, 0.8, c);
-            [0, 1, 2].map(|i| {
-                let v = shading.color_a[i] + (shading.color_b[i] - shading.color_a[i]) * t;
-                (v * 255.0).round() as u8
-            })
+        .flat_map(|&h| {
+            let v = if span > 0.0 {
+                ((h - lo) / span * 65535.0).round() as u16
+            } else {
+                0
+            };
+            v.to_ne_bytes()
         })
         .collect();
+    drop(heights);
     let scene = params.to_scene_string(Some(BakeInfo {
         height_min: f64::from(lo),
         height_max: f64::from(hi),
     }));
 
-    // Everything is written under temporary names first and renamed only when all succeeded.
     let files: [(&str, FileWriter); 4] = [
         (
             "height.png",
@@ -334,55 +576,111 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
             Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
         ),
     ];
-    let mut written = Vec::new();
-    for (name, write) in &files {
-        let tmp = temp_name(&dir.join(name));
-        if let Err(e) = write(&tmp) {
-            let _ = std::fs::remove_file(&tmp);
-            for (t, _) in &written {
-                let _ = std::fs::remove_file(t);
-            }
-            return Err(e);
-        }
-        written.push((tmp, dir.join(name)));
+    write_all(dir, &files)?;
+    if span > 0.0 {
+        println!(
+            "baked {size}x{size} into {}: heights {lo:.6}..{hi:.6} map to 0..65535",
+            dir.display()
+        );
+    } else {
+        println!(
+            "baked {size}x{size} into {}: flat, every height is {lo:.6}; height.png is all 0 \
+             and the scene file's height_min = height_max",
+            dir.display()
+        );
     }
-    for (tmp, fin) in &written {
-        std::fs::rename(tmp, fin).map_err(|e| Error::io(fin, e))?;
-    }
-    println!(
-        "baked {size}x{size} into {}: heights {lo:.6}..{hi:.6} map to 0..65535",
-        dir.display()
-    );
     Ok(())
 }
 
 /// Writes one output file to the path it is given.
 type FileWriter<'a> = Box<dyn Fn(&Path) -> Result<()> + 'a>;
 
+/// Writes every file under a temporary name in `dir` (created if missing), then renames them
+/// all; on any failure removes what it wrote, and the folders it created.
+fn write_all(dir: &Path, files: &[(&str, FileWriter)]) -> Result<()> {
+    let created = create_dirs(dir)?;
+    let cleanup = |written: &[(PathBuf, PathBuf)]| {
+        for (t, _) in written {
+            let _ = std::fs::remove_file(t);
+        }
+        if let Some(c) = &created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    };
+    let mut written = Vec::new();
+    for (name, write) in files {
+        let tmp = temp_name(&dir.join(name));
+        if let Err(e) = write(&tmp) {
+            let _ = std::fs::remove_file(&tmp);
+            cleanup(&written);
+            return Err(e);
+        }
+        written.push((tmp, dir.join(name)));
+    }
+    for (tmp, fin) in &written {
+        if let Err(e) = std::fs::rename(tmp, fin) {
+            cleanup(&written);
+            return Err(Error::io(fin, e));
+        }
+    }
+    Ok(())
+}
+
+/// Creates `dir` and missing parents; returns the top-most folder it created (to remove on
+/// failure), or `None` if `dir` existed.
+fn create_dirs(dir: &Path) -> Result<Option<PathBuf>> {
+    let mut top = None;
+    let mut p = Some(dir);
+    while let Some(d) = p.filter(|d| !d.as_os_str().is_empty() && !d.exists()) {
+        top = Some(d.to_owned());
+        p = d.parent();
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    Ok(top)
+}
+
+/// Checks before any GPU work that `dir` is, or can become, a folder.
+fn check_out_dir(dir: &Path) -> Result<()> {
+    let mut p = Some(dir);
+    while let Some(d) = p {
+        if d.as_os_str().is_empty() {
+            break;
+        }
+        if d.exists() {
+            if d.is_dir() {
+                return Ok(());
+            }
+            let what = if d == dir {
+                "a folder, or a path to create one; this is a file".to_owned()
+            } else {
+                format!(
+                    "a path whose parents are folders; {} is a file",
+                    table::shorten(&d.display().to_string())
+                )
+            };
+            return Err(Error::invalid(
+                "--out-dir",
+                table::shorten(&dir.display().to_string()),
+                what,
+            ));
+        }
+        p = d.parent();
+    }
+    Ok(())
+}
+
 struct Bar(indicatif::ProgressBar);
 
 impl crate::bench::Progress for Bar {
     fn start(&mut self, index: usize, _total: usize, config: &crate::bench::Config) {
         self.0.set_position(index as u64);
-        let c = config;
-        self.0.set_message(match c.method {
-            crate::bench::Method::Mesh => format!(
-                "mesh {} / {} / {}",
-                c.params.size, c.params.grid, c.params.normals
-            ),
-            m => format!(
-                "{} step {} octaves {}",
-                m.name(),
-                c.march.step_factor,
-                c.march.march_octaves
-            ),
-        });
+        self.0.set_message(config.label());
     }
 }
 
-fn bench(dir: &Path, quick: bool) -> Result<()> {
+fn bench(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     use crate::bench;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    check_out_dir(dir)?;
     let gpu = Gpu::new()?;
     let info = gpu.adapter.get_info();
     let options = if quick {
@@ -390,7 +688,11 @@ fn bench(dir: &Path, quick: bool) -> Result<()> {
     } else {
         bench::Options::FULL
     };
-    let configs = bench::sweep(quick);
+    let configs = bench::sweep(base, quick);
+    // Every swept configuration must fit this device before anything runs.
+    for c in &configs {
+        c.params.validate_for(&gpu.device.limits())?;
+    }
     if GpuTimer::new(&gpu.device, &gpu.queue).is_none() {
         println!(
             "note: {} has no timestamp queries: GPU times are empty, only wall times are measured",
@@ -398,13 +700,18 @@ fn bench(dir: &Path, quick: bool) -> Result<()> {
         );
     }
     println!(
-        "relief bench{} on {}: {} configurations at {}x{}, reference at {}x supersampling",
+        "relief bench{} on {}: {} configurations at {}x{}, reference at {}x supersampling, scene: seed {}, octaves {}, frequency {}, gain {}, height scale {}",
         if quick { " --quick" } else { "" },
         gpu.describe(),
         configs.len(),
         options.width,
         options.height,
-        options.supersample
+        options.supersample,
+        base.seed,
+        base.octaves,
+        base.frequency,
+        base.gain,
+        base.height_scale,
     );
     let bar = indicatif::ProgressBar::new(configs.len() as u64).with_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed} {msg}")
@@ -412,22 +719,31 @@ fn bench(dir: &Path, quick: bool) -> Result<()> {
     );
     let mut progress = Bar(bar);
     let start = std::time::Instant::now();
-    let rows = bench::run(&gpu, &configs, &options, &mut progress)?;
+    let rows = bench::run(&gpu, base, &configs, &options, &mut progress)?;
     progress.0.finish_and_clear();
     print!("{}", bench::table(&rows));
     let csv = bench::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
-    let csv_path = dir.join("bench.csv");
-    let tmp = temp_name(&csv_path);
-    std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
-    std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
     let title = format!(
         "relief: error against GPU time on {} ({:?})",
         info.name, info.backend
     );
-    bench::chart(&rows, &title, &dir.join("bench"))?;
+    let created = create_dirs(dir)?;
+    let result = (|| {
+        let csv_path = dir.join("bench.csv");
+        let tmp = temp_name(&csv_path);
+        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
+        std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
+        bench::chart(&rows, &title, &dir.join("bench"))
+    })();
+    if result.is_err() {
+        if let Some(c) = created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    }
+    result?;
     println!(
         "wrote {}, bench.png and bench.svg in {:.0} s",
-        csv_path.display(),
+        dir.join("bench.csv").display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())
@@ -444,8 +760,8 @@ fn check_png_path(out: &Path) -> Result<()> {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !is_png {
         return Err(Error::invalid(
-            "out",
-            out.display(),
+            "--out",
+            table::shorten(&out.display().to_string()),
             "a path ending in .png",
         ));
     }
@@ -491,4 +807,44 @@ pub fn write_png(path: &Path, w: u32, h: u32, color: image::ColorType, bytes: &[
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_table_row_has_a_flag() {
+        let cmd = command();
+        for p in params() {
+            let arg = cmd.get_arguments().find(|a| a.get_id() == p.key);
+            assert!(arg.is_some(), "no flag for {}", p.key);
+            assert_eq!(arg.unwrap().get_long(), Some(p.flag().as_str()));
+        }
+        cmd.debug_assert();
+    }
+
+    #[test]
+    fn color_png_mixes_in_linear_light() {
+        let s = Shading::default();
+        // The ends are the albedos themselves.
+        let a = s.color_a.map(|c| (c * 255.0).round() as u8);
+        assert_eq!(albedo_srgb8(&s, 0.0), a);
+        // Half-way is the linear mean, encoded: brighter than the mean of the sRGB values.
+        let mid = albedo_srgb8(&s, 0.5);
+        for (i, &got) in mid.iter().enumerate() {
+            let la = srgb_to_linear(s.color_a[i]);
+            let lb = srgb_to_linear(s.color_b[i]);
+            let want = (linear_to_srgb(0.5 * (la + lb)) * 255.0).round() as u8;
+            assert_eq!(got, want);
+        }
+        let srgb_mean = ((s.color_a[0] + s.color_b[0]) * 0.5 * 255.0).round() as u8;
+        assert!(mid[0] > srgb_mean, "{} vs {srgb_mean}", mid[0]);
+    }
+
+    #[test]
+    fn error_lines_are_short() {
+        let long = error_line(&"x".repeat(100_000));
+        assert!(long.chars().count() <= MAX_ERROR_CHARS, "{}", long.len());
+    }
 }

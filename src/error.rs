@@ -9,8 +9,9 @@ pub enum Error {
     /// A parameter is outside the range relief accepts.
     #[error("invalid {name}: {value} (allowed: {allowed})")]
     InvalidParam {
-        /// The parameter's name as the CLI and scene files spell it.
-        name: &'static str,
+        /// The parameter's name as the user wrote it (`--height-scale` on the command line,
+        /// `height_scale` in scene files and URLs).
+        name: String,
         /// The offending value, formatted.
         value: String,
         /// The accepted range or set, in words.
@@ -39,8 +40,17 @@ pub enum Error {
     #[error("could not create a GPU device: {0}")]
     Device(String),
     /// wgpu reported a validation or out-of-memory error for work relief recorded.
-    #[error("GPU error: {0}")]
+    #[error("{0}")]
     Gpu(String),
+    /// The GPU device was lost (driver reset, GPU removed, browser reclaimed it).
+    #[error("GPU device lost: {0}")]
+    DeviceLost(String),
+    /// A command-line option that does not apply to the command given.
+    #[error("{0}")]
+    Usage(String),
+    /// No window could be opened (no display, or the windowing system refused).
+    #[error("{0}")]
+    Window(String),
     /// Reading back GPU data failed.
     #[error("GPU readback failed: {0}")]
     Readback(String),
@@ -48,9 +58,9 @@ pub enum Error {
 
 impl Error {
     /// Shorthand for [`Error::InvalidParam`].
-    pub fn invalid(name: &'static str, value: impl ToString, allowed: impl ToString) -> Self {
+    pub fn invalid(name: impl Into<String>, value: impl ToString, allowed: impl ToString) -> Self {
         Self::InvalidParam {
-            name,
+            name: name.into(),
             value: value.to_string(),
             allowed: allowed.to_string(),
         }

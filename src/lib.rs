@@ -28,6 +28,15 @@
 //! - The same seed gives the same terrain on every GPU, in the browser and on the CPU twin
 //!   ([`noise`]): the hash is an integer PCG hash of integer lattice coordinates.
 //!
+//! ## Features
+//!
+//! With `default-features = false` relief is the core alone (wgpu, glam, bytemuck, thiserror,
+//! log): [`Terrain`], the CPU twin ([`noise`]), the parameter table ([`params::PARAMS`]).
+//! Front ends are features: `headless` (device without a window, offscreen target, readback),
+//! `scene` (TOML scene files), `window` (the winit app, native and web), `metrics` (accuracy
+//! metrics, FLIP) and `cli` (the `relief` program with its benchmark; the default, and all of
+//! the above).
+//!
 //! ## Embedding
 //!
 //! ```no_run
@@ -46,23 +55,30 @@
 //! # Ok(()) }
 //! ```
 
+#[cfg(feature = "window")]
 pub mod app;
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench;
 pub mod camera;
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod cli;
 pub mod error;
 pub mod gpu;
+#[cfg(feature = "metrics")]
 pub mod metrics;
 pub mod noise;
 pub mod params;
 pub mod raycast;
+#[cfg(feature = "scene")]
+pub mod scene;
+pub mod table;
 
 pub use camera::{OrbitCamera, View};
 pub use error::{Error, Result};
 pub use gpu::{height_at, Targets, Terrain, Textures};
-pub use params::{BakeInfo, Dirty, NormalMethod, Shading, TerrainParams};
+pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
+#[cfg(feature = "scene")]
+pub use scene::BakeInfo;
 pub use wgpu;
 
 /// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].

@@ -1,9 +1,9 @@
-//! Scene parameters: their defaults (chosen by eye, kept here and nowhere else), their ranges,
-//! validation into a typed error, and the TOML scene-file format.
+//! Scene parameters: their defaults (chosen by eye, kept here and nowhere else), their ranges
+//! and what a change re-does, all in one table ([`PARAMS`]) that the CLI, scene files, the
+//! page's URL and controls, and validation read.
 
 use crate::error::{Error, Result};
-use serde::{Deserialize, Serialize};
-use std::path::Path;
+use crate::table::{self, Control, Kind, Param, Value};
 
 /// Largest texture side relief bakes; the device's own limit may be lower.
 pub const MAX_SIZE: u32 = 16384;
@@ -27,9 +27,9 @@ pub const MAX_OFFSET: f64 = 1_099_511_627_776.0;
 ///
 /// Heights are normalised to 0..1 before `height_scale`; `snow_height` is in those normalised
 /// units. Build one with [`TerrainParams::default`] and check it with
-/// [`TerrainParams::validate`] (relief's constructors do that for you).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+/// [`TerrainParams::validate`] (relief's constructors do that for you). Each field is a row of
+/// [`PARAMS`], which gives its range and what changing it re-does.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TerrainParams {
     /// Hash seed: the same seed gives the same terrain everywhere.
     pub seed: u32,
@@ -55,9 +55,204 @@ pub struct TerrainParams {
     pub normals: NormalMethod,
 }
 
+/// What changing a parameter makes relief redo.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Redo {
+    /// Rebuild the textures (their size changed), then bake and derive normals.
+    Textures,
+    /// Bake heights and colour again, then the normals.
+    Bake,
+    /// Bake again only if the part-tile offset changed (a whole-tile scroll shows the same
+    /// periodic terrain).
+    BakeIfPartTile,
+    /// Derive the normal map again.
+    Normals,
+    /// Nothing baked: the next frame draws with the new value.
+    Draw,
+}
+
+/// One row of the scene's parameter table.
+pub type SceneParam = Param<TerrainParams>;
+
+macro_rules! float_param {
+    ($key:literal, $field:ident, $min:expr, $max:expr, $control:expr, $redo:expr, $doc:literal) => {
+        (
+            Param {
+                key: $key,
+                doc: $doc,
+                kind: Kind::Float {
+                    min: $min,
+                    max: $max,
+                },
+                control: $control,
+                get: |p: &TerrainParams| Value::Float(p.$field),
+                set: |p: &mut TerrainParams, v| {
+                    if let Value::Float(x) = v {
+                        p.$field = x;
+                    }
+                },
+            },
+            $redo,
+        )
+    };
+}
+
+macro_rules! int_param {
+    ($key:literal, $field:ident, $min:expr, $max:expr, $control:expr, $redo:expr, $doc:literal) => {
+        (
+            Param {
+                key: $key,
+                doc: $doc,
+                kind: Kind::Int {
+                    min: $min,
+                    max: $max,
+                },
+                control: $control,
+                get: |p: &TerrainParams| Value::Int(p.$field),
+                set: |p: &mut TerrainParams, v| {
+                    if let Value::Int(x) = v {
+                        p.$field = x;
+                    }
+                },
+            },
+            $redo,
+        )
+    };
+}
+
+const fn slider(min: f64, max: f64, step: f64) -> Control {
+    Control::Slider { min, max, step }
+}
+
+/// The scene's parameters, in the order of scene files, `--help` and the page's controls,
+/// each with what changing it re-does. Defaults are [`TerrainParams::default`]'s values.
+pub static PARAMS: [(SceneParam, Redo); 11] = [
+    int_param!(
+        "seed",
+        seed,
+        0,
+        u32::MAX,
+        Control::Number,
+        Redo::Bake,
+        "hash seed: the same seed gives the same terrain on every GPU and on the CPU"
+    ),
+    int_param!(
+        "size",
+        size,
+        1,
+        MAX_SIZE,
+        slider(16.0, 2048.0, 16.0),
+        Redo::Textures,
+        "side of the baked textures in texels (the device's limit may be lower)"
+    ),
+    int_param!(
+        "grid",
+        grid,
+        2,
+        MAX_GRID,
+        slider(2.0, 1024.0, 1.0),
+        Redo::Draw,
+        "mesh vertices per side (independent of size)"
+    ),
+    int_param!(
+        "octaves",
+        octaves,
+        1,
+        MAX_OCTAVES,
+        slider(1.0, 12.0, 1.0),
+        Redo::Bake,
+        "fBm octaves, with frequency x 2^(octaves-1) <= 65536"
+    ),
+    int_param!(
+        "frequency",
+        frequency,
+        1,
+        MAX_FREQUENCY,
+        slider(1.0, 16.0, 1.0),
+        Redo::Bake,
+        "lattice cells across the tile at octave 0 (an integer: the tile is periodic)"
+    ),
+    float_param!(
+        "gain",
+        gain,
+        0.0,
+        1.0,
+        slider(0.0, 1.0, 0.01),
+        Redo::Bake,
+        "amplitude ratio between octaves"
+    ),
+    float_param!(
+        "height_scale",
+        height_scale,
+        0.0,
+        MAX_HEIGHT_SCALE,
+        slider(0.0, 2.0, 0.01),
+        Redo::Normals,
+        "world height of normalised height 1 (the tile is 2 units wide)"
+    ),
+    float_param!(
+        "snow_height",
+        snow_height,
+        0.0,
+        1.0,
+        slider(0.0, 1.0, 0.01),
+        Redo::Draw,
+        "normalised height (0..1) above which snow lies"
+    ),
+    float_param!(
+        "ao_exponent",
+        ao_exponent,
+        0.0,
+        MAX_AO_EXPONENT,
+        slider(0.0, 4.0, 0.05),
+        Redo::Draw,
+        "height ambient occlusion h^k (0 turns it off)"
+    ),
+    (
+        Param {
+            key: "offset",
+            doc: "scroll offset in tiles as X,Y (1,0 is a whole tile: the same terrain)",
+            kind: Kind::Pair { max: MAX_OFFSET },
+            control: Control::None,
+            get: |p: &TerrainParams| Value::Pair(p.offset),
+            set: |p: &mut TerrainParams, v| {
+                if let Value::Pair(x) = v {
+                    p.offset = x;
+                }
+            },
+        },
+        Redo::BakeIfPartTile,
+    ),
+    (
+        Param {
+            key: "normals",
+            doc: "normal map from central differences of the heights, or the analytic gradient",
+            kind: Kind::Choice(NormalMethod::NAMES),
+            control: Control::Select,
+            get: |p: &TerrainParams| Value::Choice(p.normals.name()),
+            set: |p: &mut TerrainParams, v| {
+                if let Value::Choice(name) = v {
+                    p.normals = NormalMethod::from_name(name).unwrap_or_default();
+                }
+            },
+        },
+        Redo::Normals,
+    ),
+];
+
+/// The rows of [`PARAMS`] without their redo column.
+pub fn params() -> impl Iterator<Item = &'static SceneParam> {
+    PARAMS.iter().map(|(p, _)| p)
+}
+
+/// The row for `key` (scene-file spelling; dashes accepted).
+pub fn param(key: &str) -> Option<&'static SceneParam> {
+    let key = key.trim().replace('-', "_");
+    params().find(|p| p.key == key)
+}
+
 /// How the normal pass makes the normal map.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum NormalMethod {
     /// Wrap-around central differences of the baked heights (two texels apart).
     #[default]
@@ -66,23 +261,39 @@ pub enum NormalMethod {
     Analytic,
 }
 
+impl NormalMethod {
+    /// Every method's name, as the CLI, scene files and the page spell it.
+    pub const NAMES: &'static [&'static str] = &["differences", "analytic"];
+
+    /// The method's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Differences => "differences",
+            Self::Analytic => "analytic",
+        }
+    }
+
+    /// The method called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name.trim() {
+            "differences" => Some(Self::Differences),
+            "analytic" => Some(Self::Analytic),
+            _ => None,
+        }
+    }
+}
+
 impl std::str::FromStr for NormalMethod {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        match s.trim() {
-            "differences" => Ok(Self::Differences),
-            "analytic" => Ok(Self::Analytic),
-            other => Err(Error::invalid("normals", other, "differences or analytic")),
-        }
+        Self::from_name(s)
+            .ok_or_else(|| Error::invalid("normals", table::shorten(s), "differences or analytic"))
     }
 }
 
 impl std::fmt::Display for NormalMethod {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Self::Differences => "differences",
-            Self::Analytic => "analytic",
-        })
+        f.write_str(self.name())
     }
 }
 
@@ -168,8 +379,8 @@ pub struct Dirty {
     pub bake: bool,
     /// Heights or their scale changed: the normal pass must run.
     pub normals: bool,
-    /// The grid changed (drawn from a vertex count, so nothing to rebuild but the count).
-    pub grid: bool,
+    /// Something only the draw reads changed (grid, snow, AO): nothing to bake.
+    pub draw: bool,
 }
 
 impl Dirty {
@@ -178,36 +389,35 @@ impl Dirty {
         resize: true,
         bake: true,
         normals: true,
-        grid: true,
+        draw: true,
     };
 
     /// Whether any GPU work is owed.
     pub fn any_gpu_work(&self) -> bool {
         self.resize || self.bake || self.normals
     }
+
+    fn add(&mut self, redo: Redo) {
+        match redo {
+            Redo::Textures => *self = Self::ALL,
+            Redo::Bake | Redo::BakeIfPartTile => {
+                self.bake = true;
+                self.normals = true;
+            }
+            Redo::Normals => self.normals = true,
+            Redo::Draw => {}
+        }
+        self.draw = true;
+    }
 }
 
 impl TerrainParams {
-    /// Checks every parameter; the error names the first bad one, its value and the range.
+    /// Checks every parameter against [`PARAMS`]; the error names the first bad one, its
+    /// value and the range.
     pub fn validate(&self) -> Result<()> {
-        let range_u = |name, v: u32, lo: u32, hi: u32| {
-            if (lo..=hi).contains(&v) {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, format!("{lo}..={hi}")))
-            }
-        };
-        let range_f = |name, v: f32, lo: f32, hi: f32| {
-            if v.is_finite() && (lo..=hi).contains(&v) {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, format!("{lo}..={hi}")))
-            }
-        };
-        range_u("size", self.size, 1, MAX_SIZE)?;
-        range_u("grid", self.grid, 2, MAX_GRID)?;
-        range_u("octaves", self.octaves, 1, MAX_OCTAVES)?;
-        range_u("frequency", self.frequency, 1, MAX_FREQUENCY)?;
+        for p in params() {
+            p.check((p.get)(self))?;
+        }
         let finest = u64::from(self.frequency) << (self.octaves - 1);
         if finest > u64::from(MAX_PERIOD) {
             return Err(Error::invalid(
@@ -219,19 +429,6 @@ impl TerrainParams {
                     self.frequency
                 ),
             ));
-        }
-        range_f("gain", self.gain, 0.0, 1.0)?;
-        range_f("height-scale", self.height_scale, 0.0, MAX_HEIGHT_SCALE)?;
-        range_f("snow-height", self.snow_height, 0.0, 1.0)?;
-        range_f("ao-exponent", self.ao_exponent, 0.0, MAX_AO_EXPONENT)?;
-        for v in self.offset {
-            if !v.is_finite() || v.abs() > MAX_OFFSET {
-                return Err(Error::invalid(
-                    "offset",
-                    format!("{},{}", self.offset[0], self.offset[1]),
-                    "finite numbers with |x|, |y| <= 2^40 tiles",
-                ));
-            }
         }
         Ok(())
     }
@@ -263,129 +460,43 @@ impl TerrainParams {
         })
     }
 
-    /// What changed between `self` (old) and `new`.
+    /// What changed between `self` (old) and `new`, from the table's redo column.
     pub fn diff(&self, new: &Self) -> Dirty {
-        let resize = self.size != new.size;
-        let bake = resize
-            || self.seed != new.seed
-            || self.octaves != new.octaves
-            || self.frequency != new.frequency
-            || self.gain != new.gain
-            || self.reduced_offset() != new.reduced_offset();
-        Dirty {
-            resize,
-            bake,
-            normals: bake || self.height_scale != new.height_scale || self.normals != new.normals,
-            grid: self.grid != new.grid,
+        let mut dirty = Dirty::default();
+        for (p, redo) in &PARAMS {
+            if (p.get)(self) == (p.get)(new) {
+                continue;
+            }
+            if *redo == Redo::BakeIfPartTile && self.reduced_offset() == new.reduced_offset() {
+                continue;
+            }
+            dirty.add(*redo);
         }
+        dirty
     }
 
-    /// The keys [`TerrainParams::set`] accepts, in scene-file spelling.
-    pub const KEYS: [&'static str; 11] = [
-        "seed",
-        "size",
-        "grid",
-        "octaves",
-        "frequency",
-        "gain",
-        "height_scale",
-        "snow_height",
-        "ao_exponent",
-        "offset",
-        "normals",
-    ];
+    /// The keys [`TerrainParams::set`] accepts, in scene-file spelling and table order.
+    pub fn keys() -> impl Iterator<Item = &'static str> {
+        params().map(|p| p.key)
+    }
 
-    /// Sets one parameter from text (`offset` as `X,Y`), as the web page's controls and URL do.
-    /// Does not validate the whole set; call [`TerrainParams::validate`] after.
+    /// Sets one parameter from text (`offset` as `X,Y`), as the CLI, the page's controls and
+    /// URL do: the value is checked against its own range; call [`TerrainParams::validate`]
+    /// for the rules between parameters. On error nothing changes.
     pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
-        fn num<T: std::str::FromStr>(key: &'static str, v: &str, allowed: &str) -> Result<T> {
-            v.trim()
-                .parse()
-                .map_err(|_| Error::invalid(key, v, allowed))
+        match param(key) {
+            Some(p) => p.set_text(self, value),
+            None => Err(Error::invalid(
+                "key",
+                table::shorten(key),
+                Self::keys().collect::<Vec<_>>().join(", "),
+            )),
         }
-        let v = value;
-        match key {
-            "seed" => self.seed = num("seed", v, "0..=4294967295")?,
-            "size" => self.size = num("size", v, &format!("1..={MAX_SIZE}"))?,
-            "grid" => self.grid = num("grid", v, &format!("2..={MAX_GRID}"))?,
-            "octaves" => self.octaves = num("octaves", v, &format!("1..={MAX_OCTAVES}"))?,
-            "frequency" => self.frequency = num("frequency", v, &format!("1..={MAX_FREQUENCY}"))?,
-            "gain" => self.gain = num("gain", v, "0..=1")?,
-            "height_scale" => {
-                self.height_scale = num("height-scale", v, &format!("0..={MAX_HEIGHT_SCALE}"))?
-            }
-            "snow_height" => self.snow_height = num("snow-height", v, "0..=1")?,
-            "ao_exponent" => {
-                self.ao_exponent = num("ao-exponent", v, &format!("0..={MAX_AO_EXPONENT}"))?
-            }
-            "offset" => {
-                let parts: Vec<&str> = v.split(',').collect();
-                let [x, y] = parts.as_slice() else {
-                    return Err(Error::invalid("offset", v, "X,Y"));
-                };
-                self.offset = [
-                    num("offset", x, "X,Y with finite numbers")?,
-                    num("offset", y, "X,Y with finite numbers")?,
-                ];
-            }
-            "normals" => self.normals = v.parse()?,
-            _ => return Err(Error::invalid("key", key, Self::KEYS.join(", "))),
-        }
-        Ok(())
     }
 
     /// The value of one key as [`TerrainParams::set`] reads it.
     pub fn get(&self, key: &str) -> Option<String> {
-        Some(match key {
-            "seed" => self.seed.to_string(),
-            "size" => self.size.to_string(),
-            "grid" => self.grid.to_string(),
-            "octaves" => self.octaves.to_string(),
-            "frequency" => self.frequency.to_string(),
-            "gain" => self.gain.to_string(),
-            "height_scale" => self.height_scale.to_string(),
-            "snow_height" => self.snow_height.to_string(),
-            "ao_exponent" => self.ao_exponent.to_string(),
-            "offset" => format!("{},{}", self.offset[0], self.offset[1]),
-            "normals" => self.normals.to_string(),
-            _ => return None,
-        })
-    }
-
-    /// Reads a scene file (TOML; see the README for the format). Missing keys take defaults.
-    pub fn from_scene_file(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::SceneFile {
-            path: path.to_owned(),
-            message: e.to_string(),
-        })?;
-        Self::from_scene_str(&text).map_err(|message| Error::SceneFile {
-            path: path.to_owned(),
-            message,
-        })
-    }
-
-    /// Parses scene-file text; the error is one line.
-    pub fn from_scene_str(text: &str) -> std::result::Result<Self, String> {
-        let mut table: toml::Table = toml::from_str(text).map_err(|e| one_line(&e.to_string()))?;
-        if let Some(bake) = table.remove("bake") {
-            // Only checked for shape: a scene's bake record does not change what is baked.
-            BakeInfo::deserialize(bake)
-                .map_err(|e| format!("[bake]: {}", one_line(&e.to_string())))?;
-        }
-        TerrainParams::deserialize(table).map_err(|e| one_line(&e.to_string()))
-    }
-
-    /// The scene file for these parameters, with the height range of a bake if given.
-    pub fn to_scene_string(&self, bake: Option<BakeInfo>) -> String {
-        let mut body = toml::to_string(self).expect("scene parameters always serialise");
-        if let Some(bake) = bake {
-            let table = toml::to_string(&bake).expect("bake info always serialises");
-            body.push_str(
-                "\n# Normalised heights that 0 and 65535 in height.png stand for.\n[bake]\n",
-            );
-            body.push_str(&table);
-        }
-        format!("# relief scene file: `relief --scene FILE` reproduces this terrain.\n{body}")
+        param(key).map(|p| (p.get)(self).to_string())
     }
 }
 
@@ -395,24 +506,6 @@ fn max_octaves_for(frequency: u32) -> u32 {
         .take_while(|o| u64::from(frequency) << (o - 1) <= u64::from(MAX_PERIOD))
         .last()
         .unwrap_or(0)
-}
-
-fn one_line(s: &str) -> String {
-    s.lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.chars().all(|c| c == '|' || c == '^' || c == ' '))
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-/// What `relief bake` records beside its images: how to turn 16-bit heights back into heights.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BakeInfo {
-    /// Normalised height that 0 in height.png stands for.
-    pub height_min: f64,
-    /// Normalised height that 65535 in height.png stands for.
-    pub height_max: f64,
 }
 
 #[cfg(test)]
@@ -445,26 +538,12 @@ mod tests {
             msg.contains("octaves") && msg.contains("at most 7"),
             "{msg}"
         );
-    }
-
-    #[test]
-    fn scene_round_trip_and_unknown_keys() {
         let p = TerrainParams {
-            seed: 99,
-            offset: [0.25, -3.5],
+            offset: [1e300, 0.0],
             ..Default::default()
         };
-        let info = BakeInfo {
-            height_min: 0.1,
-            height_max: 0.9,
-        };
-        let text = p.to_scene_string(Some(info));
-        assert_eq!(TerrainParams::from_scene_str(&text).unwrap(), p);
-        let err = TerrainParams::from_scene_str("seed = 1\ncolour = 3\n").unwrap_err();
-        assert!(err.contains("colour"), "{err}");
-        let err = TerrainParams::from_scene_str("seed = \"x\"\n").unwrap_err();
-        assert!(err.contains("seed") || err.contains("integer"), "{err}");
-        assert!(!err.contains('\n'));
+        let msg = p.validate().unwrap_err().to_string();
+        assert!(msg.contains("1e300") && msg.len() < 120, "{msg}");
     }
 
     #[test]
@@ -475,18 +554,33 @@ mod tests {
             ("gain", "0.25"),
             ("offset", "1.5,-2"),
             ("height_scale", "0.75"),
+            ("normals", "analytic"),
         ] {
             p.set(k, v).unwrap();
             assert_eq!(p.get(k).unwrap(), v);
         }
         let mut q = TerrainParams::default();
-        for k in TerrainParams::KEYS {
+        for k in TerrainParams::keys() {
             q.set(k, &p.get(k).unwrap()).unwrap();
         }
         assert_eq!(p, q);
+        let before = p;
         let e = p.set("gain", "lots").unwrap_err().to_string();
         assert!(e.contains("gain") && e.contains("lots"), "{e}");
         assert!(p.set("colour", "1").is_err());
+        assert!(p.set("normals", "exact").is_err());
+        assert_eq!(p, before, "a refused value changes nothing");
+    }
+
+    #[test]
+    fn every_row_round_trips_and_has_its_default_in_range() {
+        let d = TerrainParams::default();
+        for p in params() {
+            let v = (p.get)(&d);
+            p.check(v).unwrap();
+            assert_eq!(p.parse(&v.to_string()).unwrap(), v, "{}", p.key);
+            assert!(!p.doc.is_empty());
+        }
     }
 
     #[test]
@@ -500,6 +594,7 @@ mod tests {
             a.diff(&b),
             Dirty {
                 normals: true,
+                draw: true,
                 ..Default::default()
             }
         );
@@ -515,6 +610,14 @@ mod tests {
             snow_height: 0.1,
             ..a
         };
-        assert_eq!(a.diff(&d), Dirty::default());
+        assert!(!a.diff(&d).any_gpu_work());
+        let e = TerrainParams { size: 64, ..a };
+        assert_eq!(a.diff(&e), Dirty::ALL);
+        let f = TerrainParams {
+            normals: NormalMethod::Analytic,
+            ..a
+        };
+        assert!(f.diff(&a).normals && !f.diff(&a).bake);
+        assert_eq!(a.diff(&a), Dirty::default());
     }
 }

@@ -4,21 +4,27 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// Runs relief as a user on a bare machine would: no XDG_RUNTIME_DIR (Mesa complains without
+/// one; relief must keep stderr clean anyway) and no display.
 fn relief(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_relief"))
-        .args(args)
-        .output()
-        .expect("run relief");
-    let stderr = String::from_utf8_lossy(&out.stderr)
-        .lines()
-        // Mesa's software Vulkan prints this on machines without a session bus; not ours.
-        .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
-        .collect::<Vec<_>>()
-        .join("\n");
+    relief_env(args, &[])
+}
+
+fn relief_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_relief"));
+    cmd.args(args)
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("RUST_LOG");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().expect("run relief");
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr,
+        String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
 
@@ -40,15 +46,25 @@ fn files_in(dir: &Path) -> Vec<String> {
     v
 }
 
-/// Runs a bad command and checks: status 2, exactly one line, mentioning every `needles`.
+/// Runs a bad command and checks: status 2, exactly one line of at most 200 characters that
+/// says what is allowed at most once, mentioning every `needles`.
 fn rejects(args: &[&str], needles: &[&str]) {
     let (code, _, err) = relief(args);
+    let shown: Vec<String> = args.iter().map(|a| a.chars().take(60).collect()).collect();
+    let args = &shown;
     assert_eq!(code, 2, "{args:?} should exit 2; stderr: {err}");
     assert_eq!(
         err.lines().count(),
         1,
         "{args:?} should print one line, got:\n{err}"
     );
+    assert!(
+        err.chars().count() <= 201,
+        "{args:?}: {} characters: {}",
+        err.chars().count(),
+        &err[..300.min(err.len())]
+    );
+    assert!(err.matches("allowed").count() <= 1, "{args:?}: {err}");
     assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
     for n in needles {
         assert!(err.contains(n), "{args:?}: {err:?} should mention {n:?}");
@@ -60,28 +76,45 @@ fn bad_parameters_exit_2_with_one_line() {
     let dir = scratch("bad");
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
+    let long = "9".repeat(100_000);
     let cases: &[(&[&str], &[&str])] = &[
-        (&["--size", "0"], &["size", "0", "1..=16384"]),
-        (&["--size", "99999"], &["size", "99999", "1..=16384"]),
-        (&["--size", "-4"], &["size", "-4"]),
-        (&["--size", "big"], &["size", "big"]),
-        (&["--grid", "1"], &["grid", "1", "2..=4096"]),
-        (&["--octaves", "0"], &["octaves", "0", "1..=16"]),
-        (&["--octaves", "1000"], &["octaves", "1000", "1..=16"]),
+        (&["--size", "0"], &["--size", "0", "1..=16384"]),
+        (&["--size", "99999"], &["--size", "99999", "1..=16384"]),
+        (&["--size", "-4"], &["--size", "-4"]),
+        (&["--size", "-1"], &["--size", "-1", "1..=16384"]),
+        (&["--size", "big"], &["--size", "big"]),
+        (&["--grid", "1"], &["--grid", "1", "2..=4096"]),
+        (&["--octaves", "0"], &["--octaves", "0", "1..=16"]),
+        (&["--octaves", "1000"], &["--octaves", "1000", "1..=16"]),
         (
             &["--octaves", "16", "--frequency", "8"],
             &["octaves", "16", "at most 14"],
         ),
-        (&["--frequency", "0"], &["frequency", "0", "1..=1024"]),
-        (&["--gain", "nan"], &["gain", "NaN", "0..=1"]),
-        (&["--gain", "inf"], &["gain", "inf", "0..=1"]),
-        (&["--gain", "-0.5"], &["gain", "-0.5", "0..=1"]),
-        (&["--height-scale", "-1"], &["height-scale", "-1", "0..=10"]),
-        (&["--snow-height", "1.5"], &["snow-height", "1.5", "0..=1"]),
-        (&["--ao-exponent", "NaN"], &["ao-exponent", "NaN"]),
-        (&["--offset", "nan,0"], &["offset", "NaN"]),
-        (&["--offset", "1"], &["offset", "X,Y"]),
-        (&["--seed", "-1"], &["seed", "-1"]),
+        (&["--frequency", "0"], &["--frequency", "0", "1..=1024"]),
+        (&["--gain", "nan"], &["--gain", "nan", "0..=1"]),
+        (&["--gain", "inf"], &["--gain", "inf", "0..=1"]),
+        (&["--gain", "-0.5"], &["--gain", "-0.5", "0..=1"]),
+        (
+            &["--height-scale", "-1"],
+            &["--height-scale", "-1", "0..=10"],
+        ),
+        (
+            &["--snow-height", "1.5"],
+            &["--snow-height", "1.5", "0..=1"],
+        ),
+        (&["--ao-exponent", "NaN"], &["--ao-exponent", "NaN"]),
+        (&["--offset", "nan,0"], &["--offset", "nan"]),
+        (&["--offset", "1"], &["--offset", "X,Y"]),
+        (&["--offset", "1e300,0"], &["--offset", "1e300"]),
+        (&["--seed", "-1"], &["--seed", "-1"]),
+        (&["--seed", &long], &["--seed", "100000 chars"]),
+        (
+            &["--normals", "exact"],
+            &["--normals", "exact", "differences or analytic"],
+        ),
+        (&["--speed", "0.5"], &["--speed", "window"]),
+        (&["--paused"], &["--paused", "window"]),
+        (&["--exit-after", "3"], &["--exit-after", "window"]),
     ];
     for (args, needles) in cases {
         let mut full = vec!["render", "--out", out];
@@ -122,7 +155,7 @@ fn bad_scene_files_and_outputs_exit_2() {
     );
     rejects(
         &["render", "--out", o, "--scene", &scene(&range)],
-        &["gain", "7.5", "0..=1"],
+        &["range.toml", "gain", "7.5", "0..=1"],
     );
     rejects(
         &["render", "--out", o, "--scene", &scene(&broken)],
@@ -140,8 +173,54 @@ fn bad_scene_files_and_outputs_exit_2() {
         &["render", "--out", &format!("{}/o.jpg", dir.display())],
         &["out", ".png"],
     );
-    rejects(&["render", "--out", o, "--width", "0"], &["width", "0"]);
+    rejects(
+        &["render", "--out", o, "--width", "0"],
+        &["--width", "0", "1..=16384"],
+    );
+    rejects(
+        &["render", "--out", o, "--width", "-5"],
+        &["--width", "-5", "1..=16384"],
+    );
+    rejects(
+        &["render", "--out", o, "--width", "99999999999"],
+        &["--width", "99999999999", "1..=16384"],
+    );
+    rejects(
+        &["render", "--out", o, "--height", "1.5"],
+        &["--height", "1.5"],
+    );
     rejects(&["render", "--bogus"], &["--bogus"]);
+    rejects(&["render"], &["--out"]);
+    rejects(&["bake"], &["--out-dir"]);
+    rejects(&["frobnicate"], &["frobnicate", "render"]);
+    rejects(&["bench", "--size", "64"], &["--size", "bench"]);
+    rejects(&["bench", "--normals", "analytic"], &["--normals", "bench"]);
+    rejects(&["bench", "--timings"], &["--timings", "bench"]);
+    // An existing file given as the output folder.
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    rejects(
+        &["bake", "--out-dir", file.to_str().unwrap()],
+        &["--out-dir", "a-file", "folder"],
+    );
+    // Scene files with a megabyte key or value, or a huge file.
+    let big = "x".repeat(1_000_000);
+    for (name, text) in [
+        ("bigkey.toml", format!("{big} = 1\n")),
+        ("bigvalue.toml", format!("normals = \"{big}\"\n")),
+        (
+            "bignumber.toml",
+            format!("seed = {}\n", "9".repeat(1_000_000)),
+        ),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        rejects(
+            &["render", "--out", o, "--scene", path.to_str().unwrap()],
+            &[name],
+        );
+    }
+    std::fs::remove_file(&file).unwrap();
     // A folder that cannot be created: its parent is a file.
     let file = dir.join("a-file");
     std::fs::write(&file, "x").unwrap();
@@ -172,6 +251,9 @@ fn bad_scene_files_and_outputs_exit_2() {
         files_in(&dir),
         [
             "a-file",
+            "bigkey.toml",
+            "bignumber.toml",
+            "bigvalue.toml",
             "broken.toml",
             "o.png",
             "range.toml",
@@ -277,6 +359,21 @@ fn bake_writes_recoverable_heights_and_a_reproducible_scene() {
         );
     }
 
+    // color.png is the albedo the renderer mixes: the two colours blended in linear light.
+    let color = image::open(a.join("color.png")).unwrap().into_rgb8();
+    let shading = relief::Shading::default();
+    for (x, y, p) in color.enumerate_pixels() {
+        let c = fbm.texel(relief::noise::Channel::Color, 64, x, y) as f32;
+        let want = relief::cli::albedo_srgb8(&shading, c);
+        for i in 0..3 {
+            assert!(
+                p.0[i].abs_diff(want[i]) <= 1,
+                "({x},{y}) {:?} vs {want:?}",
+                p.0
+            );
+        }
+    }
+
     // Re-baking from the scene file reproduces the same bytes.
     let b = dir.join("b");
     let (code, _, err) = relief(&[
@@ -331,8 +428,20 @@ fn render_writes_a_png_and_reports_timings() {
 #[test]
 fn bench_quick_writes_a_csv_and_a_chart() {
     let dir = scratch("bench");
-    let (code, stdout, err) = relief(&["bench", "--quick", "--out-dir", dir.to_str().unwrap()]);
+    // Scene flags set the benchmark's scene (they were once silently ignored).
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--quick",
+        "--octaves",
+        "3",
+        "--seed",
+        "99",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert!(stdout.contains("seed 99, octaves 3"), "{stdout}");
     assert!(
         stdout.contains("<- default"),
         "the table marks the default: {stdout}"
@@ -371,6 +480,8 @@ fn bench_quick_writes_a_csv_and_a_chart() {
         assert!(methods.contains(&m), "no {m} row");
     }
     for row in &rows {
+        assert_eq!(row[col("octaves")], "3", "{row:?}");
+        assert_eq!(row[col("seed")], "99", "{row:?}");
         let flip: f64 = row[col("flip_mean")].parse().unwrap();
         assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
     }
@@ -378,6 +489,34 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     assert_eq!((png.width(), png.height()), (960, 640));
     let svg = std::fs::read_to_string(dir.join("bench.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("Pareto front") && svg.contains("default"));
+    // The default's label is drawn right beside its marker (it once floated far from it).
+    let label = svg_text_position(&svg, "default (").expect("a default label");
+    let marker = svg_circle_position(&svg, 11.0).expect("the default's ring");
+    let d = ((label.0 - marker.0).powi(2) + (label.1 - marker.1).powi(2)).sqrt();
+    assert!(d < 320.0, "label at {label:?}, marker at {marker:?}");
+    // ... and inside the picture.
+    assert!((0.0..960.0).contains(&label.0), "{label:?}");
+}
+
+fn svg_attr(tag: &str, name: &str) -> Option<f64> {
+    let start = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+    tag[start..].split('"').next()?.parse().ok()
+}
+
+/// Where the SVG's text starting with `prefix` is anchored.
+fn svg_text_position(svg: &str, prefix: &str) -> Option<(f64, f64)> {
+    svg.split("<text").skip(1).find_map(|t| {
+        let body = t.split('>').nth(1)?.trim_start();
+        body.starts_with(prefix)
+            .then(|| Some((svg_attr(t, "x")?, svg_attr(t, "y")?)))?
+    })
+}
+
+/// The centre of the first SVG circle of radius `r`.
+fn svg_circle_position(svg: &str, r: f64) -> Option<(f64, f64)> {
+    svg.split("<circle").skip(1).find_map(|t| {
+        (svg_attr(t, "r")? == r).then(|| Some((svg_attr(t, "cx")?, svg_attr(t, "cy")?)))?
+    })
 }
 
 /// Splits one CSV line, honouring double quotes (device names contain commas).
@@ -397,4 +536,161 @@ fn csv_fields(line: &str) -> Vec<String> {
     }
     out.push(cur);
     out
+}
+
+#[test]
+fn stderr_stays_clean_and_a_missing_display_is_explained() {
+    let dir = scratch("clean");
+    let out = dir.join("f.png");
+    let (code, _, err) = relief(&[
+        "render",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "32",
+        "--grid",
+        "8",
+        "--width",
+        "32",
+        "--height",
+        "24",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        err, "",
+        "success must print nothing on stderr (no Mesa 'error:' lines)"
+    );
+    // No window without a display: one line, pointing at `relief render`, no source paths.
+    for args in [&[][..], &["window"][..]] {
+        let (code, _, err) = relief(args);
+        assert_eq!(code, 2, "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains("display") && err.contains("relief render"),
+            "{err}"
+        );
+        assert!(
+            !err.contains(".rs:") && !err.contains("GPU device"),
+            "{err}"
+        );
+    }
+}
+
+/// A value of the row's kind that differs from `current` (the table drives this test, so a new
+/// parameter is tested through every front end without a line here).
+fn other_value(
+    p: &relief::table::Param<relief::TerrainParams>,
+    current: relief::table::Value,
+) -> String {
+    use relief::table::{Kind, Value};
+    match (p.kind, current) {
+        (Kind::Int { max, .. }, Value::Int(v)) if v < max => (v + 1).to_string(),
+        (Kind::Int { min, .. }, Value::Int(v)) => (v.max(min + 1) - 1).to_string(),
+        (Kind::Float { min, max }, Value::Float(v)) => {
+            let quarter = (max - min).min(4.0) * 0.25 + 0.01;
+            let up = v + quarter;
+            (if up <= max { up } else { v - quarter }).to_string()
+        }
+        (Kind::Pair { .. }, Value::Pair([x, y])) => format!("{},{}", x + 0.25, y + 0.5),
+        (Kind::Choice(names), Value::Choice(c)) => {
+            names.iter().find(|n| **n != c).unwrap().to_string()
+        }
+        (kind, v) => panic!("no other value for {kind:?} {v:?}"),
+    }
+}
+
+#[test]
+fn every_parameter_changes_what_it_should_through_flags_and_scene_files() {
+    let dir = scratch("table");
+    // A small scene, so each render is quick; its own values are the baseline.
+    let size = ["--width", "64", "--height", "48"];
+    let small_flags = ["--size", "64", "--grid", "24"];
+    // Renders with the small scene's flags, unless a scene file gives the scene.
+    let render = |name: &str, extra: &[&str]| -> Vec<u8> {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec!["render", "--out", out.to_str().unwrap()];
+        args.extend_from_slice(&size);
+        if !extra.contains(&"--scene") {
+            args.extend_from_slice(&small_flags);
+        }
+        args.extend_from_slice(extra);
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        std::fs::read(&out).unwrap()
+    };
+    let baseline = render("base", &[]);
+    let small = relief::TerrainParams {
+        size: 64,
+        grid: 24,
+        ..Default::default()
+    };
+    for p in relief::params::params() {
+        let flag = format!("--{}", p.flag());
+        let value = other_value(p, (p.get)(&small));
+        // The flag changes the picture.
+        let by_flag = render(&format!("{}-flag", p.key), &[&flag, &value]);
+        assert!(by_flag != baseline, "{flag} {value} changed nothing");
+        // The scene-file key does the same.
+        let mut q = small;
+        p.set_text(&mut q, &value).unwrap();
+        let scene = dir.join(format!("{}.toml", p.key));
+        std::fs::write(&scene, q.to_scene_string(None)).unwrap();
+        let by_scene = render(
+            &format!("{}-scene", p.key),
+            &["--scene", scene.to_str().unwrap()],
+        );
+        assert!(
+            by_scene == by_flag,
+            "scene key {} differs from {flag}",
+            p.key
+        );
+        // A flag overrides the scene file.
+        let back = (p.get)(&small).to_string();
+        let overridden = render(
+            &format!("{}-override", p.key),
+            &["--scene", scene.to_str().unwrap(), &flag, &back],
+        );
+        assert!(
+            overridden == baseline,
+            "{flag} did not override the scene file"
+        );
+        // `bake` records it in the scene file it writes.
+        let out = dir.join(format!("{}-bake", p.key));
+        let (code, _, err) = relief(&[
+            "bake",
+            "--out-dir",
+            out.to_str().unwrap(),
+            "--size",
+            "16",
+            &flag,
+            &value,
+        ]);
+        if p.key == "size" {
+            assert_eq!(code, 0, "{err}");
+            continue;
+        }
+        assert_eq!(code, 0, "{err}");
+        let written = relief::TerrainParams::from_scene_file(&out.join("scene.toml")).unwrap();
+        let mut want = relief::TerrainParams { size: 16, ..small };
+        want.grid = relief::TerrainParams::default().grid;
+        p.set_text(&mut want, &value).unwrap();
+        assert_eq!((p.get)(&written), (p.get)(&want), "bake lost {flag}");
+    }
+}
+
+#[test]
+fn a_flat_bake_says_what_its_range_means() {
+    let dir = scratch("flat");
+    let (code, stdout, err) = relief(&["bake", "--out-dir", dir.to_str().unwrap(), "--size", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("flat") && stdout.contains("all 0"),
+        "{stdout}"
+    );
+    let h = image::open(dir.join("height.png")).unwrap().into_luma16();
+    assert_eq!(h.get_pixel(0, 0).0[0], 0);
+    let text = std::fs::read_to_string(dir.join("scene.toml")).unwrap();
+    let table: toml::Table = text.parse().unwrap();
+    let bake = table["bake"].as_table().unwrap();
+    assert_eq!(bake["height_min"].as_float(), bake["height_max"].as_float());
 }

@@ -1,11 +1,9 @@
 //! The embedding example draws host geometry and terrain into one pass and one depth buffer.
 
-mod common;
-
 #[path = "../examples/embed.rs"]
 mod embed;
 
-use embed::{render_frame, Draw};
+use embed::{render_frame, Draw, Host};
 
 fn is_red(p: &[u8]) -> bool {
     p[0] > 120 && p[1] < 40 && p[2] < 40
@@ -13,7 +11,9 @@ fn is_red(p: &[u8]) -> bool {
 
 #[test]
 fn host_geometry_and_terrain_are_depth_tested_together() {
-    let gpu = common::gpu();
+    let gpu = Host::new().expect(
+        "the embedding test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
+    );
     let (w, h) = (256, 192);
     let host = render_frame(
         &gpu,

@@ -32,7 +32,7 @@ fn scene() -> TerrainParams {
 }
 
 fn render(gpu: &Gpu, params: TerrainParams) -> Vec<u8> {
-    let samples = relief::cli::RENDER_SAMPLES;
+    let samples = relief::gpu::headless::RENDER_SAMPLES;
     let target = Offscreen::new(&gpu.device, W, H, samples).unwrap();
     let mut terrain =
         Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), params).unwrap();

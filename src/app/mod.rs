@@ -1,133 +1,46 @@
 //! The interactive window, shared by the native program and the web page: a winit app that
-//! hosts [`Terrain`] exactly as any embedding app would (the surface texture is the target).
-//! Drag (or one finger) orbits, the wheel (or a pinch) zooms, Space pauses the scroll, R
-//! re-seeds, Escape quits (native).
+//! hosts [`Terrain`](crate::Terrain) exactly as any embedding app would. Drag (or one finger)
+//! orbits, the wheel (or a pinch) zooms, Space pauses the scroll, R re-seeds, Escape quits
+//! (native).
+//!
+//! It draws only when something changed (input, the scroll animation, a parameter, a resize):
+//! a paused, untouched window or tab costs next to nothing, and its readout says it is idle.
+//! A lost GPU device is reported in one line and recovered once (new device, textures and
+//! pipelines); a second loss ends the app with that line.
 //!
 //! Only the edges differ by platform: native creates the device by blocking, the web
-//! asynchronously (`web.rs`), and the web reports frames and errors to the page.
+//! asynchronously (`web.rs`), and each reports to its user its own way ([`Report`]).
 
+mod options;
+mod state;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 
+pub use options::{url_keys, AppOptions, Ignored, OFFSET_STEPS, OPTIONS, SCROLL_SPEED};
+pub use state::{Drawn, State};
+
 use crate::error::{Error, Result};
-use crate::gpu::timing::{GpuTimer, Slot, Timings};
-use crate::gpu::Targets;
-use crate::params::TerrainParams;
-use crate::{OrbitCamera, Terrain};
+use crate::gpu::timing::{Slot, Timings};
+use crate::OrbitCamera;
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
-use web_time::Instant;
+use std::sync::Arc;
+use web_time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, TouchPhase, WindowEvent};
-use winit::event_loop::ActiveEventLoop;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-/// Default scroll speed of the animated offset, in tiles per second along x.
-pub const SCROLL_SPEED: f64 = 0.01;
 /// Depth format of the window's depth buffer.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// MSAA samples in the window, the same as `relief render`, so both show the same picture.
 pub const SAMPLES: u32 = 4;
-
-/// What the window starts with; the web page fills it from the URL.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AppOptions {
-    /// The scene.
-    pub params: TerrainParams,
-    /// Scroll speed in tiles per second (along x; y moves at 0.4 of it).
-    pub speed: f64,
-    /// Whether the scroll starts paused.
-    pub paused: bool,
-    /// Whether to measure and report GPU pass times.
-    pub timings: bool,
-}
-
-impl Default for AppOptions {
-    fn default() -> Self {
-        Self {
-            params: TerrainParams::default(),
-            speed: SCROLL_SPEED,
-            paused: false,
-            timings: false,
-        }
-    }
-}
-
-impl AppOptions {
-    /// Sets a scene parameter or one of the app's own keys (`speed`, `paused`).
-    pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
-        match key {
-            "speed" => {
-                let s: f64 = value
-                    .trim()
-                    .parse()
-                    .ok()
-                    .filter(|s: &f64| s.is_finite() && s.abs() <= 10.0)
-                    .ok_or_else(|| Error::invalid("speed", value, "-10..=10 tiles per second"))?;
-                self.speed = s;
-            }
-            "paused" => self.paused = matches!(value.trim(), "1" | "true" | "yes" | "on"),
-            _ => {
-                let mut p = self.params;
-                p.set(key, value)?;
-                p.validate()?;
-                self.params = p;
-            }
-        }
-        Ok(())
-    }
-
-    /// Applies a URL query string (`seed=3&octaves=6&paused=1`); the first bad entry is an
-    /// error and nothing after it is applied.
-    pub fn apply_query(&mut self, query: &str) -> Result<()> {
-        for pair in query
-            .trim_start_matches('?')
-            .split('&')
-            .filter(|p| !p.is_empty())
-        {
-            let (k, v) = pair.split_once('=').unwrap_or((pair, ""));
-            self.set(&k.replace('-', "_"), &percent_decode(v))?;
-        }
-        Ok(())
-    }
-
-    /// The query string that reproduces these options.
-    pub fn to_query(&self) -> String {
-        let mut parts: Vec<String> = TerrainParams::KEYS
-            .iter()
-            .map(|k| format!("{k}={}", self.params.get(k).unwrap_or_default()))
-            .collect();
-        parts.push(format!("speed={}", self.speed));
-        parts.push(format!("paused={}", u8::from(self.paused)));
-        parts.join("&")
-    }
-}
-
-fn percent_decode(s: &str) -> String {
-    let bytes = s.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        match bytes[i] {
-            b'%' if i + 2 < bytes.len() => {
-                let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok();
-                match hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
-                    Some(b) => {
-                        out.push(b);
-                        i += 3;
-                        continue;
-                    }
-                    None => out.push(b'%'),
-                }
-            }
-            b'+' => out.push(b' '),
-            b => out.push(b),
-        }
-        i += 1;
-    }
-    String::from_utf8_lossy(&out).into_owned()
-}
+/// How long without a new frame before the readout says the window is idle.
+pub const IDLE_AFTER: Duration = Duration::from_millis(500);
+/// Least time between two timed frames, so each printed timing is a new measurement.
+pub const TIMING_INTERVAL: Duration = Duration::from_millis(250);
+/// Height the orbit camera keeps above the terrain (world units; the tile is 2 wide).
+pub const CAMERA_CLEARANCE: f32 = 0.05;
 
 /// Events the app receives besides winit's.
 pub enum UserEvent {
@@ -135,6 +48,10 @@ pub enum UserEvent {
     Ready(Result<Box<State>>),
     /// The page changed a parameter.
     Set(String, String),
+    /// GPU timestamps of a timed frame came back.
+    Timings(u64, Result<Timings>),
+    /// The GPU device was lost (the reason, in words).
+    DeviceLost(String),
 }
 
 /// Frame statistics reported to the front end.
@@ -142,286 +59,152 @@ pub enum UserEvent {
 pub struct Stats {
     /// Frames drawn so far.
     pub frames: u64,
-    /// Frames per second over the last half second.
+    /// Frames per second over the last half second of drawing.
     pub fps: f64,
-    /// Latest GPU pass times, when the adapter has timestamps.
-    pub gpu: Option<Timings>,
+    /// Latest GPU pass times, when the adapter has timestamps, and the frame they measured.
+    pub gpu: Option<(u64, Timings)>,
     /// Whether this adapter can time passes at all.
     pub timestamps: bool,
+    /// Nothing changed for [`IDLE_AFTER`]: no frames are being drawn.
+    pub idle: bool,
 }
 
-/// The window's GPU state: surface, device, depth and MSAA targets, and the terrain.
-pub struct State {
-    window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    config: wgpu::SurfaceConfiguration,
-    depth: Option<wgpu::TextureView>,
-    msaa: Option<wgpu::TextureView>,
-    terrain: Terrain,
-    timer: Option<GpuTimer>,
-    timing_pending: Arc<Mutex<Option<Result<Timings>>>>,
-    timing_busy: bool,
-    // The instance and adapter the surface and device came from, kept for the window's life.
-    _instance: wgpu::Instance,
-    _adapter: wgpu::Adapter,
-    /// "name (backend)" of the adapter.
-    pub describe: String,
+/// What the app tells its user, one way per platform: native prints lines, the page writes
+/// into its DOM.
+pub trait Report {
+    /// The readout changed (frame rate, GPU times, idle).
+    fn stats(&mut self, describe: &str, stats: &Stats, fresh_timings: bool);
+    /// A one-line notice (a recovered device).
+    fn notice(&mut self, message: &str);
+    /// A one-line error the app keeps running after.
+    fn warn(&mut self, message: &str);
+    /// The parameters changed (the page updates its URL and controls).
+    fn options(&mut self, _options: &AppOptions) {}
+    /// A frame was presented.
+    fn frame(&mut self, _stats: &Stats) {}
+    /// The app stopped on an error.
+    fn fatal(&mut self, message: &str);
 }
 
-impl State {
-    /// Creates the surface, device and terrain for `window`.
-    pub async fn new(
-        window: Arc<Window>,
-        instance: wgpu::Instance,
-        params: TerrainParams,
-        timings: bool,
-    ) -> Result<Self> {
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| Error::Device(format!("cannot create a surface: {e}")))?;
-        let adapter = instance
-            .request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: Some(&surface),
-                apply_limit_buckets: false,
-            })
-            .await
-            .map_err(|e| Error::NoAdapter(e.to_string()))?;
-        let info = adapter.get_info();
-        let describe = if info.name.is_empty() {
-            format!("{:?}", info.backend)
-        } else {
-            format!("{} ({:?})", info.name, info.backend)
-        };
-        log::info!("window on {describe}");
-        let (device, queue) = crate::gpu::request_device(&adapter).await?;
-        // A window has no Result to return per frame: log what wgpu reports instead of the
-        // default handler's panic.
-        device.on_uncaptured_error(Arc::new(|e| log::error!("wgpu: {e}")));
-        device.set_device_lost_callback(|reason, message| {
-            log::error!("GPU device lost ({reason:?}): {message}")
-        });
-        let caps = surface.get_capabilities(&adapter);
-        let format = caps
-            .formats
-            .iter()
-            .copied()
-            .find(|f| f.is_srgb())
-            .or_else(|| caps.formats.first().copied())
-            .ok_or_else(|| Error::Device("the surface supports no format".into()))?;
-        // Browsers offer only non-sRGB canvas formats. sRGB views of them are allowed, but
-        // headless Chromium (SwiftShader) wrote through such views without encoding; relief
-        // encodes in its shader instead when the target is not sRGB, which works everywhere.
-        let size = window.inner_size();
-        let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            format,
-            width: size.width.max(1),
-            height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoVsync,
-            desired_maximum_frame_latency: 2,
-            alpha_mode: caps
-                .alpha_modes
-                .first()
-                .copied()
-                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
-            view_formats: vec![],
-            color_space: wgpu::SurfaceColorSpace::Auto,
-        };
-        let targets = Targets {
-            color_format: format,
-            depth_format: Some(DEPTH_FORMAT),
-            sample_count: SAMPLES,
-        };
-        let terrain = Terrain::new(&device, &queue, targets, params)?;
-        let timer = if timings {
-            GpuTimer::new(&device, &queue)
-        } else {
-            None
-        };
-        let mut state = State {
-            window,
-            surface,
-            device,
-            queue,
-            config,
-            depth: None,
-            msaa: None,
-            terrain,
-            timer,
-            timing_pending: Arc::new(Mutex::new(None)),
-            timing_busy: false,
-            _instance: instance,
-            _adapter: adapter,
-            describe,
-        };
-        state.resize(size.width, size.height);
-        Ok(state)
+/// The native window's report: with `--timings`, one line per new GPU measurement, a line
+/// when the window goes idle, and a summary at exit; warnings and errors as one line each on
+/// stderr.
+#[cfg(not(target_arch = "wasm32"))]
+pub struct Terminal {
+    /// Whether `--timings` was given.
+    pub timings: bool,
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl Terminal {
+    /// A report printing timings if asked.
+    pub fn new(timings: bool) -> Self {
+        Self { timings }
     }
+}
 
-    /// Reconfigures for a new window size; a 0 x 0 (minimised) window is left unconfigured.
-    fn resize(&mut self, width: u32, height: u32) {
-        if width == 0 || height == 0 {
-            self.depth = None;
-            self.msaa = None;
+#[cfg(not(target_arch = "wasm32"))]
+impl Report for Terminal {
+    fn stats(&mut self, describe: &str, stats: &Stats, fresh_timings: bool) {
+        if !self.timings {
             return;
         }
-        let max = self.device.limits().max_texture_dimension_2d;
-        self.config.width = width.min(max);
-        self.config.height = height.min(max);
-        self.surface.configure(&self.device, &self.config);
-        let make = |label, format| {
-            self.device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width: self.config.width,
-                        height: self.config.height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: SAMPLES,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
-        };
-        self.depth = Some(make("relief:window:depth", DEPTH_FORMAT));
-        self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", self.config.format));
+        if fresh_timings {
+            if let Some((frame, t)) = stats.gpu {
+                println!(
+                    "timings on {describe} (frame {frame}): {}",
+                    format_timings(&t)
+                );
+            }
+        } else if stats.idle {
+            println!(
+                "idle after frame {}: nothing changes, so nothing is drawn",
+                stats.frames
+            );
+        }
     }
+    fn notice(&mut self, message: &str) {
+        eprintln!("{}", one_line(message));
+    }
+    fn warn(&mut self, message: &str) {
+        eprintln!("warning: {}", one_line(message));
+    }
+    fn frame(&mut self, _stats: &Stats) {}
+    fn fatal(&mut self, _message: &str) {
+        // The CLI prints the error the app returns.
+    }
+}
 
-    /// Draws one frame; returns whether one was presented.
-    fn draw(&mut self, camera: &OrbitCamera, stats: &mut Stats) -> bool {
-        let Some(depth) = &self.depth else {
-            return false; // minimised
-        };
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&self.device, &self.config);
-                return false;
-            }
-            _ => return false,
-        };
-        let view = frame.texture.create_view(&Default::default());
-        let pending = self.timing_pending.lock().ok().and_then(|mut p| p.take());
-        if let Some(result) = pending {
-            self.timing_busy = false;
-            match result {
-                Ok(t) => stats.gpu = Some(t),
-                Err(e) => log::warn!("timings: {e}"),
-            }
-        }
-        // Time one frame in thirty, and only once the previous read has come back.
-        let timer = self
-            .timer
-            .as_ref()
-            .filter(|_| !self.timing_busy && stats.frames.is_multiple_of(30));
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("relief:window:frame"),
-            });
-        self.terrain.encode_bake_timed(&mut encoder, timer);
-        let aspect = self.config.width as f32 / self.config.height as f32;
-        self.terrain.prepare(&self.queue, &camera.view(aspect));
-        {
-            let (target, resolve_target) = match &self.msaa {
-                Some(msaa) => (msaa, Some(&view)),
-                None => (&view, None),
-            };
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("relief:window:pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(crate::gpu::clear_color(
-                            self.terrain.shading().sky_color,
-                            self.config.format,
-                        )),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timer.map(|t| t.render_writes(Slot::Render)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            self.terrain.render(&mut pass);
-        }
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        self.queue.submit([encoder.finish()]);
-        if let Some(t) = timer {
-            self.timing_busy = true;
-            let slot = self.timing_pending.clone();
-            t.read_async(move |r| {
-                if let Ok(mut p) = slot.lock() {
-                    *p = Some(r);
-                }
-            });
-        }
-        self.window.pre_present_notify();
-        self.queue.present(frame);
-        #[cfg(not(target_arch = "wasm32"))]
-        let _ = self.device.poll(wgpu::PollType::Poll);
-        true
-    }
+fn one_line(message: &str) -> String {
+    crate::table::shorten_to(
+        &message.split_whitespace().collect::<Vec<_>>().join(" "),
+        200,
+    )
+}
+
+/// Options for driving the window from scripts and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Script {
+    /// Close the window after this many seconds.
+    pub exit_after: Option<f64>,
+    /// Destroy the GPU device after this many frames, as a driver reset would (tests the
+    /// recovery).
+    pub lose_device_after: Option<u64>,
 }
 
 /// The winit application: input, animation, and the frame loop around [`State`].
 pub struct App {
     options: AppOptions,
+    script: Script,
     camera: OrbitCamera,
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     touches: HashMap<u64, (f64, f64)>,
-    last: Instant,
+    last_tick: Instant,
+    last_frame: Instant,
+    last_timed: Option<Instant>,
+    timing_in_flight: bool,
     fps_window: (Instant, u64),
+    started: Instant,
     stats: Stats,
     state: Option<State>,
+    window: Option<Arc<Window>>,
     starting: bool,
+    recoveries: u32,
     error: Option<Error>,
-    #[cfg(target_arch = "wasm32")]
-    proxy: winit::event_loop::EventLoopProxy<UserEvent>,
+    report: Box<dyn Report>,
+    proxy: EventLoopProxy<UserEvent>,
 }
 
 impl App {
     /// A new app; the window opens when the event loop resumes.
     pub fn new(
         options: AppOptions,
-        #[cfg(target_arch = "wasm32")] proxy: winit::event_loop::EventLoopProxy<UserEvent>,
+        script: Script,
+        report: Box<dyn Report>,
+        proxy: EventLoopProxy<UserEvent>,
     ) -> Self {
         let now = Instant::now();
         Self {
             options,
+            script,
             camera: OrbitCamera::default(),
             drag: None,
             cursor: (0.0, 0.0),
             touches: HashMap::new(),
-            last: now,
+            last_tick: now,
+            last_frame: now,
+            last_timed: None,
+            timing_in_flight: false,
             fps_window: (now, 0),
+            started: now,
             stats: Stats::default(),
             state: None,
+            window: None,
             starting: false,
+            recoveries: 0,
             error: None,
-            #[cfg(target_arch = "wasm32")]
+            report,
             proxy,
         }
     }
@@ -432,83 +215,182 @@ impl App {
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
-        log::error!("{e}");
-        #[cfg(target_arch = "wasm32")]
-        web::show_error(&e.to_string());
+        log::debug!("{e}");
+        self.report.fatal(&e.to_string());
         self.error = Some(e);
+        self.state = None;
         event_loop.exit();
     }
 
-    fn set_params(&mut self, params: TerrainParams) -> Result<()> {
-        if let Some(s) = &mut self.state {
-            s.terrain.set_params(&s.device, &s.queue, params)?;
+    /// Something visible changed: draw a frame (only then; see the module docs).
+    fn changed(&mut self) {
+        self.stats.idle = false;
+        if let Some(w) = &self.window {
+            w.request_redraw();
         }
-        self.options.params = params;
-        Ok(())
     }
 
     fn set(&mut self, key: &str, value: &str) -> Result<()> {
         let mut options = self.options;
         options.set(key, value)?;
-        self.set_params(options.params)?;
+        if let Some(s) = &mut self.state {
+            s.terrain.set_params(&s.device, &s.queue, options.params)?;
+        }
         self.options = options;
-        #[cfg(target_arch = "wasm32")]
-        web::options_changed(&self.options);
+        self.keep_camera_above();
+        self.report.options(&self.options);
+        self.changed();
         Ok(())
     }
 
-    fn ready(&mut self, state: State) {
-        self.stats.timestamps = state.timer.is_some();
-        if self.options.timings && state.timer.is_none() {
-            println!("timings: {} has no timestamp queries", state.describe);
+    fn keep_camera_above(&mut self) {
+        let params = self.options.params;
+        let half = crate::WORLD_SIZE as f32 / 2.0;
+        self.camera.keep_above(
+            |x, z| {
+                if x.abs() <= half && z.abs() <= half {
+                    crate::height_at(&params, x, z)
+                } else {
+                    0.0
+                }
+            },
+            CAMERA_CLEARANCE,
+        );
+    }
+
+    fn start_state(&mut self, event_loop: &ActiveEventLoop, window: Arc<Window>) {
+        self.starting = true;
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(event_loop.owned_display_handle()),
+            ));
+        let future = State::new(
+            window,
+            instance,
+            self.options.params,
+            self.options.timings,
+            self.proxy.clone(),
+        );
+        #[cfg(not(target_arch = "wasm32"))]
+        match pollster::block_on(future) {
+            Ok(state) => self.ready(state),
+            Err(e) => self.fail(event_loop, e),
         }
-        state.window.request_redraw();
-        self.state = Some(state);
-        self.last = Instant::now();
         #[cfg(target_arch = "wasm32")]
-        web::options_changed(&self.options);
+        {
+            let proxy = self.proxy.clone();
+            wasm_bindgen_futures::spawn_local(async move {
+                let _ = proxy.send_event(UserEvent::Ready(future.await.map(Box::new)));
+            });
+        }
+    }
+
+    fn ready(&mut self, state: State) {
+        self.starting = false;
+        self.stats.timestamps = state.timer.is_some();
+        self.timing_in_flight = false;
+        if self.options.timings && state.timer.is_none() {
+            self.report.warn(&format!(
+                "timings: {} has no timestamp queries",
+                state.describe
+            ));
+        }
+        if self.recoveries > 0 {
+            self.report.notice(&format!(
+                "recovered: drawing on a new GPU device ({})",
+                state.describe
+            ));
+        }
+        self.state = Some(state);
+        self.last_tick = Instant::now();
+        self.keep_camera_above();
+        self.report.options(&self.options);
+        self.changed();
+    }
+
+    fn device_lost(&mut self, event_loop: &ActiveEventLoop, reason: String) {
+        if self.state.is_none() && !self.starting {
+            return; // already handled (the callback can fire once per device)
+        }
+        if self.recoveries >= 1 {
+            return self.fail(
+                event_loop,
+                Error::DeviceLost(format!(
+                    "{reason}; lost again after one recovery, so relief stopped"
+                )),
+            );
+        }
+        self.recoveries += 1;
+        self.report.warn(&format!(
+            "GPU device lost ({reason}); creating a new device, textures and pipelines"
+        ));
+        // Drop the old surface before making a new one for the same window.
+        self.state = None;
+        if let Some(window) = self.window.clone() {
+            self.start_state(event_loop, window);
+        }
     }
 
     fn redraw(&mut self) {
         let now = Instant::now();
-        let dt = now.duration_since(self.last).as_secs_f64().min(0.25);
-        self.last = now;
-        if !self.options.paused && self.options.speed != 0.0 {
-            let mut p = self.options.params;
-            let s = self.options.speed;
-            p.offset = [
-                (p.offset[0] + s * dt).rem_euclid(1.0),
-                (p.offset[1] + 0.4 * s * dt).rem_euclid(1.0),
-            ];
-            if let Err(e) = self.set_params(p) {
-                log::warn!("scroll refused: {e}");
+        let dt = now.duration_since(self.last_tick).as_secs_f64().min(0.25);
+        self.last_tick = now;
+        if self.options.animating() {
+            let mut options = self.options;
+            options.advance(dt);
+            let result = match &mut self.state {
+                Some(s) => s
+                    .terrain
+                    .set_params(&s.device, &s.queue, options.params)
+                    .map(|_| ()),
+                None => Ok(()),
+            };
+            match result {
+                Ok(()) => self.options = options,
+                Err(e) => self.report.warn(&format!("scroll refused: {e}")),
             }
         }
         let Some(s) = &mut self.state else { return };
-        if s.draw(&self.camera, &mut self.stats) {
+        let timed = s.timer.is_some()
+            && !self.timing_in_flight
+            && self
+                .last_timed
+                .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
+        let view = self.camera.view(s.aspect());
+        if s.draw(&view, timed) == Drawn::Frame {
             self.stats.frames += 1;
+            self.last_frame = now;
+            if timed {
+                self.timing_in_flight = true;
+                self.last_timed = Some(now);
+                let proxy = self.proxy.clone();
+                let frame = self.stats.frames;
+                if let Some(t) = &s.timer {
+                    t.read_async(move |r| {
+                        let _ = proxy.send_event(UserEvent::Timings(frame, r));
+                    });
+                }
+            }
+            if self
+                .script
+                .lose_device_after
+                .is_some_and(|n| self.stats.frames == n)
+            {
+                s.device.destroy();
+            }
         }
-        s.window.request_redraw();
+        if self.options.animating() {
+            s.window.request_redraw();
+        }
         let (t0, f0) = self.fps_window;
         let span = now.duration_since(t0).as_secs_f64();
         if span >= 0.5 {
             self.stats.fps = (self.stats.frames - f0) as f64 / span;
             self.fps_window = (now, self.stats.frames);
-            self.report();
+            let describe = s.describe.clone();
+            self.report.stats(&describe, &self.stats, false);
         }
-        #[cfg(target_arch = "wasm32")]
-        web::frame_done(&self.stats);
-    }
-
-    fn report(&self) {
-        #[cfg(target_arch = "wasm32")]
-        web::show_stats(&self.stats);
-        #[cfg(not(target_arch = "wasm32"))]
-        if self.options.timings {
-            if let (Some(t), Some(s)) = (self.stats.gpu, &self.state) {
-                println!("timings on {}: {}", s.describe, format_timings(&t));
-            }
-        }
+        self.report.frame(&self.stats);
     }
 
     fn touch(&mut self, id: u64, phase: TouchPhase, x: f64, y: f64) {
@@ -531,6 +413,7 @@ impl App {
                     let k = std::f64::consts::PI / height;
                     self.camera
                         .rotate(((x - x0) * k) as f32, ((y - y0) * k) as f32);
+                    self.camera_moved();
                 }
             }
             (2, 2) => {
@@ -542,10 +425,16 @@ impl App {
                 if d0 > 1.0 && d1 > 1.0 {
                     // Spreading two fingers by 10% zooms one notch.
                     self.camera.zoom(((d1 / d0).ln() / 1.1f64.ln()) as f32);
+                    self.camera_moved();
                 }
             }
             _ => {}
         }
+    }
+
+    fn camera_moved(&mut self) {
+        self.keep_camera_above();
+        self.changed();
     }
 }
 
@@ -560,10 +449,9 @@ pub fn format_timings(t: &Timings) -> String {
 
 impl ApplicationHandler<UserEvent> for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.state.is_some() || self.starting {
+        if self.window.is_some() || self.starting {
             return;
         }
-        self.starting = true;
         let attributes = Window::default_attributes().with_title("relief");
         #[cfg(not(target_arch = "wasm32"))]
         let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280, 720));
@@ -574,27 +462,12 @@ impl ApplicationHandler<UserEvent> for App {
             Err(e) => {
                 return self.fail(
                     event_loop,
-                    Error::Device(format!("cannot create a window: {e}")),
+                    Error::Window(format!("cannot create a window: {e}")),
                 )
             }
         };
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
-                Box::new(event_loop.owned_display_handle()),
-            ));
-        let future = State::new(window, instance, self.options.params, self.options.timings);
-        #[cfg(not(target_arch = "wasm32"))]
-        match pollster::block_on(future) {
-            Ok(state) => self.ready(state),
-            Err(e) => self.fail(event_loop, e),
-        }
-        #[cfg(target_arch = "wasm32")]
-        {
-            let proxy = self.proxy.clone();
-            wasm_bindgen_futures::spawn_local(async move {
-                let _ = proxy.send_event(UserEvent::Ready(future.await.map(Box::new)));
-            });
-        }
+        self.window = Some(window.clone());
+        self.start_state(event_loop, window);
     }
 
     fn user_event(&mut self, event_loop: &ActiveEventLoop, event: UserEvent) {
@@ -603,12 +476,72 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::Ready(Err(e)) => self.fail(event_loop, e),
             UserEvent::Set(k, v) => {
                 if let Err(e) = self.set(&k, &v) {
-                    log::warn!("{e}");
-                    #[cfg(target_arch = "wasm32")]
-                    web::show_error(&e.to_string());
+                    // The page shows the value that is in force again, and why.
+                    self.report.options(&self.options);
+                    self.report.warn(&e.to_string());
                 }
             }
+            UserEvent::Timings(frame, result) => {
+                self.timing_in_flight = false;
+                match result {
+                    Ok(t) => {
+                        self.stats.gpu = Some((frame, t));
+                        let describe = self
+                            .state
+                            .as_ref()
+                            .map(|s| s.describe.clone())
+                            .unwrap_or_default();
+                        self.report.stats(&describe, &self.stats, true);
+                    }
+                    Err(e) => self.report.warn(&format!("timings: {e}")),
+                }
+            }
+            UserEvent::DeviceLost(reason) => self.device_lost(event_loop, reason),
         }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let now = Instant::now();
+        if let Some(limit) = self.script.exit_after {
+            if now.duration_since(self.started).as_secs_f64() >= limit {
+                event_loop.exit();
+                return;
+            }
+        }
+        // Native timestamp reads complete inside Device::poll.
+        #[cfg(not(target_arch = "wasm32"))]
+        if self.timing_in_flight {
+            if let Some(s) = &self.state {
+                let _ = s.device.poll(wgpu::PollType::Poll);
+            }
+        }
+        let mut wake = None;
+        if !self.options.animating() && !self.stats.idle && self.state.is_some() {
+            let idle_at = self.last_frame + IDLE_AFTER;
+            if now >= idle_at {
+                self.stats.idle = true;
+                self.stats.fps = 0.0;
+                let describe = self
+                    .state
+                    .as_ref()
+                    .map(|s| s.describe.clone())
+                    .unwrap_or_default();
+                self.report.stats(&describe, &self.stats, false);
+            } else {
+                wake = Some(idle_at);
+            }
+        }
+        if self.timing_in_flight {
+            wake = Some(now + Duration::from_millis(5));
+        }
+        if let Some(limit) = self.script.exit_after {
+            let end = self.started + Duration::from_secs_f64(limit);
+            wake = Some(wake.map_or(end, |w: Instant| w.min(end)));
+        }
+        event_loop.set_control_flow(match wake {
+            Some(t) => ControlFlow::WaitUntil(t),
+            None => ControlFlow::Wait,
+        });
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
@@ -617,21 +550,25 @@ impl ApplicationHandler<UserEvent> for App {
             WindowEvent::Resized(size) => {
                 if let Some(s) = &mut self.state {
                     s.resize(size.width, size.height);
-                    s.window.request_redraw();
                 }
+                self.changed();
             }
+            WindowEvent::ScaleFactorChanged { .. } | WindowEvent::Occluded(false) => self.changed(),
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 match event.logical_key {
                     #[cfg(not(target_arch = "wasm32"))]
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
                     Key::Named(NamedKey::Space) => {
                         let paused = if self.options.paused { "0" } else { "1" };
-                        let _ = self.set("paused", paused);
+                        if let Err(e) = self.set("paused", paused) {
+                            self.report.warn(&e.to_string());
+                        }
+                        self.last_tick = Instant::now();
                     }
                     Key::Character(c) if c.eq_ignore_ascii_case("r") => {
                         let seed = self.options.params.seed.wrapping_add(1).to_string();
                         if let Err(e) = self.set("seed", &seed) {
-                            log::warn!("{e}");
+                            self.report.warn(&e.to_string());
                         }
                     }
                     _ => {}
@@ -653,6 +590,7 @@ impl ApplicationHandler<UserEvent> for App {
                         ((position.y - y0) * k) as f32,
                     );
                     self.drag = Some(self.cursor);
+                    self.camera_moved();
                 }
             }
             WindowEvent::MouseWheel { delta, .. } => {
@@ -661,6 +599,7 @@ impl ApplicationHandler<UserEvent> for App {
                     MouseScrollDelta::PixelDelta(p) => (p.y / 60.0) as f32,
                 };
                 self.camera.zoom(steps);
+                self.camera_moved();
             }
             WindowEvent::Touch(t) => self.touch(t.id, t.phase, t.location.x, t.location.y),
             WindowEvent::RedrawRequested => self.redraw(),
@@ -669,44 +608,59 @@ impl ApplicationHandler<UserEvent> for App {
     }
 }
 
+/// Why no window can open here, if the reason is plain: no display server to connect to.
+#[cfg(not(target_arch = "wasm32"))]
+fn no_display() -> Option<String> {
+    if !cfg!(any(
+        target_os = "linux",
+        target_os = "freebsd",
+        target_os = "openbsd"
+    )) {
+        return None;
+    }
+    let set = |v| std::env::var_os(v).is_some_and(|s| !s.is_empty());
+    (!set("DISPLAY") && !set("WAYLAND_DISPLAY"))
+        .then(|| "no display to open a window on (DISPLAY and WAYLAND_DISPLAY are unset)".into())
+}
+
+/// What to suggest when the window cannot open.
+#[cfg(not(target_arch = "wasm32"))]
+pub const NO_WINDOW_HINT: &str =
+    "without a display, draw a frame with: relief render --out frame.png";
+
 /// Opens the native window and runs until it is closed.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn run_native(options: AppOptions) -> Result<()> {
+pub fn run_native(options: AppOptions, script: Script) -> Result<()> {
+    if let Some(why) = no_display() {
+        return Err(Error::Window(format!("{why}; {NO_WINDOW_HINT}")));
+    }
     let event_loop = winit::event_loop::EventLoop::<UserEvent>::with_user_event()
         .build()
-        .map_err(|e| Error::Device(format!("cannot open a window: {e}")))?;
-    let mut app = App::new(options);
+        .map_err(|e| {
+            // winit's message carries the source file it came from; keep what it says.
+            let text = e.to_string();
+            let said = text.rsplit(": ").next().unwrap_or(&text).to_owned();
+            Error::Window(format!("cannot open a window ({said}); {NO_WINDOW_HINT}"))
+        })?;
+    let proxy = event_loop.create_proxy();
+    let mut app = App::new(
+        options,
+        script,
+        Box::new(Terminal::new(options.timings)),
+        proxy,
+    );
     event_loop
         .run_app(&mut app)
-        .map_err(|e| Error::Device(format!("window event loop failed: {e}")))?;
+        .map_err(|e| Error::Window(format!("the window's event loop failed: {e}")))?;
+    if options.timings {
+        println!(
+            "window: {} frames drawn in {:.1} s",
+            app.stats.frames,
+            app.started.elapsed().as_secs_f64()
+        );
+    }
     match app.take_error() {
         Some(e) => Err(e),
         None => Ok(()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn query_round_trip() {
-        let mut o = AppOptions::default();
-        o.apply_query("?seed=42&octaves=5&height-scale=0.8&offset=0.5%2C0.25&paused=1&speed=0.02")
-            .unwrap();
-        assert_eq!(o.params.seed, 42);
-        assert_eq!(o.params.octaves, 5);
-        assert_eq!(o.params.height_scale, 0.8);
-        assert_eq!(o.params.offset, [0.5, 0.25]);
-        assert!(o.paused);
-        let mut p = AppOptions::default();
-        p.apply_query(&o.to_query()).unwrap();
-        assert_eq!(o, p);
-        let e = p.apply_query("seed=3&grid=1").unwrap_err().to_string();
-        assert!(e.contains("grid"), "{e}");
-        assert_eq!(
-            p.params.grid, o.params.grid,
-            "a rejected value is not applied"
-        );
     }
 }

@@ -1,9 +1,13 @@
 //! The web page's entry points (wasm32 only): `start` runs the shared app on the page's
-//! canvas; `set_param` is how the page's controls reach it. The app reports back through the
-//! DOM: `#readout` (frame rate, GPU times), `#error`, and `data-frames` / `data-query` on
-//! `<body>` plus a `relief-options` event when the parameters change.
+//! canvas; `set_param` is how the page's controls reach it; `params_table` tells the page which
+//! controls to build (from the same tables as the CLI's flags). The app reports back through
+//! the DOM: `#readout` (frame rate, GPU times, idle), `#notice` (what the URL could not set,
+//! recoveries), `#error`, and `data-frames` / `data-query` / `data-error` on `<body>` plus a
+//! `relief-options` event when the parameters change.
 
-use super::{format_timings, App, AppOptions, Stats, UserEvent};
+use super::{format_timings, url_keys, App, AppOptions, Report, Script, Stats, UserEvent, OPTIONS};
+use crate::params::params;
+use crate::table::{Control, Kind, Param};
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 use winit::event_loop::{EventLoop, EventLoopProxy};
@@ -19,6 +23,7 @@ fn document() -> Option<web_sys::Document> {
 }
 
 /// Starts relief on the canvas with id `canvas_id`, with options from a URL query string.
+/// Entries the URL gets wrong are skipped (the rest apply) and listed in `#notice`.
 #[wasm_bindgen]
 pub fn start(canvas_id: &str, query: &str) -> Result<(), JsValue> {
     console_error_panic_hook::set_once();
@@ -32,19 +37,35 @@ pub fn start(canvas_id: &str, query: &str) -> Result<(), JsValue> {
         timings: true,
         ..Default::default()
     };
-    if let Err(e) = options.apply_query(query) {
-        show_error(&format!("URL: {e}"));
+    let ignored = options.apply_query(query);
+    if !ignored.is_empty() {
+        let list: Vec<String> = ignored
+            .iter()
+            .map(|i| format!("{}: {}", i.key, i.reason))
+            .collect();
+        set_text(
+            "notice",
+            &format!("Ignored in the URL (the rest applies): {}", list.join("; ")),
+        );
+        set_body_data(
+            "ignored",
+            &ignored
+                .iter()
+                .map(|i| i.key.clone())
+                .collect::<Vec<_>>()
+                .join(","),
+        );
     }
     let event_loop = EventLoop::<UserEvent>::with_user_event()
         .build()
         .map_err(|e| JsValue::from_str(&e.to_string()))?;
     let proxy = event_loop.create_proxy();
     PROXY.with(|p| *p.borrow_mut() = Some(proxy.clone()));
-    event_loop.spawn_app(App::new(options, proxy));
+    event_loop.spawn_app(App::new(options, Script::default(), Box::new(Page), proxy));
     Ok(())
 }
 
-/// Changes one parameter (scene keys as in scene files, plus `speed` and `paused`).
+/// Changes one parameter (scene keys as in scene files, plus the window's keys).
 #[wasm_bindgen]
 pub fn set_param(key: &str, value: &str) {
     PROXY.with(|p| {
@@ -58,6 +79,65 @@ pub fn set_param(key: &str, value: &str) {
 #[wasm_bindgen]
 pub fn default_query() -> String {
     AppOptions::default().to_query()
+}
+
+/// Every URL key, comma-separated.
+#[wasm_bindgen]
+pub fn keys() -> String {
+    url_keys().join(",")
+}
+
+/// The page's controls as JSON: one object per parameter with its key, doc, control
+/// (`slider`, `number`, `select`, `checkbox` or `none`), range and step, allowed values in
+/// words, and choices; from the same tables as the CLI's flags.
+#[wasm_bindgen]
+pub fn params_table() -> String {
+    let rows: Vec<String> = params()
+        .map(row_json)
+        .chain(OPTIONS.iter().map(row_json))
+        .collect();
+    format!("[{}]", rows.join(","))
+}
+
+fn json_str(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_control() => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+fn row_json<T>(p: &Param<T>) -> String {
+    let (control, min, max, step) = match p.control {
+        Control::None => ("none", 0.0, 0.0, 0.0),
+        Control::Slider { min, max, step } => ("slider", min, max, step),
+        Control::Number => match p.kind {
+            Kind::Int { min, max } => ("number", f64::from(min), f64::from(max), 1.0),
+            _ => ("number", 0.0, 0.0, 0.0),
+        },
+        Control::Select => ("select", 0.0, 0.0, 0.0),
+        Control::Checkbox => ("checkbox", 0.0, 0.0, 0.0),
+    };
+    let choices = match p.kind {
+        Kind::Choice(names) => names
+            .iter()
+            .map(|n| json_str(n))
+            .collect::<Vec<_>>()
+            .join(","),
+        _ => String::new(),
+    };
+    format!(
+        "{{\"key\":{},\"doc\":{},\"allowed\":{},\"control\":\"{control}\",\"min\":{min},\"max\":{max},\"step\":{step},\"choices\":[{choices}]}}",
+        json_str(p.key),
+        json_str(p.doc),
+        json_str(&p.allowed()),
+    )
 }
 
 pub(crate) fn window_attributes(
@@ -82,30 +162,64 @@ fn set_body_data(key: &str, value: &str) {
     }
 }
 
-pub(crate) fn show_error(message: &str) {
-    set_text("error", message);
-    set_body_data("error", message);
-}
+/// The page's [`Report`]: the readout, notices and errors in the DOM.
+struct Page;
 
-pub(crate) fn show_stats(stats: &Stats) {
-    let gpu = match (stats.timestamps, stats.gpu) {
-        (true, Some(t)) => format!("GPU: {}", format_timings(&t)),
-        (true, None) => "GPU: measuring".to_owned(),
-        (false, _) => "GPU times: this browser exposes no timestamp-query".to_owned(),
-    };
-    set_text("readout", &format!("{:.0} fps · {gpu}", stats.fps));
-}
+impl Report for Page {
+    fn stats(&mut self, _describe: &str, stats: &Stats, _fresh: bool) {
+        let gpu = match (stats.timestamps, stats.gpu) {
+            (true, Some((_, t))) => format!("GPU: {}", format_timings(&t)),
+            (true, None) => "GPU: measuring".to_owned(),
+            (false, _) => "GPU times: this browser exposes no timestamp-query".to_owned(),
+        };
+        let text = if stats.idle {
+            format!("idle: drawn only on change · last frame {gpu}")
+        } else {
+            format!("{:.0} fps · {gpu}", stats.fps)
+        };
+        set_text("readout", &text);
+        set_body_data("idle", if stats.idle { "1" } else { "0" });
+    }
 
-pub(crate) fn frame_done(stats: &Stats) {
-    set_body_data("frames", &stats.frames.to_string());
-}
+    fn notice(&mut self, message: &str) {
+        set_text("notice", message);
+    }
 
-pub(crate) fn options_changed(options: &AppOptions) {
-    set_body_data("query", &options.to_query());
-    set_text("error", "");
-    if let Some(w) = web_sys::window() {
-        if let Ok(e) = web_sys::Event::new("relief-options") {
-            let _ = w.dispatch_event(&e);
+    fn warn(&mut self, message: &str) {
+        log::warn!("{message}");
+        set_text("error", message);
+    }
+
+    fn options(&mut self, options: &AppOptions) {
+        set_body_data("query", &options.to_query());
+        // A change that took effect clears a previous refusal (never a fatal error).
+        if document()
+            .and_then(|d| d.body())
+            .and_then(|b| b.dataset().get("error"))
+            .is_none()
+        {
+            set_text("error", "");
+        }
+        if let Some(w) = web_sys::window() {
+            if let Ok(e) = web_sys::Event::new("relief-options") {
+                let _ = w.dispatch_event(&e);
+            }
+        }
+    }
+
+    fn frame(&mut self, stats: &Stats) {
+        set_body_data("frames", &stats.frames.to_string());
+    }
+
+    fn fatal(&mut self, message: &str) {
+        log::error!("{message}");
+        set_text("error", message);
+        set_text("readout", "stopped");
+        set_body_data("error", message);
+        if let Some(w) = web_sys::window() {
+            if let Ok(e) = web_sys::Event::new("relief-stopped") {
+                let _ = w.dispatch_event(&e);
+            }
         }
     }
 }

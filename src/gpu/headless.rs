@@ -48,59 +48,57 @@ impl Gpu {
     }
 }
 
-/// Maps a `MAP_READ` buffer, waits, and copies its contents out.
-pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>> {
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| Error::Readback(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| Error::Readback(e.to_string()))?
-        .map_err(|e| Error::Readback(e.to_string()))?;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| Error::Readback(e.to_string()))?
-        .to_vec();
-    buffer.unmap();
-    Ok(bytes)
-}
+pub use super::map_read;
 
 /// Records a copy of a whole 2-D texture into a new `MAP_READ` buffer; returns the buffer and
-/// its padded row pitch in bytes.
+/// its padded row pitch in bytes. The texture must fit one buffer (see [`read_texture_bands`]
+/// for any size).
 pub fn encode_texture_copy(
     device: &wgpu::Device,
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
 ) -> (wgpu::Buffer, u32) {
-    encode_aspect_copy(device, encoder, texture, wgpu::TextureAspect::All)
+    encode_rows_copy(
+        device,
+        encoder,
+        texture,
+        wgpu::TextureAspect::All,
+        0..texture.height(),
+    )
 }
 
-/// [`encode_texture_copy`] of one aspect (`DepthOnly` for a depth buffer).
-fn encode_aspect_copy(
-    device: &wgpu::Device,
-    encoder: &mut wgpu::CommandEncoder,
-    texture: &wgpu::Texture,
-    aspect: wgpu::TextureAspect,
-) -> (wgpu::Buffer, u32) {
-    let (w, h) = (texture.width(), texture.height());
+fn row_pitch(texture: &wgpu::Texture, aspect: wgpu::TextureAspect) -> u32 {
     let bpp = texture
         .format()
         .block_copy_size(Some(aspect))
         .expect("copyable formats have a block size");
-    let pitch = (w * bpp).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    (texture.width() * bpp).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+}
+
+/// Records a copy of rows `rows` of one aspect of a 2-D texture into a new `MAP_READ` buffer.
+fn encode_rows_copy(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    aspect: wgpu::TextureAspect,
+    rows: std::ops::Range<u32>,
+) -> (wgpu::Buffer, u32) {
+    let pitch = row_pitch(texture, aspect);
+    let n = rows.end - rows.start;
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("relief:readback"),
-        size: u64::from(pitch) * u64::from(h),
+        size: u64::from(pitch) * u64::from(n),
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             aspect,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: rows.start,
+                z: 0,
+            },
             ..texture.as_image_copy()
         },
         wgpu::TexelCopyBufferInfo {
@@ -108,25 +106,77 @@ fn encode_aspect_copy(
             layout: wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(pitch),
-                rows_per_image: Some(h),
+                rows_per_image: Some(n),
             },
         },
-        texture.size(),
+        wgpu::Extent3d {
+            width: texture.width(),
+            height: n,
+            depth_or_array_layers: 1,
+        },
     );
     (buffer, pitch)
 }
 
-/// Reads a whole 2-D texture back, rows tightly packed.
+/// Largest readback buffer relief asks for: well under every device's `max_buffer_size`, and
+/// small enough that reading a 16384² texture never holds more than this twice.
+pub const MAX_READBACK_BYTES: u64 = 64 << 20;
+
+/// Reads a 2-D texture back in bands of whole rows, each band at most `band_bytes` (and the
+/// device's buffer limit), calling `sink(first_row, rows)` with the rows tightly packed.
+/// Textures of any size the device can hold are read this way without one huge buffer.
+pub fn read_texture_bands(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    band_bytes: u64,
+    mut sink: impl FnMut(u32, &[u8]),
+) -> Result<()> {
+    let aspect = if texture.format().is_depth_stencil_format() {
+        wgpu::TextureAspect::DepthOnly
+    } else {
+        wgpu::TextureAspect::All
+    };
+    let pitch = u64::from(row_pitch(texture, aspect));
+    let limit = band_bytes.min(device.limits().max_buffer_size).max(pitch);
+    let band = u32::try_from(limit / pitch).unwrap_or(u32::MAX).max(1);
+    let row =
+        (texture.width() * texture.format().block_copy_size(Some(aspect)).unwrap_or(4)) as usize;
+    let mut y = 0;
+    while y < texture.height() {
+        let rows = y..(y + band).min(texture.height());
+        let (buffer, pitch) = super::scoped(device, || {
+            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("relief:readback"),
+            });
+            let copy = encode_rows_copy(device, &mut encoder, texture, aspect, rows.clone());
+            queue.submit([encoder.finish()]);
+            copy
+        })?;
+        let bytes = map_read(device, &buffer)?;
+        let packed: Vec<u8> = bytes
+            .chunks(pitch as usize)
+            .take((rows.end - rows.start) as usize)
+            .flat_map(|r| &r[..row])
+            .copied()
+            .collect();
+        sink(rows.start, &packed);
+        y = rows.end;
+    }
+    Ok(())
+}
+
+/// Reads a whole 2-D texture back, rows tightly packed (in bands; see [`read_texture_bands`]).
 pub fn read_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     texture: &wgpu::Texture,
 ) -> Result<Vec<u8>> {
-    let mut encoder = device.create_command_encoder(&Default::default());
-    let (buffer, pitch) = encode_texture_copy(device, &mut encoder, texture);
-    queue.submit([encoder.finish()]);
-    let bytes = map_read(device, &buffer)?;
-    Ok(unpad(&bytes, pitch, texture))
+    let mut out = Vec::new();
+    read_texture_bands(device, queue, texture, MAX_READBACK_BYTES, |_, rows| {
+        out.extend_from_slice(rows)
+    })?;
+    Ok(out)
 }
 
 fn unpad(bytes: &[u8], pitch: u32, texture: &wgpu::Texture) -> Vec<u8> {
@@ -202,6 +252,91 @@ pub fn bake_blocking(
     }
 }
 
+/// MSAA samples of `relief render` images and the window.
+pub const RENDER_SAMPLES: u32 = 4;
+/// Largest image side `relief render` accepts.
+pub const MAX_IMAGE: u32 = 16384;
+/// Largest tile [`render_image`] draws at once: bigger images are drawn in tiles, so their
+/// size is bounded by host memory, not by the device's texture limit or GPU memory.
+pub const TILE: u32 = 4096;
+
+/// Draws `terrain` seen through `view` into a `width` x `height` sRGB RGBA8 image, through
+/// the same [`Terrain`] calls as the window, in tiles of at most `tile` pixels per side (each
+/// tile is the full view's frustum cropped to its pixels, so tiles join without a seam).
+/// With `timer`, returns the bake's timings and the render pass summed over the tiles.
+pub fn render_image(
+    gpu: &Gpu,
+    terrain: &mut Terrain,
+    view: &View,
+    (width, height): (u32, u32),
+    tile: u32,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    for (name, v) in [("width", width), ("height", height)] {
+        if !(1..=MAX_IMAGE).contains(&v) {
+            return Err(Error::invalid(name, v, format!("1..={MAX_IMAGE}")));
+        }
+    }
+    let tile = tile.clamp(1, gpu.device.limits().max_texture_dimension_2d);
+    let samples = terrain.targets().sample_count;
+    if width <= tile && height <= tile {
+        let target = Offscreen::new(&gpu.device, width, height, samples)?;
+        return target.render(gpu, terrain, view, timer);
+    }
+    let (tw, th) = (width.min(tile), height.min(tile));
+    let target = Offscreen::new(&gpu.device, tw, th, samples)?;
+    let mut image = vec![0u8; width as usize * height as usize * 4];
+    let mut total: Option<Timings> = None;
+    for y0 in (0..height).step_by(th as usize) {
+        for x0 in (0..width).step_by(tw as usize) {
+            let crop = crop_matrix((width, height), (x0, y0), (tw, th));
+            let tile_view = View {
+                view_proj: crop * view.view_proj,
+                ..*view
+            };
+            let (pixels, t) = target.render(gpu, terrain, &tile_view, timer)?;
+            match (&mut total, t) {
+                (None, t) => total = t,
+                (Some(sum), Some(t)) => {
+                    let r = Slot::Render as usize;
+                    sum[r] = Some(sum[r].unwrap_or(0.0) + t[r].unwrap_or(0.0));
+                }
+                (Some(_), None) => {}
+            }
+            let (cw, ch) = (
+                (width - x0).min(tw) as usize,
+                (height - y0).min(th) as usize,
+            );
+            for row in 0..ch {
+                let src = row * tw as usize * 4;
+                let dst = ((y0 as usize + row) * width as usize + x0 as usize) * 4;
+                image[dst..dst + cw * 4].copy_from_slice(&pixels[src..src + cw * 4]);
+            }
+        }
+    }
+    Ok((image, total))
+}
+
+/// The clip-space transform that makes the `size` pixels at `origin` of a `full` image fill the
+/// viewport: drawing with `crop * view_proj` into a target of `size` draws exactly those pixels.
+pub fn crop_matrix(full: (u32, u32), origin: (u32, u32), size: (u32, u32)) -> glam::Mat4 {
+    let (w, h) = (f64::from(full.0), f64::from(full.1));
+    let (x0, y0) = (f64::from(origin.0), f64::from(origin.1));
+    let (tw, th) = (f64::from(size.0), f64::from(size.1));
+    // NDC x of the tile's left and right edges, y of its top and bottom (y up in NDC).
+    let (l, r) = (2.0 * x0 / w - 1.0, 2.0 * (x0 + tw) / w - 1.0);
+    let (t, b) = (1.0 - 2.0 * y0 / h, 1.0 - 2.0 * (y0 + th) / h);
+    let (sx, sy) = (2.0 / (r - l), 2.0 / (t - b));
+    let (ox, oy) = (-(r + l) / (r - l), -(t + b) / (t - b));
+    glam::DMat4::from_cols(
+        glam::DVec4::new(sx, 0.0, 0.0, 0.0),
+        glam::DVec4::new(0.0, sy, 0.0, 0.0),
+        glam::DVec4::new(0.0, 0.0, 1.0, 0.0),
+        glam::DVec4::new(ox, oy, 0.0, 1.0),
+    )
+    .as_mat4()
+}
+
 /// An offscreen colour (+ depth, + MSAA) target that [`Terrain`] draws into exactly as it
 /// draws into a window's surface.
 pub struct Offscreen {
@@ -258,6 +393,20 @@ impl Offscreen {
                 view_formats: &[],
             })
         };
+        // Resolved colour, MSAA colour (when multisampled) and depth, 4 bytes a sample.
+        let s = u64::from(sample_count);
+        let bytes_per_pixel = 4 * (1 + if s > 1 { s } else { 0 } + s);
+        let mib = (u64::from(width) * u64::from(height) * bytes_per_pixel) >> 20;
+        let too_big = |e: Error| {
+            match e {
+            Error::Gpu(_) => Error::invalid(
+                "width x height",
+                format!("{width}x{height}"),
+                format!("a size whose {sample_count}-sample targets (~{mib} MiB) fit this device's memory: {e}"),
+            ),
+            other => other,
+        }
+        };
         super::scoped(device, || {
             let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
             let color = make(
@@ -297,6 +446,7 @@ impl Offscreen {
                 targets,
             }
         })
+        .map_err(too_big)
     }
 
     /// Begins a render pass on this target, cleared to `clear` (linear RGB).
@@ -398,20 +548,7 @@ impl Offscreen {
                 "1 to read depth back",
             ));
         }
-        let (w, h) = (self.width, self.height);
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        let (buffer, pitch) = encode_aspect_copy(
-            &gpu.device,
-            &mut encoder,
-            &self.depth_texture,
-            wgpu::TextureAspect::DepthOnly,
-        );
-        gpu.queue.submit([encoder.finish()]);
-        let bytes = map_read(&gpu.device, &buffer)?;
-        Ok(bytes
-            .chunks(pitch as usize)
-            .take(h as usize)
-            .flat_map(|row| bytemuck::cast_slice::<u8, f32>(&row[..(w * 4) as usize]).to_vec())
-            .collect())
+        let bytes = read_texture(&gpu.device, &gpu.queue, &self.depth_texture)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 }

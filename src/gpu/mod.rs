@@ -2,7 +2,7 @@
 //! host's render pass. One file per pass; this file holds what they share.
 
 pub(crate) mod bake;
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
 pub(crate) mod normals;
 pub mod raymarch;
@@ -420,16 +420,59 @@ pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<
     let validation = validation.pop();
     #[cfg(not(target_arch = "wasm32"))]
     {
-        if let Some(e) = pollster::block_on(oom).or(pollster::block_on(validation)) {
-            return Err(Error::Gpu(
-                e.to_string()
-                    .split_whitespace()
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            ));
+        // Native error scopes resolve as soon as they are popped.
+        if let Some(e) = ready_now(oom).flatten().or(ready_now(validation).flatten()) {
+            return Err(gpu_error(&e));
         }
     }
     #[cfg(target_arch = "wasm32")]
     drop((oom, validation));
     Ok(value)
+}
+
+/// A wgpu error as one short line (wgpu's own messages span several lines and can be long).
+pub(crate) fn gpu_error(e: &wgpu::Error) -> Error {
+    let kind = match e {
+        wgpu::Error::OutOfMemory { .. } => "out of GPU memory",
+        _ => "GPU error",
+    };
+    let text = e
+        .to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    Error::Gpu(format!("{kind}: {}", crate::table::shorten_to(&text, 150)))
+}
+
+/// The output of a future that is already complete, without an executor; `None` if it is not.
+#[cfg(not(target_arch = "wasm32"))]
+pub(crate) fn ready_now<F: std::future::Future>(f: F) -> Option<F::Output> {
+    let mut f = std::pin::pin!(f);
+    let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+    match f.as_mut().poll(&mut cx) {
+        std::task::Poll::Ready(v) => Some(v),
+        std::task::Poll::Pending => None,
+    }
+}
+
+/// Maps a `MAP_READ` buffer, waits, and copies its contents out.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| Error::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| Error::Readback(e.to_string()))?
+        .map_err(|e| Error::Readback(e.to_string()))?;
+    let bytes = slice
+        .get_mapped_range()
+        .map_err(|e| Error::Readback(e.to_string()))?
+        .to_vec();
+    buffer.unmap();
+    Ok(bytes)
 }

@@ -123,7 +123,7 @@ impl GpuTimer {
     /// Waits for the resolved timestamps and returns each resolved slot's duration.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn read(&self, device: &wgpu::Device) -> Result<Timings> {
-        let bytes = super::headless::map_read(device, &self.readback)?;
+        let bytes = super::map_read(device, &self.readback)?;
         durations(&bytes, self.resolved.get(), self.period_ns)
     }
 

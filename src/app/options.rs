@@ -1,0 +1,302 @@
+//! What the window and the page start with and what their URL holds: the scene (every row of
+//! [`crate::params::PARAMS`]) plus the window's own rows ([`OPTIONS`]: scroll speed, pause).
+
+use crate::error::{Error, Result};
+use crate::params::{params, TerrainParams};
+use crate::table::{Control, Kind, Param, Value};
+
+/// Default scroll speed of the animated offset, in tiles per second along x.
+pub const SCROLL_SPEED: f32 = 0.01;
+
+/// Offsets the animation reaches are kept on a grid of this many steps per tile, so the URL
+/// and the paused picture hold short, exact decimals (1e-6 tile is a thousandth of a texel at
+/// the default size: invisible).
+pub const OFFSET_STEPS: f64 = 1e6;
+
+/// What the window starts with; the web page fills it from the URL.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AppOptions {
+    /// The scene.
+    pub params: TerrainParams,
+    /// Scroll speed in tiles per second (along x; z moves at 0.4 of it).
+    pub speed: f32,
+    /// Whether the scroll is paused.
+    pub paused: bool,
+    /// Whether to measure and report GPU pass times.
+    pub timings: bool,
+}
+
+impl Default for AppOptions {
+    fn default() -> Self {
+        Self {
+            params: TerrainParams::default(),
+            speed: SCROLL_SPEED,
+            paused: false,
+            timings: false,
+        }
+    }
+}
+
+/// The window's and page's own parameters, after the scene's: the same table shape, so the
+/// CLI flags, URL keys, controls and errors come from here too.
+pub static OPTIONS: [Param<AppOptions>; 2] = [
+    Param {
+        key: "speed",
+        doc: "scroll speed in tiles per second along x (z moves at 0.4 of it)",
+        kind: Kind::Float {
+            min: -10.0,
+            max: 10.0,
+        },
+        control: Control::Slider {
+            min: -0.1,
+            max: 0.1,
+            step: 0.001,
+        },
+        get: |o: &AppOptions| Value::Float(o.speed),
+        set: |o: &mut AppOptions, v| {
+            if let Value::Float(s) = v {
+                o.speed = s;
+            }
+        },
+    },
+    Param {
+        key: "paused",
+        doc: "the scroll animation starts paused",
+        kind: Kind::Bool,
+        control: Control::Checkbox,
+        get: |o: &AppOptions| Value::Bool(o.paused),
+        set: |o: &mut AppOptions, v| {
+            if let Value::Bool(b) = v {
+                o.paused = b;
+            }
+        },
+    },
+];
+
+/// Every key the URL accepts: the scene's, then the window's.
+pub fn url_keys() -> Vec<&'static str> {
+    params()
+        .map(|p| p.key)
+        .chain(OPTIONS.iter().map(|p| p.key))
+        .collect()
+}
+
+/// One URL entry that was not applied, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ignored {
+    /// The key as written.
+    pub key: String,
+    /// Why, in one line naming the allowed values.
+    pub reason: String,
+}
+
+impl AppOptions {
+    /// Sets one key (a scene key or a window key) from text. The whole scene is checked
+    /// (octaves against frequency); on error nothing changes.
+    pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
+        let key = key.trim().replace('-', "_");
+        let mut next = *self;
+        if let Some(row) = OPTIONS.iter().find(|p| p.key == key) {
+            row.set_text(&mut next, value)?;
+        } else if crate::params::param(&key).is_some() {
+            next.params.set(&key, value)?;
+            next.params.validate()?;
+        } else {
+            return Err(Error::invalid(
+                "key",
+                crate::table::shorten(&key),
+                url_keys().join(", "),
+            ));
+        }
+        *self = next;
+        Ok(())
+    }
+
+    /// Applies a URL query string (`seed=3&octaves=6&paused=1`): every valid entry is applied,
+    /// each bad one is skipped and returned with its reason, so one typo keeps the rest.
+    pub fn apply_query(&mut self, query: &str) -> Vec<Ignored> {
+        let mut ignored = Vec::new();
+        let pairs: Vec<(String, String)> = query
+            .trim_start_matches('?')
+            .split('&')
+            .filter(|p| !p.is_empty())
+            .map(|pair| {
+                let (k, v) = pair.split_once('=').unwrap_or((pair, ""));
+                (percent_decode(k), percent_decode(v))
+            })
+            .collect();
+        // Window keys and single scene keys first, then the scene as a whole: octaves and
+        // frequency are checked together, in either order in the URL.
+        let mut scene = self.params;
+        for (k, v) in &pairs {
+            let key = k.trim().replace('-', "_");
+            let result = match OPTIONS.iter().find(|p| p.key == key) {
+                Some(row) => row.set_text(self, v),
+                None => scene.set(&key, v).map_err(|e| match e {
+                    Error::InvalidParam { name, .. } if name == "key" => {
+                        Error::invalid("key", crate::table::shorten(k), url_keys().join(", "))
+                    }
+                    other => other,
+                }),
+            };
+            if let Err(e) = result {
+                ignored.push(Ignored {
+                    key: crate::table::shorten(k),
+                    reason: e.to_string(),
+                });
+            }
+        }
+        match scene.validate() {
+            Ok(()) => self.params = scene,
+            Err(e) => {
+                // The one rule between keys: drop the octaves (keep the rest) and say why.
+                let mut fixed = scene;
+                fixed.octaves = self.params.octaves.min(max_octaves(fixed.frequency));
+                ignored.push(Ignored {
+                    key: "octaves".into(),
+                    reason: e.to_string(),
+                });
+                if fixed.validate().is_ok() {
+                    self.params = fixed;
+                }
+            }
+        }
+        ignored
+    }
+
+    /// The query string that reproduces these options (every key, in table order).
+    pub fn to_query(&self) -> String {
+        let scene = params().map(|p| (p.key, (p.get)(&self.params)));
+        let window = OPTIONS.iter().map(|p| (p.key, (p.get)(self)));
+        scene
+            .chain(window)
+            .map(|(k, v)| format!("{k}={}", url_value(v)))
+            .collect::<Vec<_>>()
+            .join("&")
+    }
+
+    /// Moves the scroll offset by `dt` seconds of animation, on the [`OFFSET_STEPS`] grid.
+    pub fn advance(&mut self, dt: f64) {
+        let s = f64::from(self.speed);
+        let step =
+            |o: f64, v: f64| ((o + v * dt).rem_euclid(1.0) * OFFSET_STEPS).round() / OFFSET_STEPS;
+        let [x, z] = self.params.offset;
+        self.params.offset = [step(x, s), step(z, 0.4 * s)].map(|v| if v >= 1.0 { 0.0 } else { v });
+    }
+
+    /// Whether the picture changes by itself (the scroll runs).
+    pub fn animating(&self) -> bool {
+        !self.paused && self.speed != 0.0
+    }
+}
+
+fn max_octaves(frequency: u32) -> u32 {
+    (1..=crate::params::MAX_OCTAVES)
+        .take_while(|o| u64::from(frequency) << (o - 1) <= u64::from(crate::params::MAX_PERIOD))
+        .last()
+        .unwrap_or(1)
+}
+
+/// A value as the URL writes it (the comma of a pair escaped).
+fn url_value(v: Value) -> String {
+    v.to_string().replace(',', "%2C")
+}
+
+fn percent_decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'%' if i + 2 < bytes.len() => {
+                let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok();
+                match hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
+                    Some(b) => {
+                        out.push(b);
+                        i += 3;
+                        continue;
+                    }
+                    None => out.push(b'%'),
+                }
+            }
+            b'+' => out.push(b' '),
+            b => out.push(b),
+        }
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn query_round_trip() {
+        let mut o = AppOptions::default();
+        let ignored = o.apply_query(
+            "?seed=42&octaves=5&height-scale=0.8&offset=0.5%2C0.25&paused=1&speed=0.02&normals=analytic",
+        );
+        assert_eq!(ignored, []);
+        assert_eq!(o.params.seed, 42);
+        assert_eq!(o.params.octaves, 5);
+        assert_eq!(o.params.height_scale, 0.8);
+        assert_eq!(o.params.offset, [0.5, 0.25]);
+        assert_eq!(o.params.normals, crate::NormalMethod::Analytic);
+        assert!(o.paused);
+        let mut p = AppOptions::default();
+        assert_eq!(p.apply_query(&o.to_query()), []);
+        assert_eq!(o, p);
+    }
+
+    #[test]
+    fn bad_entries_are_skipped_and_reported_the_rest_applied() {
+        let mut o = AppOptions::default();
+        let ignored =
+            o.apply_query("seed=abc&octaves=999&grid=64&colour=red&paused=maybe&gain=0.3");
+        let keys: Vec<&str> = ignored.iter().map(|i| i.key.as_str()).collect();
+        assert_eq!(keys, ["seed", "octaves", "colour", "paused"]);
+        assert_eq!((o.params.grid, o.params.gain), (64, 0.3), "valid keys kept");
+        assert_eq!(o.params.seed, TerrainParams::default().seed);
+        assert!(!o.paused);
+        let unknown = &ignored[2].reason;
+        assert!(
+            unknown.contains("speed") && unknown.contains("paused"),
+            "{unknown}"
+        );
+        assert!(
+            ignored[3].reason.contains("1 or 0"),
+            "{}",
+            ignored[3].reason
+        );
+        assert!(ignored[0].reason.contains("abc") && ignored[0].reason.contains("0..=4294967295"));
+    }
+
+    #[test]
+    fn octaves_and_frequency_are_checked_together_in_any_order() {
+        let mut o = AppOptions::default();
+        assert_eq!(o.apply_query("octaves=12&frequency=16"), []);
+        assert_eq!((o.params.octaves, o.params.frequency), (12, 16));
+        let mut o = AppOptions::default();
+        let ignored = o.apply_query("frequency=1024&octaves=16");
+        assert_eq!(ignored.len(), 1, "{ignored:?}");
+        assert_eq!(o.params.frequency, 1024);
+        o.params.validate().unwrap();
+    }
+
+    #[test]
+    fn animated_offsets_stay_short_decimals() {
+        let mut o = AppOptions::default();
+        for _ in 0..1000 {
+            o.advance(1.0 / 61.0);
+        }
+        for v in o.params.offset {
+            let text = v.to_string();
+            assert!(text.len() <= 8, "{text}");
+        }
+        let q = o.to_query();
+        let mut p = AppOptions::default();
+        p.apply_query(&q);
+        assert_eq!(p.params.offset, o.params.offset);
+    }
+}

@@ -1,0 +1,247 @@
+//! The window's GPU state: surface, device, depth and MSAA targets, and the terrain, hosted
+//! exactly as any embedding app would host relief (the surface texture is the target).
+
+use super::{UserEvent, DEPTH_FORMAT, SAMPLES};
+use crate::camera::View;
+use crate::error::{Error, Result};
+use crate::gpu::timing::{GpuTimer, Slot};
+use crate::gpu::Targets;
+use crate::params::TerrainParams;
+use crate::Terrain;
+use std::sync::Arc;
+use winit::event_loop::EventLoopProxy;
+use winit::window::Window;
+
+/// What one call of [`State::draw`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Drawn {
+    /// A frame was presented.
+    Frame,
+    /// Nothing to draw into (minimised, or the surface was busy or reconfigured).
+    Skipped,
+}
+
+/// The window's GPU state.
+pub struct State {
+    pub(crate) window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) config: wgpu::SurfaceConfiguration,
+    depth: Option<wgpu::TextureView>,
+    msaa: Option<wgpu::TextureView>,
+    pub(crate) terrain: Terrain,
+    pub(crate) timer: Option<GpuTimer>,
+    // The instance and adapter the surface and device came from, kept for the window's life.
+    _instance: wgpu::Instance,
+    _adapter: wgpu::Adapter,
+    /// "name (backend)" of the adapter.
+    pub describe: String,
+}
+
+impl State {
+    /// Creates the surface, device and terrain for `window`. wgpu errors nobody captures and
+    /// the loss of the device reach the app through `proxy` as events.
+    pub async fn new(
+        window: Arc<Window>,
+        instance: wgpu::Instance,
+        params: TerrainParams,
+        timings: bool,
+        proxy: EventLoopProxy<UserEvent>,
+    ) -> Result<Self> {
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| Error::Device(format!("cannot create a surface: {e}")))?;
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: Some(&surface),
+                apply_limit_buckets: false,
+            })
+            .await
+            .map_err(|e| Error::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let describe = if info.name.is_empty() {
+            format!("{:?}", info.backend)
+        } else {
+            format!("{} ({:?})", info.name, info.backend)
+        };
+        log::info!("window on {describe}");
+        let (device, queue) = crate::gpu::request_device(&adapter).await?;
+        // A window has no Result to return per frame: wgpu's errors are logged instead of the
+        // default handler's panic, and a lost device is reported to the app to recover from.
+        device.on_uncaptured_error(Arc::new(|e| log::error!("wgpu: {e}")));
+        let lost = proxy.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            let why = match reason {
+                wgpu::DeviceLostReason::Destroyed => "destroyed".to_owned(),
+                _ => format!("{reason:?}"),
+            };
+            let message = message.split_whitespace().collect::<Vec<_>>().join(" ");
+            let _ = lost.send_event(UserEvent::DeviceLost(format!("{why}: {message}")));
+        });
+        let caps = surface.get_capabilities(&adapter);
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| f.is_srgb())
+            .or_else(|| caps.formats.first().copied())
+            .ok_or_else(|| Error::Device("the surface supports no format".into()))?;
+        // Browsers offer only non-sRGB canvas formats. sRGB views of them are allowed, but
+        // headless Chromium (SwiftShader) wrote through such views without encoding; relief
+        // encodes in its shader instead when the target is not sRGB, which works everywhere.
+        let size = window.inner_size();
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            width: size.width.max(1),
+            height: size.height.max(1),
+            present_mode: wgpu::PresentMode::AutoVsync,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: caps
+                .alpha_modes
+                .first()
+                .copied()
+                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            view_formats: vec![],
+            color_space: wgpu::SurfaceColorSpace::Auto,
+        };
+        let targets = Targets {
+            color_format: format,
+            depth_format: Some(DEPTH_FORMAT),
+            sample_count: SAMPLES,
+        };
+        let terrain = Terrain::new(&device, &queue, targets, params)?;
+        let timer = if timings {
+            GpuTimer::new(&device, &queue)
+        } else {
+            None
+        };
+        let mut state = State {
+            window,
+            surface,
+            device,
+            queue,
+            config,
+            depth: None,
+            msaa: None,
+            terrain,
+            timer,
+            _instance: instance,
+            _adapter: adapter,
+            describe,
+        };
+        state.resize(size.width, size.height);
+        Ok(state)
+    }
+
+    /// Reconfigures for a new window size; a 0 x 0 (minimised) window is left unconfigured.
+    pub fn resize(&mut self, width: u32, height: u32) {
+        if width == 0 || height == 0 {
+            self.depth = None;
+            self.msaa = None;
+            return;
+        }
+        let max = self.device.limits().max_texture_dimension_2d;
+        self.config.width = width.min(max);
+        self.config.height = height.min(max);
+        self.surface.configure(&self.device, &self.config);
+        let make = |label, format| {
+            self.device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: self.config.width,
+                        height: self.config.height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: SAMPLES,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        self.depth = Some(make("relief:window:depth", DEPTH_FORMAT));
+        self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", self.config.format));
+    }
+
+    /// Width over height of the surface.
+    pub fn aspect(&self) -> f32 {
+        self.config.width as f32 / self.config.height.max(1) as f32
+    }
+
+    /// Draws one frame seen through `view`; with `timed`, writes GPU timestamps and resolves
+    /// them for [`GpuTimer::read_async`].
+    pub fn draw(&mut self, view: &View, timed: bool) -> Drawn {
+        let Some(depth) = &self.depth else {
+            return Drawn::Skipped; // minimised
+        };
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                // The surface changed under us (resize, display change): configure it again
+                // and draw the next frame.
+                log::warn!("window surface lost or outdated: reconfiguring it");
+                self.surface.configure(&self.device, &self.config);
+                self.window.request_redraw();
+                return Drawn::Skipped;
+            }
+            _ => return Drawn::Skipped,
+        };
+        let target_view = frame.texture.create_view(&Default::default());
+        let timer = self.timer.as_ref().filter(|_| timed);
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("relief:window:frame"),
+            });
+        self.terrain.encode_bake_timed(&mut encoder, timer);
+        self.terrain.prepare(&self.queue, view);
+        {
+            let (target, resolve_target) = match &self.msaa {
+                Some(msaa) => (msaa, Some(&target_view)),
+                None => (&target_view, None),
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("relief:window:pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(crate::gpu::clear_color(
+                            self.terrain.shading().sky_color,
+                            self.config.format,
+                        )),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.map(|t| t.render_writes(Slot::Render)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.terrain.render(&mut pass);
+        }
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        self.queue.submit([encoder.finish()]);
+        self.window.pre_present_notify();
+        self.queue.present(frame);
+        Drawn::Frame
+    }
+}

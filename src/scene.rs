@@ -1,0 +1,253 @@
+//! Scene files (TOML): every key of [`crate::params::PARAMS`], all optional, plus the `[bake]`
+//! record `relief bake` writes. Reading and writing both go through the parameter table, so a
+//! new parameter is a new key here without any code in this file.
+
+use crate::error::{Error, Result};
+use crate::params::{param, params, SceneParam, TerrainParams};
+use crate::table::{self, Kind, Value};
+use std::path::Path;
+
+/// What `relief bake` records beside its images: how to turn 16-bit heights back into heights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeInfo {
+    /// Normalised height that 0 in height.png stands for.
+    pub height_min: f64,
+    /// Normalised height that 65535 in height.png stands for (equal to `height_min` when the
+    /// bake is flat; height.png is then all 0).
+    pub height_max: f64,
+}
+
+/// Longest scene file read: far more than any real one, small enough to refuse a wrong file
+/// (an image, a log) with one line instead of parsing megabytes.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// The keys of a scene file with their values as text, in file order, each checked for its
+/// key and TOML type but not yet for its range (so a flag can still override a bad value).
+pub type Entries = Vec<(&'static SceneParam, String)>;
+
+/// Reads a scene file's entries (see [`Entries`]); errors name the file.
+pub fn read_entries(path: &Path) -> Result<Entries> {
+    let fail = |message: String| Error::SceneFile {
+        path: path.to_owned(),
+        message,
+    };
+    let len = std::fs::metadata(path)
+        .map_err(|e| fail(e.to_string()))?
+        .len();
+    if len > MAX_SCENE_BYTES {
+        return Err(fail(format!(
+            "{len} bytes; a scene file is at most {MAX_SCENE_BYTES}"
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    parse_entries(&text).map_err(|e| match e {
+        Error::SceneFile { message, .. } => fail(message),
+        other => fail(other.to_string()),
+    })
+}
+
+/// Parses scene-file text into its entries (see [`Entries`]).
+pub fn parse_entries(text: &str) -> Result<Entries> {
+    let fail = |message: String| Error::SceneFile {
+        path: Default::default(),
+        message,
+    };
+    let mut table: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| fail(table::shorten_to(&one_line(&e.to_string()), 160)))?;
+    if let Some(bake) = table.remove("bake") {
+        // Only checked for shape: a scene's bake record does not change what is baked.
+        BakeInfo::from_toml(&bake)?;
+    }
+    let mut out = Vec::with_capacity(table.len());
+    for (key, value) in &table {
+        let row = param(key).filter(|r| r.key == key).ok_or_else(|| {
+            Error::invalid(
+                "key",
+                table::shorten(key),
+                TerrainParams::keys().collect::<Vec<_>>().join(", "),
+            )
+        })?;
+        let text = toml_text(row.kind, value).ok_or_else(|| row.invalid(&toml_shown(value)))?;
+        out.push((row, text));
+    }
+    Ok(out)
+}
+
+impl TerrainParams {
+    /// Reads a scene file. Missing keys take defaults; unknown keys, wrong types and values
+    /// out of range are errors naming the file, the key and the allowed range.
+    pub fn from_scene_file(path: &Path) -> Result<Self> {
+        let entries = read_entries(path)?;
+        Self::from_entries(&entries).map_err(|e| Error::SceneFile {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Parses scene-file text (errors carry an empty path).
+    pub fn from_scene_str(text: &str) -> Result<Self> {
+        Self::from_entries(&parse_entries(text)?)
+    }
+
+    fn from_entries(entries: &Entries) -> Result<Self> {
+        let mut p = TerrainParams::default();
+        for (row, text) in entries {
+            row.set_text(&mut p, text)?;
+        }
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The scene file for these parameters, with the height range of a bake if given.
+    pub fn to_scene_string(&self, bake: Option<BakeInfo>) -> String {
+        let mut out =
+            String::from("# relief scene file: `relief --scene FILE` reproduces this terrain.\n");
+        for row in params() {
+            out.push_str(&format!("{} = {}\n", row.key, toml_value((row.get)(self))));
+        }
+        if let Some(b) = bake {
+            out.push_str("\n# Normalised heights that 0 and 65535 in height.png stand for.\n");
+            out.push_str("[bake]\n");
+            out.push_str(&format!("height_min = {:?}\n", b.height_min));
+            out.push_str(&format!("height_max = {:?}\n", b.height_max));
+        }
+        out
+    }
+}
+
+impl BakeInfo {
+    fn from_toml(value: &toml::Value) -> Result<Self> {
+        let bad = |what: &str| Error::SceneFile {
+            path: Default::default(),
+            message: format!("[bake]: {what} (expected height_min and height_max numbers)"),
+        };
+        let t = value.as_table().ok_or_else(|| bad("not a table"))?;
+        if let Some(k) = t.keys().find(|k| *k != "height_min" && *k != "height_max") {
+            return Err(bad(&format!("unknown key {}", table::shorten(k))));
+        }
+        let num = |k: &str| {
+            t.get(k)
+                .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
+                .ok_or_else(|| bad(&format!("{k} missing or not a number")))
+        };
+        Ok(Self {
+            height_min: num("height_min")?,
+            height_max: num("height_max")?,
+        })
+    }
+}
+
+/// The text a TOML value stands for as a value of `kind`, if its TOML type fits the kind.
+fn toml_text(kind: Kind, v: &toml::Value) -> Option<String> {
+    use toml::Value as T;
+    Some(match (kind, v) {
+        (Kind::Int { .. }, T::Integer(i)) => i.to_string(),
+        (Kind::Float { .. }, T::Float(f)) => f.to_string(),
+        (Kind::Float { .. }, T::Integer(i)) => i.to_string(),
+        (Kind::Choice(_), T::String(s)) => s.clone(),
+        (Kind::Bool, T::Boolean(b)) => b.to_string(),
+        (Kind::Pair { .. }, T::Array(a)) if a.len() == 2 => {
+            let n = |v: &T| v.as_float().or(v.as_integer().map(|i| i as f64));
+            format!("{},{}", n(&a[0])?, n(&a[1])?)
+        }
+        _ => return None,
+    })
+}
+
+/// A TOML value as an error shows it (short).
+fn toml_shown(v: &toml::Value) -> String {
+    let s = match v {
+        toml::Value::String(s) => format!("{s:?}"),
+        toml::Value::Table(_) => "a table".to_owned(),
+        toml::Value::Array(a) => format!("an array of {}", a.len()),
+        other => format!("{other:?}"),
+    };
+    table::shorten(&s)
+}
+
+/// A value as TOML text: floats always with a point or exponent, pairs as arrays.
+fn toml_value(v: Value) -> String {
+    match v {
+        Value::Int(i) => i.to_string(),
+        Value::Float(f) => format!("{f:?}"),
+        Value::Pair([x, y]) => format!("[{x:?}, {y:?}]"),
+        Value::Choice(s) => format!("{s:?}"),
+        Value::Bool(b) => b.to_string(),
+    }
+}
+
+fn one_line(s: &str) -> String {
+    s.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.chars().all(|c| c == '|' || c == '^' || c == ' '))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scene_round_trip_and_unknown_keys() {
+        let p = TerrainParams {
+            seed: 99,
+            offset: [0.25, -3.5],
+            gain: 0.3,
+            normals: crate::NormalMethod::Analytic,
+            ..Default::default()
+        };
+        let info = BakeInfo {
+            height_min: 0.1,
+            height_max: 0.9,
+        };
+        let text = p.to_scene_string(Some(info));
+        assert!(text.contains("normals = \"analytic\""), "{text}");
+        assert!(text.contains("gain = 0.3\n"), "{text}");
+        let q = TerrainParams::from_scene_str(&text).unwrap();
+        assert_eq!(q, p);
+        assert_eq!(q.to_scene_string(Some(info)), text, "byte for byte");
+        let err = TerrainParams::from_scene_str("seed = 1\ncolour = 3\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("colour"), "{err}");
+        let err = TerrainParams::from_scene_str("seed = \"x\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("seed") && err.contains("0..=4294967295"),
+            "{err}"
+        );
+        assert!(!err.contains('\n'));
+        let err = TerrainParams::from_scene_str("octaves = 3.0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("octaves"), "{err}");
+        // Integers are fine where numbers are expected.
+        let p = TerrainParams::from_scene_str("gain = 1\noffset = [1, 2]\n").unwrap();
+        assert_eq!((p.gain, p.offset), (1.0, [1.0, 2.0]));
+    }
+
+    #[test]
+    fn huge_keys_and_values_give_short_errors() {
+        let big = "x".repeat(1_000_000);
+        for text in [
+            format!("{big} = 1\n"),
+            format!("normals = \"{big}\"\n"),
+            format!("seed = {}\n", "9".repeat(100_000)),
+            format!("seed = [{}]\n", "1,".repeat(100_000)),
+            format!("seed = \"{big}\n"),
+        ] {
+            let err = TerrainParams::from_scene_str(&text)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.len() <= 200 && !err.contains('\n'),
+                "{} chars: {}",
+                err.len(),
+                &err[..err.len().min(300)]
+            );
+        }
+    }
+}
