@@ -72,7 +72,10 @@ impl OrbitCamera {
 
     /// Rotates by a drag of (dx, dy) radians.
     pub fn rotate(&mut self, dx: f32, dy: f32) {
-        self.yaw -= dx;
+        if !(dx.is_finite() && dy.is_finite()) {
+            return;
+        }
+        self.yaw = (self.yaw - dx).rem_euclid(std::f32::consts::TAU);
         self.pitch = (self.pitch + dy).clamp(-Self::MAX_PITCH, Self::MAX_PITCH);
     }
 

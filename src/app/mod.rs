@@ -52,6 +52,14 @@ pub enum UserEvent {
     Timings(u64, Result<Timings>),
     /// The GPU device was lost (the reason, in words).
     DeviceLost(String),
+    /// wgpu reported an error nobody captured.
+    GpuError(String),
+}
+
+/// Whether a wgpu error is only the echo of a lost device (which is reported on its own).
+fn after_loss(message: &str) -> bool {
+    let m = message.to_ascii_lowercase();
+    m.contains("destroyed") || m.contains("lost")
 }
 
 /// Frame statistics reported to the front end.
@@ -147,8 +155,8 @@ fn one_line(message: &str) -> String {
 pub struct Script {
     /// Close the window after this many seconds.
     pub exit_after: Option<f64>,
-    /// Destroy the GPU device after this many frames, as a driver reset would (tests the
-    /// recovery).
+    /// Destroy the GPU device after this many frames drawn on it, as a driver reset would
+    /// (tests the recovery, and giving up when the new device is lost too).
     pub lose_device_after: Option<u64>,
 }
 
@@ -171,6 +179,7 @@ pub struct App {
     window: Option<Arc<Window>>,
     starting: bool,
     recoveries: u32,
+    frames_on_device: u64,
     error: Option<Error>,
     report: Box<dyn Report>,
     proxy: EventLoopProxy<UserEvent>,
@@ -203,6 +212,7 @@ impl App {
             window: None,
             starting: false,
             recoveries: 0,
+            frames_on_device: 0,
             error: None,
             report,
             proxy,
@@ -287,6 +297,7 @@ impl App {
 
     fn ready(&mut self, state: State) {
         self.starting = false;
+        self.frames_on_device = 0;
         self.stats.timestamps = state.timer.is_some();
         self.timing_in_flight = false;
         if self.options.timings && state.timer.is_none() {
@@ -357,7 +368,18 @@ impl App {
                 .last_timed
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
-        if s.draw(&view, timed) == Drawn::Frame {
+        let drawn = s.draw(&view, timed);
+        if drawn == Drawn::SurfaceLost {
+            self.report
+                .warn("the window's surface was lost; creating it again");
+            if let Err(e) = s.recreate_surface() {
+                // A surface that cannot be made again on this device: start over with a new
+                // device (the same path as a lost device).
+                let _ = self.proxy.send_event(UserEvent::DeviceLost(e.to_string()));
+            }
+            return;
+        }
+        if drawn == Drawn::Frame {
             self.stats.frames += 1;
             self.last_frame = now;
             if timed {
@@ -371,12 +393,14 @@ impl App {
                     });
                 }
             }
+            self.frames_on_device += 1;
             if self
                 .script
                 .lose_device_after
-                .is_some_and(|n| self.stats.frames == n)
+                .is_some_and(|n| self.frames_on_device == n)
             {
                 s.device.destroy();
+                let _ = s.device.poll(wgpu::PollType::Poll);
             }
         }
         if self.options.animating() {
@@ -493,10 +517,13 @@ impl ApplicationHandler<UserEvent> for App {
                             .unwrap_or_default();
                         self.report.stats(&describe, &self.stats, true);
                     }
+                    Err(e) if after_loss(&e.to_string()) => log::debug!("timings: {e}"),
                     Err(e) => self.report.warn(&format!("timings: {e}")),
                 }
             }
             UserEvent::DeviceLost(reason) => self.device_lost(event_loop, reason),
+            UserEvent::GpuError(e) if after_loss(&e) => log::debug!("wgpu: {e}"),
+            UserEvent::GpuError(e) => self.report.warn(&format!("wgpu: {e}")),
         }
     }
 

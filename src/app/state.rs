@@ -19,6 +19,8 @@ pub enum Drawn {
     Frame,
     /// Nothing to draw into (minimised, or the surface was busy or reconfigured).
     Skipped,
+    /// The window's surface is lost: it must be created again ([`State::recreate_surface`]).
+    SurfaceLost,
 }
 
 /// The window's GPU state.
@@ -71,7 +73,10 @@ impl State {
         let (device, queue) = crate::gpu::request_device(&adapter).await?;
         // A window has no Result to return per frame: wgpu's errors are logged instead of the
         // default handler's panic, and a lost device is reported to the app to recover from.
-        device.on_uncaptured_error(Arc::new(|e| log::error!("wgpu: {e}")));
+        let errors = proxy.clone();
+        device.on_uncaptured_error(Arc::new(move |e| {
+            let _ = errors.send_event(UserEvent::GpuError(e.to_string()));
+        }));
         let lost = proxy.clone();
         device.set_device_lost_callback(move |reason, message| {
             let why = match reason {
@@ -79,7 +84,12 @@ impl State {
                 _ => format!("{reason:?}"),
             };
             let message = message.split_whitespace().collect::<Vec<_>>().join(" ");
-            let _ = lost.send_event(UserEvent::DeviceLost(format!("{why}: {message}")));
+            let text = if message.is_empty() {
+                why
+            } else {
+                format!("{why}: {message}")
+            };
+            let _ = lost.send_event(UserEvent::DeviceLost(text));
         });
         let caps = surface.get_capabilities(&adapter);
         let format = caps
@@ -170,6 +180,18 @@ impl State {
         self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", self.config.format));
     }
 
+    /// Creates the window's surface again (after [`Drawn::SurfaceLost`]) on the same device.
+    pub fn recreate_surface(&mut self) -> Result<()> {
+        self.surface = self
+            ._instance
+            .create_surface(self.window.clone())
+            .map_err(|e| Error::Device(format!("cannot create a surface again: {e}")))?;
+        let (w, h) = (self.config.width, self.config.height);
+        self.resize(w, h);
+        self.window.request_redraw();
+        Ok(())
+    }
+
     /// Width over height of the surface.
     pub fn aspect(&self) -> f32 {
         self.config.width as f32 / self.config.height.max(1) as f32
@@ -184,15 +206,26 @@ impl State {
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+            wgpu::CurrentSurfaceTexture::Outdated => {
                 // The surface changed under us (resize, display change): configure it again
                 // and draw the next frame.
-                log::warn!("window surface lost or outdated: reconfiguring it");
                 self.surface.configure(&self.device, &self.config);
                 self.window.request_redraw();
                 return Drawn::Skipped;
             }
-            _ => return Drawn::Skipped,
+            wgpu::CurrentSurfaceTexture::Lost => return Drawn::SurfaceLost,
+            wgpu::CurrentSurfaceTexture::Timeout => {
+                self.window.request_redraw();
+                return Drawn::Skipped;
+            }
+            wgpu::CurrentSurfaceTexture::Occluded => return Drawn::Skipped,
+            _ => {
+                // A validation error (reported through the error handler) or a lost device:
+                // poll so that a loss reaches the app and it can recover.
+                #[cfg(not(target_arch = "wasm32"))]
+                let _ = self.device.poll(wgpu::PollType::Poll);
+                return Drawn::Skipped;
+            }
         };
         let target_view = frame.texture.create_view(&Default::default());
         let timer = self.timer.as_ref().filter(|_| timed);
@@ -242,6 +275,9 @@ impl State {
         self.queue.submit([encoder.finish()]);
         self.window.pre_present_notify();
         self.queue.present(frame);
+        // Natively, callbacks (timestamp reads, device loss) run inside poll.
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = self.device.poll(wgpu::PollType::Poll);
         Drawn::Frame
     }
 }

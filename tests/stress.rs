@@ -1,0 +1,266 @@
+//! Reliability under load, with relief's core alone: 1,000 random parameter changes (valid and
+//! invalid, drawn from the parameter table, so new parameters join by themselves) and camera
+//! moves, each followed by a frame. Checks: no panic, no wgpu validation error, every invalid
+//! change refused with the typed error and the previous state intact, and memory back to its
+//! starting level afterwards, measured outside relief's own bookkeeping: wgpu's internal
+//! resource counters and the process's resident memory (lavapipe's GPU memory is process
+//! memory).
+
+use relief::table::{Kind, Value};
+use relief::{wgpu, Error, OrbitCamera, Terrain, TerrainParams};
+use std::sync::{Arc, Mutex};
+
+/// xorshift64*: a fixed, portable sequence, so a failure reproduces.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n.max(1)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A random value of a row's kind; ranges are capped where a large value only costs time.
+fn random_valid(rng: &mut Rng, kind: Kind) -> Value {
+    match kind {
+        Kind::Int { min, max } => {
+            let span = u64::from(max - min).min(160) + 1;
+            Value::Int(min + rng.below(span) as u32)
+        }
+        Kind::Float { min, max } => Value::Float(min + (max - min) * rng.unit() as f32),
+        Kind::Pair { .. } => Value::Pair([(rng.unit() - 0.5) * 2e6, (rng.unit() - 0.5) * 2e6]),
+        Kind::Choice(names) => Value::Choice(names[rng.below(names.len() as u64) as usize]),
+        Kind::Bool => Value::Bool(rng.below(2) == 1),
+    }
+}
+
+/// A value of a row's kind outside its range, where one exists.
+fn random_invalid(rng: &mut Rng, kind: Kind) -> Option<Value> {
+    match kind {
+        Kind::Int { min, max } => match (min.checked_sub(1), max.checked_add(1)) {
+            (Some(v), _) if rng.below(2) == 0 => Some(Value::Int(v)),
+            (_, Some(v)) => Some(Value::Int(v + rng.below(1000) as u32)),
+            (Some(v), None) => Some(Value::Int(v)),
+            (None, None) => None,
+        },
+        Kind::Float { max, .. } => Some(Value::Float(
+            [f32::NAN, f32::INFINITY, max * 2.0 + 1.0, -1e30][rng.below(4) as usize],
+        )),
+        Kind::Pair { .. } => Some(Value::Pair([f64::NAN, 0.0])),
+        Kind::Choice(_) | Kind::Bool => None,
+    }
+}
+
+fn resident_bytes() -> u64 {
+    let statm = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
+    let pages: u64 = statm
+        .split_whitespace()
+        .nth(1)
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0);
+    pages * 4096
+}
+
+/// The resource counts wgpu keeps: buffers, texture views, bind groups, buffer and texture
+/// memory. (Not `textures`: wgpu 30's Vulkan backend subtracts on every destroyed texture but
+/// adds only for some, so that count drifts below zero without any leak; texture memory is
+/// counted on both sides and stands in for it.)
+fn counts(device: &wgpu::Device) -> [isize; 5] {
+    let c = device.get_internal_counters().hal;
+    [
+        c.buffers.read(),
+        c.texture_views.read(),
+        c.bind_groups.read(),
+        c.buffer_memory.read(),
+        c.texture_memory.read(),
+    ]
+}
+
+#[test]
+fn a_thousand_random_changes_leave_no_trace() {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
+        "the stress test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
+    );
+    let (device, queue) =
+        pollster::block_on(adapter.request_device(&Default::default())).expect("device");
+    let uncaptured = Arc::new(Mutex::new(Vec::<String>::new()));
+    let sink = uncaptured.clone();
+    device.on_uncaptured_error(Arc::new(move |e| sink.lock().unwrap().push(e.to_string())));
+
+    let targets = relief::Targets {
+        color_format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        depth_format: Some(wgpu::TextureFormat::Depth32Float),
+        sample_count: 1,
+    };
+    let make = |format, label| {
+        device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: 64,
+                    height: 48,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&Default::default())
+    };
+    let color = make(targets.color_format, "stress:color");
+    let depth = make(wgpu::TextureFormat::Depth32Float, "stress:depth");
+    let start = TerrainParams {
+        size: 64,
+        grid: 32,
+        ..Default::default()
+    };
+    let mut terrain = Terrain::new(&device, &queue, targets, start).unwrap();
+    let mut camera = OrbitCamera::default();
+
+    let frame = |terrain: &mut Terrain, camera: &OrbitCamera| {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        terrain.encode_bake(&mut encoder);
+        terrain.prepare(&queue, &camera.view(64.0 / 48.0));
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("stress:pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &color,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: Default::default(),
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            terrain.render(&mut pass);
+        }
+        queue.submit([encoder.finish()]);
+        pollster::block_on(scope.pop())
+    };
+    let settle = || {
+        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    };
+
+    let mut rng = Rng(0x5eed_1234_abcd_0001);
+    let rows: Vec<_> = relief::params::params().collect();
+    let run = |steps: usize, terrain: &mut Terrain, camera: &mut OrbitCamera, rng: &mut Rng| {
+        let (mut refused, mut applied, mut moves) = (0, 0, 0);
+        for step in 0..steps {
+            match rng.below(3) {
+                0 => {
+                    let row = rows[rng.below(rows.len() as u64) as usize];
+                    let mut next = *terrain.params();
+                    (row.set)(&mut next, random_valid(rng, row.kind));
+                    let before = *terrain.params();
+                    match terrain.set_params(&device, &queue, next) {
+                        Ok(_) => {
+                            applied += 1;
+                            assert_eq!(terrain.params(), &next);
+                        }
+                        Err(e) => {
+                            // Only the rule between parameters may refuse a value in range.
+                            assert!(next.validate().is_err(), "step {step}: {e}");
+                            assert!(matches!(e, Error::InvalidParam { .. }), "{e}");
+                            assert_eq!(terrain.params(), &before);
+                            refused += 1;
+                        }
+                    }
+                }
+                1 => {
+                    let row = rows[rng.below(rows.len() as u64) as usize];
+                    let Some(bad) = random_invalid(rng, row.kind) else {
+                        continue;
+                    };
+                    let mut next = *terrain.params();
+                    (row.set)(&mut next, bad);
+                    let before = *terrain.params();
+                    let e = terrain.set_params(&device, &queue, next).unwrap_err();
+                    match &e {
+                        Error::InvalidParam { name, .. } => {
+                            assert_eq!(name, row.key, "step {step}: {e}")
+                        }
+                        other => panic!("step {step}: {other}"),
+                    }
+                    assert_eq!(terrain.params(), &before, "a refused change left a trace");
+                    refused += 1;
+                }
+                _ => {
+                    let wild = [f32::NAN, f32::INFINITY, 1e9, -3.0, 0.4, 12.0];
+                    let pick = |rng: &mut Rng| wild[rng.below(wild.len() as u64) as usize];
+                    camera.rotate(pick(rng), pick(rng));
+                    camera.zoom(pick(rng));
+                    let params = *terrain.params();
+                    camera.keep_above(|x, z| relief::height_at(&params, x, z), 0.05);
+                    assert!(camera.view(1.3).view_proj.is_finite(), "{camera:?}");
+                    moves += 1;
+                }
+            }
+            if let Some(e) = frame(terrain, camera) {
+                panic!("step {step}: wgpu validation error: {e}");
+            }
+            if step % 16 == 0 {
+                settle();
+            }
+        }
+        settle();
+        (applied, refused, moves)
+    };
+
+    // Warm up (allocator pools, pipeline caches), then measure from a known state.
+    run(100, &mut terrain, &mut camera, &mut rng);
+    terrain.set_params(&device, &queue, start).unwrap();
+    assert!(frame(&mut terrain, &camera).is_none());
+    settle();
+    let counts0 = counts(&device);
+    let rss0 = resident_bytes();
+
+    let (applied, refused, moves) = run(1000, &mut terrain, &mut camera, &mut rng);
+    eprintln!("1000 steps: {applied} changes applied, {refused} refused, {moves} camera moves");
+    assert!(applied > 200 && refused > 200 && moves > 200);
+
+    terrain.set_params(&device, &queue, start).unwrap();
+    assert!(frame(&mut terrain, &camera).is_none());
+    settle();
+    let counts1 = counts(&device);
+    let rss1 = resident_bytes();
+    eprintln!(
+        "buffers, views, bind groups, buffer bytes, texture bytes: {counts0:?} -> {counts1:?}; \
+         resident {} -> {} MiB",
+        rss0 >> 20,
+        rss1 >> 20
+    );
+    assert_eq!(counts1, counts0, "GPU resources leaked");
+    // Allocators keep some freed memory; a leak of one 64² bake per step would be ~50 MiB.
+    assert!(
+        rss1 <= rss0 + (24 << 20),
+        "resident memory grew from {} to {} MiB",
+        rss0 >> 20,
+        rss1 >> 20
+    );
+    let errors = uncaptured.lock().unwrap();
+    assert!(errors.is_empty(), "uncaptured wgpu errors: {errors:?}");
+}
