@@ -1,12 +1,13 @@
-// Page glue: checks for WebGPU, loads the wasm build of relief, and wires the controls and
-// the shareable URL to it. All drawing is relief's own (Rust, through wgpu): no WebGPU here
-// beyond the availability check.
+// Page glue: checks for WebGPU, loads the wasm build of relief, builds the controls from
+// relief's parameter table, and keeps the controls and the shareable URL in step with it. All
+// drawing is relief's own (Rust, through wgpu): no WebGPU here beyond the availability check.
 
 const $ = (sel) => document.querySelector(sel);
 
 function noWebGPU(reason) {
   $("#no-webgpu-reason").textContent = reason;
   $("#no-webgpu").hidden = false;
+  $("#controls").hidden = true;
   $("#relief").hidden = true;
   document.body.dataset.error = "no-webgpu";
 }
@@ -17,8 +18,35 @@ function parseQuery(q) {
   return out;
 }
 
+// One control per row of relief's table (key, doc, control, range, choices).
+function buildControls(rows) {
+  const box = $("#params");
+  for (const row of rows) {
+    if (row.control === "none") continue;
+    const label = document.createElement("label");
+    label.title = `${row.doc} (allowed: ${row.allowed})`;
+    label.append(row.key.replace(/_/g, " "));
+    let input;
+    if (row.control === "select") {
+      input = document.createElement("select");
+      for (const c of row.choices) input.append(new Option(c, c));
+    } else {
+      input = document.createElement("input");
+      input.type = { slider: "range", number: "number", checkbox: "checkbox" }[row.control];
+      if (row.control !== "checkbox") {
+        input.min = row.min; input.max = row.max; input.step = row.step;
+      }
+    }
+    if (row.control === "checkbox") label.classList.add("checkbox");
+    input.dataset.key = row.key;
+    label.append(input);
+    if (row.control === "slider") label.append(document.createElement("output"));
+    box.append(label);
+  }
+}
+
 function showValues(values) {
-  for (const input of document.querySelectorAll("#controls [data-key]")) {
+  for (const input of document.querySelectorAll("#params [data-key]")) {
     const v = values[input.dataset.key];
     if (v === undefined) continue;
     if (input.type === "checkbox") input.checked = v === "1" || v === "true";
@@ -47,23 +75,31 @@ async function main() {
     relief = await import("./pkg/relief.js");
     await relief.default();
   } catch (e) {
-    $("#error").textContent = `could not load relief's wasm (build it with web/build.sh): ${e}`;
+    $("#fatal").textContent = `could not load relief's wasm (build it with web/build.sh): ${e}`;
+    $("#fatal").hidden = false;
     document.body.dataset.error = "load";
     return;
   }
 
+  buildControls(JSON.parse(relief.params_table()));
   showValues(parseQuery(relief.default_query()));
   $("#controls").hidden = false;
-  relief.start("relief", location.search);
 
-  // relief reports the options it runs with; the URL and the controls follow them.
+  // relief reports the options in force; the URL and the controls follow them (a refused
+  // value puts the control back to the value in force).
   window.addEventListener("relief-options", () => {
     const query = document.body.dataset.query || "";
     showValues(parseQuery(query));
     history.replaceState(null, "", `${location.pathname}?${query}`);
   });
+  window.addEventListener("relief-stopped", () => {
+    $("#controls").classList.add("stopped");
+    $("#params").disabled = true;
+    for (const b of document.querySelectorAll(".buttons button")) b.disabled = true;
+  });
+  relief.start("relief", location.search);
 
-  for (const input of document.querySelectorAll("#controls [data-key]")) {
+  for (const input of document.querySelectorAll("#params [data-key]")) {
     const send = () => {
       const value = input.type === "checkbox" ? (input.checked ? "1" : "0") : input.value;
       relief.set_param(input.dataset.key, value);
@@ -85,7 +121,8 @@ async function main() {
 }
 
 main().catch((e) => {
-  $("#error").textContent = String(e);
+  $("#fatal").textContent = String(e);
+  $("#fatal").hidden = false;
   document.body.dataset.error = "exception";
   console.error(e);
 });

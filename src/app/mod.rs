@@ -143,6 +143,7 @@ impl Report for Terminal {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn one_line(message: &str) -> String {
     crate::table::shorten_to(
         &message.split_whitespace().collect::<Vec<_>>().join(" "),
@@ -179,6 +180,7 @@ pub struct App {
     window: Option<Arc<Window>>,
     starting: bool,
     recoveries: u32,
+    lost_reason: String,
     frames_on_device: u64,
     error: Option<Error>,
     report: Box<dyn Report>,
@@ -212,6 +214,7 @@ impl App {
             window: None,
             starting: false,
             recoveries: 0,
+            lost_reason: String::new(),
             frames_on_device: 0,
             error: None,
             report,
@@ -234,7 +237,15 @@ impl App {
 
     /// Something visible changed: draw a frame (only then; see the module docs).
     fn changed(&mut self) {
-        self.stats.idle = false;
+        if self.stats.idle {
+            self.stats.idle = false;
+            let describe = self
+                .state
+                .as_ref()
+                .map(|s| s.describe.clone())
+                .unwrap_or_default();
+            self.report.stats(&describe, &self.stats, false);
+        }
         if let Some(w) = &self.window {
             w.request_redraw();
         }
@@ -282,9 +293,9 @@ impl App {
             self.proxy.clone(),
         );
         #[cfg(not(target_arch = "wasm32"))]
-        match pollster::block_on(future) {
-            Ok(state) => self.ready(state),
-            Err(e) => self.fail(event_loop, e),
+        {
+            let result = pollster::block_on(future).map(Box::new);
+            self.user_event(event_loop, UserEvent::Ready(result));
         }
         #[cfg(target_arch = "wasm32")]
         {
@@ -332,6 +343,7 @@ impl App {
             );
         }
         self.recoveries += 1;
+        self.lost_reason = reason.clone();
         self.report.warn(&format!(
             "GPU device lost ({reason}); creating a new device, textures and pipelines"
         ));
@@ -497,6 +509,13 @@ impl ApplicationHandler<UserEvent> for App {
     fn user_event(&mut self, event_loop: &ActiveEventLoop, event: UserEvent) {
         match event {
             UserEvent::Ready(Ok(state)) => self.ready(*state),
+            UserEvent::Ready(Err(e)) if self.recoveries > 0 => self.fail(
+                event_loop,
+                Error::DeviceLost(format!(
+                    "{}; a new device could not be made ({e}), so relief stopped",
+                    self.lost_reason
+                )),
+            ),
             UserEvent::Ready(Err(e)) => self.fail(event_loop, e),
             UserEvent::Set(k, v) => {
                 if let Err(e) = self.set(&k, &v) {

@@ -12,6 +12,35 @@ use std::sync::Arc;
 use winit::event_loop::EventLoopProxy;
 use winit::window::Window;
 
+/// Posts events to the app from wgpu's callbacks, which must be `Send`. Natively that is the
+/// event loop's proxy; on the web the app's events are not `Send`, so they go through the
+/// page's own proxy (`web::send`).
+#[derive(Clone)]
+struct Poster {
+    #[cfg(not(target_arch = "wasm32"))]
+    proxy: EventLoopProxy<UserEvent>,
+}
+
+impl Poster {
+    #[cfg_attr(
+        target_arch = "wasm32",
+        expect(unused_variables, reason = "the web uses its own proxy")
+    )]
+    fn new(proxy: &EventLoopProxy<UserEvent>) -> Self {
+        Self {
+            #[cfg(not(target_arch = "wasm32"))]
+            proxy: proxy.clone(),
+        }
+    }
+
+    fn send(&self, event: UserEvent) {
+        #[cfg(not(target_arch = "wasm32"))]
+        let _ = self.proxy.send_event(event);
+        #[cfg(target_arch = "wasm32")]
+        super::web::send(event);
+    }
+}
+
 /// What one call of [`State::draw`] did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Drawn {
@@ -73,23 +102,24 @@ impl State {
         let (device, queue) = crate::gpu::request_device(&adapter).await?;
         // A window has no Result to return per frame: wgpu's errors are logged instead of the
         // default handler's panic, and a lost device is reported to the app to recover from.
-        let errors = proxy.clone();
+        let errors = Poster::new(&proxy);
         device.on_uncaptured_error(Arc::new(move |e| {
-            let _ = errors.send_event(UserEvent::GpuError(e.to_string()));
+            errors.send(UserEvent::GpuError(e.to_string()));
         }));
-        let lost = proxy.clone();
+        let lost = Poster::new(&proxy);
         device.set_device_lost_callback(move |reason, message| {
             let why = match reason {
                 wgpu::DeviceLostReason::Destroyed => "destroyed".to_owned(),
                 _ => format!("{reason:?}"),
             };
             let message = message.split_whitespace().collect::<Vec<_>>().join(" ");
+            let message = message.trim_end_matches('.');
             let text = if message.is_empty() {
                 why
             } else {
                 format!("{why}: {message}")
             };
-            let _ = lost.send_event(UserEvent::DeviceLost(text));
+            lost.send(UserEvent::DeviceLost(text));
         });
         let caps = surface.get_capabilities(&adapter);
         let format = caps

@@ -2,7 +2,7 @@
 //! canvas; `set_param` is how the page's controls reach it; `params_table` tells the page which
 //! controls to build (from the same tables as the CLI's flags). The app reports back through
 //! the DOM: `#readout` (frame rate, GPU times, idle), `#notice` (what the URL could not set,
-//! recoveries), `#error`, and `data-frames` / `data-query` / `data-error` on `<body>` plus a
+//! recoveries), `#error` (and `#fatal`, a banner, when relief stopped), and `data-frames` / `data-query` / `data-error` on `<body>` plus a
 //! `relief-options` event when the parameters change.
 
 use super::{format_timings, url_keys, App, AppOptions, Report, Script, Stats, UserEvent, OPTIONS};
@@ -65,14 +65,19 @@ pub fn start(canvas_id: &str, query: &str) -> Result<(), JsValue> {
     Ok(())
 }
 
+/// Sends an event to the app from code that cannot hold the proxy.
+pub(crate) fn send(event: UserEvent) {
+    PROXY.with(|p| {
+        if let Some(p) = p.borrow().as_ref() {
+            let _ = p.send_event(event);
+        }
+    });
+}
+
 /// Changes one parameter (scene keys as in scene files, plus the window's keys).
 #[wasm_bindgen]
 pub fn set_param(key: &str, value: &str) {
-    PROXY.with(|p| {
-        if let Some(p) = p.borrow().as_ref() {
-            let _ = p.send_event(UserEvent::Set(key.to_owned(), value.to_owned()));
-        }
-    });
+    send(UserEvent::Set(key.to_owned(), value.to_owned()));
 }
 
 /// The default options as a query string, so the page's controls start from relief's defaults.
@@ -213,7 +218,13 @@ impl Report for Page {
 
     fn fatal(&mut self, message: &str) {
         log::error!("{message}");
+        let message = &crate::table::shorten_to(&format!("relief stopped: {message}"), 200);
         set_text("error", message);
+        // Also as a banner over the canvas, where a small screen cannot scroll it away.
+        if let Some(e) = document().and_then(|d| d.get_element_by_id("fatal")) {
+            e.set_text_content(Some(message));
+            let _ = e.remove_attribute("hidden");
+        }
         set_text("readout", "stopped");
         set_body_data("error", message);
         if let Some(w) = web_sys::window() {

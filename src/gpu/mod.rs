@@ -431,6 +431,7 @@ pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<
 }
 
 /// A wgpu error as one short line (wgpu's own messages span several lines and can be long).
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn gpu_error(e: &wgpu::Error) -> Error {
     let kind = match e {
         wgpu::Error::OutOfMemory { .. } => "out of GPU memory",

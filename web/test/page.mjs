@@ -4,7 +4,13 @@
 //   2. no console errors;
 //   3. changing a control (the seed) re-bakes and changes the picture, and the URL it leaves
 //      reproduces that picture in a fresh page;
-//   4. without --enable-unsafe-webgpu the page shows the no-WebGPU message.
+//   4. a URL with bad entries keeps the good ones and lists the bad ones on the page, a refused
+//      control value snaps back, a paused page stops drawing and says it is idle, animated
+//      offsets stay short in the URL, the buttons fit the panel, and every row of relief's
+//      parameter table reaches the page through its URL;
+//   5. without --enable-unsafe-webgpu the page shows the no-WebGPU message, panel hidden;
+//   6. with WebGPU that cannot present (no SwiftShader flags), the device is lost on the first
+//      frame: the page says so, tries a new device once, then says it stopped.
 // Usage: node web/test/page.mjs (from the repository root, after web/build.sh).
 
 import { chromium } from "playwright-core";
@@ -67,11 +73,14 @@ async function openPage(browser, url, errors) {
   return page;
 }
 
-// Frames are counted on <body data-frames>; wait until `n` more have been drawn.
+// Frames are counted on <body data-frames>; wait until `n` more have been drawn, or the page
+// has gone idle (a paused page draws only when something changes, and says so at once).
 async function waitFrames(page, n) {
   const now = Number(await page.evaluate(() => document.body.dataset.frames || 0));
-  await page.waitForFunction((t) => Number(document.body.dataset.frames || 0) >= t, now + n,
-    { timeout: 120000 });
+  await page.waitForFunction(([t, n]) => {
+    const f = Number(document.body.dataset.frames || 0);
+    return f >= t + n || (f >= 1 && document.body.dataset.idle === "1");
+  }, [now, n], { timeout: 120000 });
 }
 
 // A screenshot of the canvas alone: the controls that float over it are hidden meanwhile.
@@ -119,12 +128,76 @@ await withBrowser(webgpu, async (browser) => {
     const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
     await full.goto(`${base}/index.html?paused=1`);
     await waitFrames(full, 3);
-    await full.waitForFunction(() => /fps/.test(document.querySelector("#readout").textContent), null,
+    await full.waitForFunction(() => /fps|idle/.test(document.querySelector("#readout").textContent), null,
       { timeout: 60000 });
     await full.screenshot({ path: path.join(out, "page-full.png") });
   } catch (e) {
     console.log(`note: no full-page screenshot (${String(e).split("\n")[0]})`);
   }
+});
+
+await withBrowser(webgpu, async (browser) => {
+  // Bad URL entries: the rest applies, the bad ones are listed with their reasons.
+  const errors = [];
+  const page = await openPage(browser,
+    `${base}/index.html?seed=abc&octaves=999&grid=64&colour=red&paused=maybe&size=64`, errors);
+  await waitFrames(page, 1);
+  const query = await page.evaluate(() => document.body.dataset.query || "");
+  check(query.includes("grid=64") && query.includes("size=64"), `valid URL keys kept (${query.slice(0, 80)})`);
+  const notice = await page.locator("#notice").innerText();
+  check(["seed", "octaves", "colour", "paused"].every((k) => notice.includes(k))
+    && notice.includes("speed") && notice.includes("abc") && await page.locator("#notice").isVisible(),
+    `bad URL entries listed on the page: "${notice.slice(0, 160)}..."`);
+
+  // A refused value snaps the control back to the value in force, and says why.
+  await page.fill('input[data-key="seed"]', "99999999999");
+  await page.dispatchEvent('input[data-key="seed"]', "change");
+  await page.waitForFunction(() => document.querySelector("#error").textContent.includes("seed"), null,
+    { timeout: 30000 });
+  const seedField = await page.inputValue('input[data-key="seed"]');
+  check(seedField === "7", `a refused seed snaps back to the seed in force (field: ${seedField})`);
+
+  // The buttons fit inside the panel.
+  const panel = await page.locator("#controls").boundingBox();
+  let fits = true;
+  for (const b of await page.locator(".buttons button").all()) {
+    const r = await b.boundingBox();
+    fits &&= r.x >= panel.x && r.x + r.width <= panel.x + panel.width + 0.5;
+  }
+  check(fits, "the buttons fit inside the panel");
+
+  // Animated: offsets in the URL stay short decimals; paused: drawing stops and the readout says so.
+  await waitFrames(page, 3);
+  await page.evaluate(() => { document.querySelector('input[data-key="paused"]').click(); });
+  await page.waitForFunction(() => /paused=1/.test(document.body.dataset.query || ""), null, { timeout: 30000 });
+  const offset = new URLSearchParams(new URL(page.url()).search).get("offset") || "";
+  check(/^[0-9.]{1,8},[0-9.]{1,8}$/.test(offset), `URL offset is short (${offset})`);
+  await page.waitForFunction(() => document.body.dataset.idle === "1", null, { timeout: 30000 });
+  const before = Number(await page.evaluate(() => document.body.dataset.frames));
+  await page.waitForTimeout(1500);
+  const after = Number(await page.evaluate(() => document.body.dataset.frames));
+  const readout = await page.locator("#readout").innerText();
+  check(after === before && /idle/.test(readout), `paused and untouched: no frames drawn (${before} -> ${after}), readout "${readout}"`);
+  await page.fill('input[data-key="gain"]', "0.3");
+  await page.dispatchEvent('input[data-key="gain"]', "input");
+  await page.waitForFunction((b) => Number(document.body.dataset.frames) > b, after, { timeout: 60000 });
+  check(true, "a control change draws again");
+
+  // Every row of the table reaches the page through its URL.
+  const rows = await page.evaluate(async () => JSON.parse((await import("./web/pkg/relief.js")).params_table()));
+  const alt = (r) => r.control === "checkbox" ? "1" : r.control === "select" ? r.choices[r.choices.length - 1]
+    : r.control === "none" ? "0.5%2C0.25" : String(r.min + r.step);
+  const url = rows.map((r) => `${r.key}=${alt(r)}`).join("&");
+  const all = await openPage(browser, `${base}/index.html?${url}`, errors);
+  await waitFrames(all, 1);
+  const q = await all.evaluate(() => document.body.dataset.query || "");
+  const missing = rows.filter((r) => !q.split("&").includes(`${r.key}=${alt(r)}`)).map((r) => r.key);
+  const controls = rows.filter((r) => r.control !== "none");
+  const present = await all.evaluate((keys) => keys.filter((k) => document.querySelector(`[data-key="${k}"]`)).length,
+    controls.map((r) => r.key));
+  check(missing.length === 0 && present === controls.length,
+    `all ${rows.length} table rows set through the URL (missing: ${missing.join(",") || "none"}), ${present} controls`);
+  check(errors.length === 0, `no console errors (${errors.join(" | ") || "none"})`);
 });
 
 await withBrowser([], async (browser) => {
@@ -136,7 +209,22 @@ await withBrowser([], async (browser) => {
   check(/WebGPU is not available/.test(text) && /requestAdapter|navigator\.gpu/.test(text),
     `without WebGPU the page says so: "${text.split("\n").filter((l) => l.trim()).slice(0, 2).join(" / ")}"`);
   check(errors.length === 0, `no uncaught errors without WebGPU (${errors.join(" | ") || "none"})`);
+  check(!(await page.locator("#controls").isVisible()), "the controls panel stays hidden over the message");
   await page.screenshot({ path: path.join(out, "no-webgpu.png") });
+});
+
+// WebGPU that cannot present to a canvas (here: no SwiftShader flags): the device is lost on
+// the first frame. The page must say so, try a new device once, then say it stopped.
+await withBrowser(["--enable-unsafe-webgpu"], async (browser) => {
+  const errors = [];
+  const page = await openPage(browser, `${base}/index.html?paused=1&size=64`, errors);
+  await page.waitForFunction(() => document.body.dataset.error, null, { timeout: 120000 });
+  const said = await page.locator("#error").innerText();
+  const readout = await page.locator("#readout").innerText();
+  check(/lost/i.test(said) && /stopped/.test(said) && await page.locator("#fatal").isVisible(),
+    `a lost device is shown on the page: "${said.slice(0, 150)}"`);
+  check(!/fps/.test(readout), `the readout does not pretend to draw ("${readout}")`);
+  await page.screenshot({ path: path.join(out, "device-lost.png") });
 });
 
 server.close();
