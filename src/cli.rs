@@ -163,6 +163,50 @@ const EXIT_AFTER: Kind = Kind::Float {
     max: 86400.0,
 };
 
+/// The README's table of options: one row per parameter of both tables (flag, meaning,
+/// default, allowed, where it applies), so the docs are checked against the code.
+pub fn options_markdown() -> String {
+    fn row<T>(p: &Param<T>, default: &T, applies: &str) -> String {
+        let value = match p.kind {
+            Kind::Bool => String::new(),
+            Kind::Pair { .. } => " X,Y".to_owned(),
+            Kind::Choice(_) => " NAME".to_owned(),
+            Kind::Int { .. } => " N".to_owned(),
+            Kind::Float { .. } => " X".to_owned(),
+        };
+        let default = match p.kind {
+            Kind::Bool => "off".to_owned(),
+            _ => (p.get)(default).to_string(),
+        };
+        let allowed = match p.kind {
+            Kind::Bool => "a flag (in URLs: 1 or 0)".to_owned(),
+            _ => p.allowed(),
+        };
+        format!(
+            "| `--{}{value}` | {} | {default} | {allowed} | {applies} |\n",
+            p.flag(),
+            p.doc,
+        )
+    }
+    let mut out = String::from(
+        "| option | meaning | default | allowed | applies to |\n| --- | --- | --- | --- | --- |\n",
+    );
+    let scene = TerrainParams::default();
+    for p in params() {
+        let applies = if BENCH_SWEEPS.contains(&p.key) {
+            "window, render, bake, scene files, URL (bench sweeps it)"
+        } else {
+            "every command, scene files, URL"
+        };
+        out.push_str(&row(p, &scene, applies));
+    }
+    let app = AppOptions::default();
+    for p in &OPTIONS {
+        out.push_str(&row(p, &app, "window, URL"));
+    }
+    out
+}
+
 /// Runs the CLI on `args` and returns the process exit status.
 pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {
     let matches = match command().try_get_matches_from(args) {

@@ -159,7 +159,7 @@ impl Kind {
         match *self {
             Kind::Int { min, max } => format!("{min}..={max}"),
             Kind::Float { min, max } => format!("{min}..={max}"),
-            Kind::Pair { max } => format!("X,Y with |X|, |Y| <= {max:.0}"),
+            Kind::Pair { max } => format!("X,Y, each within ±{max:.0}"),
             Kind::Choice(names) => match names {
                 [] => String::new(),
                 [one] => (*one).to_owned(),

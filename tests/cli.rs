@@ -694,3 +694,14 @@ fn a_flat_bake_says_what_its_range_means() {
     let bake = table["bake"].as_table().unwrap();
     assert_eq!(bake["height_min"].as_float(), bake["height_max"].as_float());
 }
+
+#[test]
+fn the_readme_lists_every_option_as_the_code_has_it() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let table = relief::cli::options_markdown();
+    assert!(
+        readme.contains(&table),
+        "README.md's option table is out of date; it should read:\n{table}"
+    );
+}
