@@ -203,6 +203,13 @@ fn bad_scene_files_and_outputs_exit_2() {
         &["bake", "--out-dir", file.to_str().unwrap()],
         &["--out-dir", "a-file", "folder"],
     );
+    // A refused bake creates no folder (one was once left behind, empty).
+    let fresh = dir.join("fresh");
+    rejects(
+        &["bake", "--out-dir", fresh.join("sub").to_str().unwrap(), "--size", "0"],
+        &["--size"],
+    );
+    assert!(!fresh.exists(), "a refused bake created its output folder");
     // Scene files with a megabyte key or value, or a huge file.
     let big = "x".repeat(1_000_000);
     for (name, text) in [
