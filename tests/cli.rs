@@ -206,7 +206,13 @@ fn bad_scene_files_and_outputs_exit_2() {
     // A refused bake creates no folder (one was once left behind, empty).
     let fresh = dir.join("fresh");
     rejects(
-        &["bake", "--out-dir", fresh.join("sub").to_str().unwrap(), "--size", "0"],
+        &[
+            "bake",
+            "--out-dir",
+            fresh.join("sub").to_str().unwrap(),
+            "--size",
+            "0",
+        ],
         &["--size"],
     );
     assert!(!fresh.exists(), "a refused bake created its output folder");
