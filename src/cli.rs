@@ -28,11 +28,15 @@ const IMAGE_SIDE: Kind = Kind::Int {
 pub const BENCH_SWEEPS: [&str; 3] = ["size", "grid", "normals"];
 
 fn flag_help<T>(p: &Param<T>, default: &T) -> String {
-    let default = match p.kind {
-        Kind::Bool => String::new(),
-        _ => format!(" [default: {}]", (p.get)(default)),
-    };
-    format!("{}{default} [allowed: {}]", p.doc, p.allowed())
+    match p.kind {
+        Kind::Bool => p.doc.to_owned(),
+        _ => format!(
+            "{} [default: {}] [allowed: {}]",
+            p.doc,
+            (p.get)(default),
+            p.allowed()
+        ),
+    }
 }
 
 fn value_arg<T>(p: &Param<T>, default: &T) -> Arg {

@@ -143,13 +143,14 @@ fn toml_text(kind: Kind, v: &toml::Value) -> Option<String> {
     use toml::Value as T;
     Some(match (kind, v) {
         (Kind::Int { .. }, T::Integer(i)) => i.to_string(),
-        (Kind::Float { .. }, T::Float(f)) => f.to_string(),
+        // Debug keeps huge and tiny numbers short (1e300, not 301 digits) and reads back exactly.
+        (Kind::Float { .. }, T::Float(f)) => format!("{f:?}"),
         (Kind::Float { .. }, T::Integer(i)) => i.to_string(),
         (Kind::Choice(_), T::String(s)) => s.clone(),
         (Kind::Bool, T::Boolean(b)) => b.to_string(),
         (Kind::Pair { .. }, T::Array(a)) if a.len() == 2 => {
             let n = |v: &T| v.as_float().or(v.as_integer().map(|i| i as f64));
-            format!("{},{}", n(&a[0])?, n(&a[1])?)
+            format!("{:?},{:?}", n(&a[0])?, n(&a[1])?)
         }
         _ => return None,
     })
@@ -249,5 +250,9 @@ mod tests {
                 &err[..err.len().min(300)]
             );
         }
+        let err = TerrainParams::from_scene_str("offset = [1e300, 0]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("1e300") && err.len() < 120, "{err}");
     }
 }
