@@ -280,7 +280,7 @@ impl Reference {
         let color = headless::read_texture(&gpu.device, &gpu.queue, &big.color)?;
         let color = metrics::downsample_srgb(&color, options.width * ss, options.height * ss, ss);
         let distance = headless::read_texture(&gpu.device, &gpu.queue, &small.distance)?;
-        let distance: Vec<f32> = bytemuck::cast_slice(&distance).to_vec();
+        let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&distance);
         if distance.iter().any(|&d| d == -2.0) {
             log::warn!("the reference left some rays unresolved");
         }
@@ -474,7 +474,7 @@ fn ray_row(
         .collect();
     let image = headless::read_texture(&gpu.device, &gpu.queue, &rm.color)?;
     let distance = headless::read_texture(&gpu.device, &gpu.queue, &rm.distance)?;
-    let distance: &[f32] = bytemuck::cast_slice(&distance);
+    let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&distance);
     let (flip_mean, flip_p99) = metrics::image_error(
         &reference.rgb,
         &metrics::rgb(&image),
@@ -491,7 +491,7 @@ fn ray_row(
         normals: None,
         flip_mean,
         flip_p99,
-        coverage: metrics::coverage(&reference.distance, distance, DEPTH_TOLERANCE),
+        coverage: metrics::coverage(&reference.distance, &distance, DEPTH_TOLERANCE),
     })
 }
 
@@ -674,6 +674,9 @@ fn load_font() -> Result<&'static [u8]> {
 /// Tick values for a log axis over `lo..hi`: 1-2-5 per decade, or every integer multiple when
 /// the range is too short for that to give `min_count` ticks.
 pub fn log_ticks(lo: f64, hi: f64, min_count: usize) -> Vec<f64> {
+    if !(lo > 0.0 && hi >= lo && hi.is_finite()) {
+        return Vec::new();
+    }
     let mantissas: [&[f64]; 3] = [
         &[1.0, 2.0, 5.0],
         &[1.0, 2.0, 3.0, 5.0, 7.0],
@@ -715,7 +718,11 @@ where
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let pts: Vec<(f64, f64, &Row)> = rows
         .iter()
-        .filter_map(|r| r.frame_gpu_ms().map(|t| (t, r.flip_mean.max(1e-4), r)))
+        // Log axes: a zero time (a timestamp that did not advance) sits at the axis' floor.
+        .filter_map(|r| {
+            r.frame_gpu_ms()
+                .map(|t| (t.max(1e-4), r.flip_mean.max(1e-4), r))
+        })
         .collect();
     if pts.is_empty() {
         return Err("no timed rows to chart (does the adapter have timestamp queries?)".into());
@@ -773,7 +780,7 @@ where
         .filter_map(|i| {
             rows[i]
                 .frame_gpu_ms()
-                .map(|t| (t, rows[i].flip_mean.max(1e-4)))
+                .map(|t| (t.max(1e-4), rows[i].flip_mean.max(1e-4)))
         })
         .collect();
     chart
@@ -843,5 +850,9 @@ mod tests {
         let y = log_ticks(0.03, 0.09, 4);
         assert!(y.len() >= 4, "{y:?}");
         assert_eq!(tick_label(y[0]), "0.03");
+        assert!(
+            log_ticks(0.0, 10.0, 4).is_empty(),
+            "no ticks, and no endless loop, at 0"
+        );
     }
 }

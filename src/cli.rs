@@ -226,9 +226,21 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
     }
 }
 
-/// `error: ` and the message on one line of at most [`MAX_ERROR_CHARS`] characters.
+/// `error: ` and the message on one line of at most [`MAX_ERROR_CHARS`] characters. A longer
+/// message loses its middle: its start names the parameter, its end the allowed values.
 pub fn error_line(message: &str) -> String {
-    table::shorten_to(&format!("error: {message}"), MAX_ERROR_CHARS)
+    let line: String = format!("error: {message}")
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    let n = line.chars().count();
+    if n <= MAX_ERROR_CHARS {
+        return line;
+    }
+    let keep = MAX_ERROR_CHARS - 5;
+    let head: String = line.chars().take(keep / 2).collect();
+    let tail: String = line.chars().skip(n - (keep - keep / 2)).collect();
+    format!("{head} ... {tail}")
 }
 
 fn clap_error(e: clap::Error) -> i32 {
@@ -438,7 +450,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         _ => Run::Window,
     };
     if !matches!(run, Run::Window) {
-        refuse_flags(m, name, &window_only, "it sets the window's animation")?;
+        refuse_flags(m, name, &window_only, "it applies to the window only")?;
     }
     if matches!(run, Run::Bench { .. }) {
         refuse_flags(
@@ -558,9 +570,10 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
         &textures.terrain,
         headless::MAX_READBACK_BYTES,
         |_, rows| {
-            for rg in bytemuck::cast_slice::<u8, [f32; 2]>(rows) {
-                heights.push(rg[0]);
-                color.extend(albedo_srgb8(&shading, rg[1]));
+            for rg in rows.chunks_exact(8) {
+                let f = |i: usize| f32::from_ne_bytes([rg[i], rg[i + 1], rg[i + 2], rg[i + 3]]);
+                heights.push(f(0));
+                color.extend(albedo_srgb8(&shading, f(4)));
             }
         },
     )?;
@@ -571,9 +584,10 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
         &textures.normals,
         headless::MAX_READBACK_BYTES,
         |_, rows| {
-            for n in bytemuck::cast_slice::<u8, [u16; 4]>(rows) {
+            for n in rows.chunks_exact(8) {
                 normal.extend([0, 1, 2].map(|i| {
-                    let c = half::f16::from_bits(n[i]).to_f32();
+                    let bits = u16::from_ne_bytes([n[2 * i], n[2 * i + 1]]);
+                    let c = half::f16::from_bits(bits).to_f32();
                     ((c * 0.5 + 0.5) * 255.0).round().clamp(0.0, 255.0) as u8
                 }));
             }
@@ -689,6 +703,9 @@ fn create_dirs(dir: &Path) -> Result<Option<PathBuf>> {
 
 /// Checks before any GPU work that `dir` is, or can become, a folder.
 fn check_out_dir(dir: &Path) -> Result<()> {
+    if dir.as_os_str().is_empty() {
+        return Err(Error::invalid("--out-dir", "\"\"", "a folder path"));
+    }
     let mut p = Some(dir);
     while let Some(d) = p {
         if d.as_os_str().is_empty() {
@@ -703,12 +720,12 @@ fn check_out_dir(dir: &Path) -> Result<()> {
             } else {
                 format!(
                     "a path whose parents are folders; {} is a file",
-                    table::shorten(&d.display().to_string())
+                    crate::error::short_path(d)
                 )
             };
             return Err(Error::invalid(
                 "--out-dir",
-                table::shorten(&dir.display().to_string()),
+                crate::error::short_path(dir),
                 what,
             ));
         }
@@ -809,7 +826,7 @@ fn check_png_path(out: &Path) -> Result<()> {
     if !is_png {
         return Err(Error::invalid(
             "--out",
-            table::shorten(&out.display().to_string()),
+            crate::error::short_path(out),
             "a path ending in .png",
         ));
     }
@@ -894,5 +911,10 @@ mod tests {
     fn error_lines_are_short() {
         let long = error_line(&"x".repeat(100_000));
         assert!(long.chars().count() <= MAX_ERROR_CHARS, "{}", long.len());
+        let line = error_line(&format!(
+            "invalid seed: {} (allowed: 0..=9)",
+            "9".repeat(300)
+        ));
+        assert!(line.starts_with("error: invalid seed") && line.ends_with("(allowed: 0..=9)"));
     }
 }

@@ -18,7 +18,7 @@ pub enum Error {
         allowed: String,
     },
     /// A scene file could not be read or parsed.
-    #[error("scene file {path}: {message}")]
+    #[error("scene file {}: {message}", short_path(path))]
     SceneFile {
         /// The file.
         path: PathBuf,
@@ -26,7 +26,7 @@ pub enum Error {
         message: String,
     },
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{}: {source}", short_path(path))]
     Io {
         /// The file or folder.
         path: PathBuf,
@@ -72,6 +72,18 @@ impl Error {
             path: path.into(),
             source,
         }
+    }
+}
+
+/// A path as an error line shows it: whole when short, else its last 40 characters (the file
+/// name survives), so a long path cannot push the reason off a one-line message.
+pub fn short_path(path: &std::path::Path) -> String {
+    let text = path.display().to_string();
+    let n = text.chars().count();
+    if n <= 40 {
+        text
+    } else {
+        format!("...{}", text.chars().skip(n - 40).collect::<String>())
     }
 }
 

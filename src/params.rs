@@ -500,12 +500,13 @@ impl TerrainParams {
     }
 }
 
-/// Largest octave count allowed with `frequency`.
-fn max_octaves_for(frequency: u32) -> u32 {
+/// Largest octave count allowed with `frequency` (at least 1: frequency is at most
+/// [`MAX_FREQUENCY`], whose first octave is always allowed).
+pub fn max_octaves_for(frequency: u32) -> u32 {
     (1..=MAX_OCTAVES)
         .take_while(|o| u64::from(frequency) << (o - 1) <= u64::from(MAX_PERIOD))
         .last()
-        .unwrap_or(0)
+        .unwrap_or(1)
 }
 
 #[cfg(test)]

@@ -234,7 +234,7 @@ pub fn number(x: f64) -> String {
 }
 
 /// Most characters of a user's value an error line repeats.
-pub const MAX_VALUE_CHARS: usize = 40;
+pub const MAX_VALUE_CHARS: usize = 32;
 
 /// `text` cut to [`MAX_VALUE_CHARS`] characters (with `...` and the total length) and on one
 /// line, so an error about a megabyte value is still one short line.
@@ -322,7 +322,10 @@ mod tests {
         assert_eq!(number(-1.5e-20), "-1.5e-20");
         let long = "x".repeat(1_000_000);
         let s = shorten(&long);
-        assert!(s.len() < 60 && s.contains("1000000 chars"), "{s}");
+        assert!(
+            s.chars().count() <= MAX_VALUE_CHARS && s.contains("1000000 chars"),
+            "{s}"
+        );
         assert_eq!(shorten("a\nb"), "a b");
     }
 }

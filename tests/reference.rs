@@ -25,7 +25,7 @@ fn cast(
     gpu.queue.submit([encoder.finish()]);
     let color = read_texture(&gpu.device, &gpu.queue, &rm.color).unwrap();
     let distance = read_texture(&gpu.device, &gpu.queue, &rm.distance).unwrap();
-    (color, bytemuck::cast_slice(&distance).to_vec())
+    (color, bytemuck::pod_collect_to_vec(&distance))
 }
 
 #[test]

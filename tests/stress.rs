@@ -59,14 +59,15 @@ fn random_invalid(rng: &mut Rng, kind: Kind) -> Option<Value> {
     }
 }
 
-fn resident_bytes() -> u64 {
-    let statm = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
+/// Resident memory of this process (Linux: /proc/self/statm; lavapipe, where CI runs, is on
+/// Linux). Elsewhere the check is skipped, and says so.
+fn resident_bytes() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
     let pages: u64 = statm
         .split_whitespace()
         .nth(1)
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(0);
-    pages * 4096
+        .and_then(|v| v.parse().ok())?;
+    Some(pages * 4096)
 }
 
 /// The resource counts wgpu keeps: buffers, texture views, bind groups, buffer and texture
@@ -249,18 +250,20 @@ fn a_thousand_random_changes_leave_no_trace() {
     let rss1 = resident_bytes();
     eprintln!(
         "buffers, views, bind groups, buffer bytes, texture bytes: {counts0:?} -> {counts1:?}; \
-         resident {} -> {} MiB",
-        rss0 >> 20,
-        rss1 >> 20
+         resident {rss0:?} -> {rss1:?} bytes"
     );
     assert_eq!(counts1, counts0, "GPU resources leaked");
-    // Allocators keep some freed memory; a leak of one 64² bake per step would be ~50 MiB.
-    assert!(
-        rss1 <= rss0 + (24 << 20),
-        "resident memory grew from {} to {} MiB",
-        rss0 >> 20,
-        rss1 >> 20
-    );
+    match (rss0, rss1) {
+        // Allocators keep some freed memory; a leak of one 64² bake per step would be ~50 MiB.
+        (Some(a), Some(b)) => assert!(
+            b <= a + (24 << 20),
+            "resident memory grew from {} to {} MiB",
+            a >> 20,
+            b >> 20
+        ),
+        _ if cfg!(target_os = "linux") => panic!("/proc/self/statm is unreadable"),
+        _ => eprintln!("resident memory not measured on this OS"),
+    }
     let errors = uncaptured.lock().unwrap();
     assert!(errors.is_empty(), "uncaptured wgpu errors: {errors:?}");
 }

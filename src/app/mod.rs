@@ -135,7 +135,7 @@ impl Report for Terminal {
         eprintln!("{}", one_line(message));
     }
     fn warn(&mut self, message: &str) {
-        eprintln!("warning: {}", one_line(message));
+        eprintln!("{}", one_line(&format!("warning: {message}")));
     }
     fn frame(&mut self, _stats: &Stats) {}
     fn fatal(&mut self, _message: &str) {
@@ -180,6 +180,7 @@ pub struct App {
     window: Option<Arc<Window>>,
     starting: bool,
     recoveries: u32,
+    surface_losses: u32,
     lost_reason: String,
     frames_on_device: u64,
     error: Option<Error>,
@@ -214,6 +215,7 @@ impl App {
             window: None,
             starting: false,
             recoveries: 0,
+            surface_losses: 0,
             lost_reason: String::new(),
             frames_on_device: 0,
             error: None,
@@ -306,8 +308,18 @@ impl App {
         }
     }
 
-    fn ready(&mut self, state: State) {
+    fn ready(&mut self, mut state: State) {
         self.starting = false;
+        // What changed while the device was being made (a control, the page's URL) applies
+        // now; what this device cannot do (a size over its limit) is said and undone.
+        if let Err(e) = state
+            .terrain
+            .set_params(&state.device, &state.queue, self.options.params)
+        {
+            self.report
+                .warn(&format!("{e}; using size {}", state.terrain.params().size));
+            self.options.params = *state.terrain.params();
+        }
         self.frames_on_device = 0;
         self.stats.timestamps = state.timer.is_some();
         self.timing_in_flight = false;
@@ -369,7 +381,11 @@ impl App {
                 None => Ok(()),
             };
             match result {
-                Ok(()) => self.options = options,
+                Ok(()) => {
+                    self.options = options;
+                    // The ground moves under the camera as it scrolls.
+                    self.keep_camera_above();
+                }
                 Err(e) => self.report.warn(&format!("scroll refused: {e}")),
             }
         }
@@ -382,16 +398,25 @@ impl App {
         let view = self.camera.view(s.aspect());
         let drawn = s.draw(&view, timed);
         if drawn == Drawn::SurfaceLost {
-            self.report
-                .warn("the window's surface was lost; creating it again");
-            if let Err(e) = s.recreate_surface() {
-                // A surface that cannot be made again on this device: start over with a new
-                // device (the same path as a lost device).
+            self.surface_losses += 1;
+            // Lost again before a frame could be drawn on the new surface: start over with a
+            // new device (the same path as a lost device) rather than retrying forever.
+            let result = if self.surface_losses > 1 {
+                Err(Error::Device(
+                    "the window's surface was lost twice in a row".into(),
+                ))
+            } else {
+                self.report
+                    .warn("the window's surface was lost; creating it again");
+                s.recreate_surface()
+            };
+            if let Err(e) = result {
                 let _ = self.proxy.send_event(UserEvent::DeviceLost(e.to_string()));
             }
             return;
         }
         if drawn == Drawn::Frame {
+            self.surface_losses = 0;
             self.stats.frames += 1;
             self.last_frame = now;
             if timed {
@@ -415,7 +440,8 @@ impl App {
                 let _ = s.device.poll(wgpu::PollType::Poll);
             }
         }
-        if self.options.animating() {
+        // A minimised window is not drawn until it is restored (a resize event).
+        if self.options.animating() && !s.minimised() {
             s.window.request_redraw();
         }
         let (t0, f0) = self.fps_window;
@@ -425,6 +451,10 @@ impl App {
             self.fps_window = (now, self.stats.frames);
             let describe = s.describe.clone();
             self.report.stats(&describe, &self.stats, false);
+            if self.options.animating() {
+                // The scrolling offset reaches the URL twice a second.
+                self.report.options(&self.options);
+            }
         }
         self.report.frame(&self.stats);
     }

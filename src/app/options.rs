@@ -149,11 +149,22 @@ impl AppOptions {
         match scene.validate() {
             Ok(()) => self.params = scene,
             Err(e) => {
-                // The one rule between keys: drop the octaves (keep the rest) and say why.
+                // The one rule between keys (octaves against frequency): undo the one the URL
+                // gave (octaves if it gave both), keep the rest, and say why.
+                let gave = |key: &str| pairs.iter().any(|(k, _)| k.trim().replace('-', "_") == key);
                 let mut fixed = scene;
-                fixed.octaves = self.params.octaves.min(max_octaves(fixed.frequency));
+                let key = if gave("octaves") || !gave("frequency") {
+                    fixed.octaves = self
+                        .params
+                        .octaves
+                        .min(crate::params::max_octaves_for(fixed.frequency));
+                    "octaves"
+                } else {
+                    fixed.frequency = self.params.frequency;
+                    "frequency"
+                };
                 ignored.push(Ignored {
-                    key: "octaves".into(),
+                    key: key.into(),
                     reason: e.to_string(),
                 });
                 if fixed.validate().is_ok() {
@@ -188,13 +199,6 @@ impl AppOptions {
     pub fn animating(&self) -> bool {
         !self.paused && self.speed != 0.0
     }
-}
-
-fn max_octaves(frequency: u32) -> u32 {
-    (1..=crate::params::MAX_OCTAVES)
-        .take_while(|o| u64::from(frequency) << (o - 1) <= u64::from(crate::params::MAX_PERIOD))
-        .last()
-        .unwrap_or(1)
 }
 
 /// A value as the URL writes it (the comma of a pair escaped).
@@ -280,8 +284,17 @@ mod tests {
         let mut o = AppOptions::default();
         let ignored = o.apply_query("frequency=1024&octaves=16");
         assert_eq!(ignored.len(), 1, "{ignored:?}");
+        assert_eq!(ignored[0].key, "octaves");
         assert_eq!(o.params.frequency, 1024);
         o.params.validate().unwrap();
+        // Only the frequency given: it is the one undone, and named.
+        let mut o = AppOptions::default();
+        o.params.octaves = 16;
+        o.params.frequency = 1;
+        let ignored = o.apply_query("frequency=1024");
+        assert_eq!(ignored.len(), 1, "{ignored:?}");
+        assert_eq!(ignored[0].key, "frequency");
+        assert_eq!((o.params.octaves, o.params.frequency), (16, 1));
     }
 
     #[test]

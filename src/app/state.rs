@@ -153,7 +153,14 @@ impl State {
             depth_format: Some(DEPTH_FORMAT),
             sample_count: SAMPLES,
         };
-        let terrain = Terrain::new(&device, &queue, targets, params)?;
+        // A size over this device's limit is clamped here and refused (with its reason) by
+        // the app's first `set_params`, so one bad value does not stop the window.
+        let limit = device.limits().max_texture_dimension_2d;
+        let start = TerrainParams {
+            size: params.size.min(limit),
+            ..params
+        };
+        let terrain = Terrain::new(&device, &queue, targets, start)?;
         let timer = if timings {
             GpuTimer::new(&device, &queue)
         } else {
@@ -220,6 +227,11 @@ impl State {
         self.resize(w, h);
         self.window.request_redraw();
         Ok(())
+    }
+
+    /// Whether the window is minimised (nothing to draw into).
+    pub fn minimised(&self) -> bool {
+        self.depth.is_none()
     }
 
     /// Width over height of the surface.

@@ -208,10 +208,10 @@ pub fn read_baked(
     terrain: &Terrain,
 ) -> Result<BakedTerrain> {
     let t = terrain.textures();
-    let raw = read_texture(device, queue, &t.terrain)?;
-    let rg: &[[f32; 2]] = bytemuck::cast_slice(&raw);
-    let raw_n = read_texture(device, queue, &t.normals)?;
-    let halves: &[[u16; 4]] = bytemuck::cast_slice(&raw_n);
+    // Copied into typed vectors: a Vec<u8> promises no alignment for casting in place.
+    let rg: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&read_texture(device, queue, &t.terrain)?);
+    let halves: Vec<[u16; 4]> =
+        bytemuck::pod_collect_to_vec(&read_texture(device, queue, &t.normals)?);
     Ok(BakedTerrain {
         size: terrain.params().size,
         heights: rg.iter().map(|v| v[0]).collect(),

@@ -129,7 +129,8 @@ impl Terrain {
                 textures,
                 pending: Dirty::ALL,
             }
-        })?;
+        })
+        .map_err(|e| size_too_big(params.size, e))?;
         terrain.bind(device);
         terrain.bake.write(queue, &terrain.params);
         terrain.normals.write(queue, &terrain.params);
@@ -175,7 +176,8 @@ impl Terrain {
         params.validate_for(&device.limits())?;
         let dirty = self.params.diff(&params);
         if dirty.resize {
-            self.textures = scoped(device, || Textures::new(device, params.size))?;
+            self.textures = scoped(device, || Textures::new(device, params.size))
+                .map_err(|e| size_too_big(params.size, e))?;
             self.bind(device);
         }
         self.params = params;
@@ -258,6 +260,22 @@ impl Terrain {
     /// bound it); at texel centres the baked heights equal it to within 1e-5 of the range.
     pub fn height_at(&self, x: f32, z: f32) -> f32 {
         height_at(&self.params, x, z)
+    }
+}
+
+/// A GPU error while making the textures for `size` as an error naming the size.
+fn size_too_big(size: u32, e: Error) -> Error {
+    match e {
+        Error::Gpu(why) => {
+            // rg32float terrain + rgba16float normals: 16 bytes a texel.
+            let mib = (u64::from(size) * u64::from(size) * 16) >> 20;
+            Error::invalid(
+                "size",
+                size,
+                format!("a size whose textures (~{mib} MiB) fit this device's memory: {why}"),
+            )
+        }
+        other => other,
     }
 }
 

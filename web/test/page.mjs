@@ -180,8 +180,9 @@ await withBrowser(webgpu, async (browser) => {
   check(after === before && /idle/.test(readout), `paused and untouched: no frames drawn (${before} -> ${after}), readout "${readout}"`);
   await page.fill('input[data-key="gain"]', "0.3");
   await page.dispatchEvent('input[data-key="gain"]', "input");
-  await page.waitForFunction((b) => Number(document.body.dataset.frames) > b, after, { timeout: 60000 });
-  check(true, "a control change draws again");
+  const redrawn = await page.waitForFunction((b) => Number(document.body.dataset.frames) > b, after,
+    { timeout: 60000 }).then(() => true, () => false);
+  check(redrawn, "a control change draws again");
 
   // Every row of the table reaches the page through its URL.
   const rows = await page.evaluate(async () => JSON.parse((await import("./web/pkg/relief.js")).params_table()));
