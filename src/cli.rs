@@ -24,6 +24,19 @@ const IMAGE_SIDE: Kind = Kind::Int {
     max: MAX_IMAGE,
 };
 
+/// Flags `relief height` refuses: they change what is drawn, not the surface.
+pub const HEIGHT_REFUSES: [&str; 6] = [
+    "size",
+    "grid",
+    "normals",
+    "snow_height",
+    "ao_exponent",
+    "timings",
+];
+
+/// A world point for `relief height`.
+const POINT: Kind = Kind::Pair { max: 1e12 };
+
 /// Scene keys that `relief bench` sweeps itself, so it refuses them as flags.
 pub const BENCH_SWEEPS: [&str; 3] = ["size", "grid", "normals"];
 
@@ -94,6 +107,18 @@ pub fn command() -> Command {
                         .required(true)
                         .value_name("DIR")
                         .help("output folder (created if missing)"),
+                ),
+        )
+        .subcommand(
+            Command::new("height")
+                .about("Print the surface height at each world point X,Z, one per line (the library's height_at)")
+                .arg(
+                    Arg::new("points")
+                        .required(true)
+                        .num_args(1..)
+                        .allow_hyphen_values(true)
+                        .value_name("X,Z")
+                        .help("world points [allowed: X,Z, each within ±1e12; negative ones too: -5,3]"),
                 ),
         )
         .subcommand(
@@ -199,6 +224,8 @@ pub fn options_markdown() -> String {
     for p in params() {
         let applies = if BENCH_SWEEPS.contains(&p.key) {
             "window, render, bake, scene files, URL (bench sweeps it)"
+        } else if HEIGHT_REFUSES.contains(&p.key) {
+            "window, render, bake, bench, scene files, URL"
         } else {
             "every command, scene files, URL"
         };
@@ -271,7 +298,7 @@ fn clap_error(e: clap::Error) -> i32 {
             table::shorten(&names(ContextKind::InvalidArg))
         ),
         ErrorKind::InvalidSubcommand => format!(
-            "unknown command {} (commands: window, render, bake, bench)",
+            "unknown command {} (commands: window, render, bake, bench, height)",
             table::shorten(&names(ContextKind::InvalidSubcommand))
         ),
         ErrorKind::ArgumentConflict => format!(
@@ -302,6 +329,9 @@ enum Run {
     Bench {
         out_dir: PathBuf,
         quick: bool,
+    },
+    Height {
+        points: Vec<[f64; 2]>,
     },
 }
 
@@ -447,10 +477,33 @@ fn run(top: &ArgMatches) -> Result<()> {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
             quick: m.get_flag("quick"),
         },
+        "height" => Run::Height {
+            points: m
+                .get_many::<String>("points")
+                .into_iter()
+                .flatten()
+                .map(|t| match POINT.parse(t) {
+                    Some(Value::Pair(p)) => Ok(p),
+                    _ => Err(Error::invalid(
+                        "point",
+                        table::shorten(t),
+                        "X,Z world coordinates, each within ±1e12",
+                    )),
+                })
+                .collect::<Result<_>>()?,
+        },
         _ => Run::Window,
     };
     if !matches!(run, Run::Window) {
         refuse_flags(m, name, &window_only, "it applies to the window only")?;
+    }
+    if matches!(run, Run::Height { .. }) {
+        refuse_flags(
+            m,
+            name,
+            &HEIGHT_REFUSES,
+            "heights come from the continuous surface, not from what is drawn",
+        )?;
     }
     if matches!(run, Run::Bench { .. }) {
         refuse_flags(
@@ -473,6 +526,12 @@ fn run(top: &ArgMatches) -> Result<()> {
         Run::Render { out, width, height } => render(&params, &out, width, height, timings),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
         Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
+        Run::Height { points } => {
+            for [x, z] in points {
+                println!("{}", crate::height_at(&params, x as f32, z as f32));
+            }
+            Ok(())
+        }
     }
 }
 

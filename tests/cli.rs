@@ -718,3 +718,23 @@ fn the_readme_lists_every_option_as_the_code_has_it() {
         "README.md's option table is out of date; it should read:\n{table}"
     );
 }
+
+#[test]
+fn height_prints_the_surface_height_at_each_point() {
+    let (code, stdout, err) = relief(&["height", "--seed", "3", "0.1,0.2", "-0.3,0.7", "-5,-3.25"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    let params = relief::TerrainParams {
+        seed: 3,
+        ..Default::default()
+    };
+    let got: Vec<f32> = stdout.lines().map(|l| l.parse().unwrap()).collect();
+    let want: Vec<f32> = [(0.1, 0.2), (-0.3, 0.7), (-5.0, -3.25)]
+        .iter()
+        .map(|&(x, z)| relief::height_at(&params, x, z))
+        .collect();
+    assert_eq!(got, want, "{stdout}");
+    rejects(&["height", "1,x"], &["point", "1,x", "X,Z"]);
+    rejects(&["height"], &["X,Z"]);
+    rejects(&["height", "--size", "64", "0,0"], &["--size", "height"]);
+}

@@ -76,3 +76,43 @@ fn tiled_render_equals_one_piece() {
         .to_string();
     assert!(e.contains("width"), "{e}");
 }
+
+#[test]
+fn height_at_agrees_with_the_rendered_depth() {
+    let gpu = common::gpu();
+    // A fine grid and texture, so the drawn surface is close to the continuous one.
+    let params = TerrainParams {
+        size: 512,
+        grid: 512,
+        octaves: 5,
+        ..Default::default()
+    };
+    let (w, h) = (96, 64);
+    let view = OrbitCamera::default().view(w as f32 / h as f32);
+    let target = Offscreen::new(&gpu.device, w, h, 1).unwrap();
+    let mut terrain = Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    target.render(&gpu, &mut terrain, &view, None).unwrap();
+    let depth = target.read_depth(&gpu).unwrap();
+    let vp = view.view_proj.as_dmat4();
+    let (mut worst, mut n) = (0.0f64, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let d = depth[(y * w + x) as usize];
+            if d >= 1.0 {
+                continue;
+            }
+            let p = relief::raycast::unproject(vp, w, h, x, y, f64::from(d));
+            if p.x.abs() > 0.98 || p.z.abs() > 0.98 {
+                continue; // the tile's edge: a pixel there may straddle the border
+            }
+            let cpu = f64::from(terrain.height_at(p.x as f32, p.z as f32));
+            worst = worst.max((cpu - p.y).abs());
+            n += 1;
+        }
+    }
+    eprintln!("{n} terrain pixels, worst |height_at - drawn| = {worst:.5}");
+    assert!(n > 1000, "{n}");
+    // The mesh's interpolation error at this grid (under 1e-3 of the 0.5 height scale measured)
+    // plus depth-buffer precision: a wrong world mapping is off by 0.05 or more.
+    assert!(worst < 5e-3, "{worst}");
+}
