@@ -14,27 +14,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use web_time::Instant;
 
-/// How a configuration draws the terrain.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// relief's pipeline: baked textures, displaced grid mesh, 4x MSAA.
-    Mesh,
-    /// The seed's heightfield ray march in a full-screen fragment shader.
-    RayFragment,
-    /// The same march in a compute shader.
-    RayCompute,
-}
-
-impl Method {
-    /// Name in the CSV and the chart.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Mesh => "mesh",
-            Method::RayFragment => "raymarch-fragment",
-            Method::RayCompute => "raymarch-compute",
-        }
-    }
-}
+pub use crate::method::Method;
 
 /// One point of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -155,7 +135,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
             }
         }
     }
-    for method in [Method::RayFragment, Method::RayCompute] {
+    for method in [Method::RaymarchFragment, Method::Raymarch] {
         for &step_factor in steps {
             let mut seen = Vec::new();
             for &march_octaves in octaves {
@@ -237,7 +217,7 @@ pub fn run(
         progress.start(i, configs.len(), config);
         rows.push(match config.method {
             Method::Mesh => mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?,
-            Method::RayFragment | Method::RayCompute => ray_row(
+            Method::RaymarchFragment | Method::Raymarch | Method::Reference => ray_row(
                 gpu,
                 config,
                 options,
@@ -453,18 +433,12 @@ fn ray_row(
     reference: &Reference,
 ) -> Result<Row> {
     let rm = RayMarcher::new(&gpu.device, options.width, options.height)?;
-    rm.prepare(
-        &gpu.queue,
-        &config.params,
-        shading,
-        view,
-        RayMethod::SeedMarch(config.march),
-    );
-    let path = if config.method == Method::RayFragment {
-        RayPath::Fragment
-    } else {
-        RayPath::Compute
+    let rays = match config.method {
+        Method::Reference => RayMethod::Reference,
+        _ => RayMethod::SeedMarch(config.march),
     };
+    rm.prepare(&gpu.queue, &config.params, shading, view, rays);
+    let path = config.method.ray_path().unwrap_or(RayPath::Compute);
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
         rm.encode(encoder, path, timer)
     })?;
@@ -757,8 +731,8 @@ where
         .map_err(|e| e.to_string())?;
     let series = [
         (Method::Mesh, RGBColor(31, 119, 180)),
-        (Method::RayFragment, RGBColor(214, 39, 40)),
-        (Method::RayCompute, RGBColor(44, 160, 44)),
+        (Method::RaymarchFragment, RGBColor(214, 39, 40)),
+        (Method::Raymarch, RGBColor(44, 160, 44)),
     ];
     for (method, color) in series {
         let mine: Vec<(f64, f64)> = pts

@@ -34,6 +34,12 @@ pub const HEIGHT_REFUSES: [&str; 6] = [
     "timings",
 ];
 
+/// `--method`'s names: the one method list.
+const METHODS: Kind = Kind::Choice(crate::Method::NAMES);
+
+/// Scene keys that only the mesh reads; a ray-cast `--method` refuses them.
+pub const MESH_ONLY: [&str; 3] = ["size", "grid", "normals"];
+
 /// A world point for `relief height`.
 const POINT: Kind = Kind::Pair { max: 1e12 };
 
@@ -96,6 +102,21 @@ pub fn command() -> Command {
                         .allow_hyphen_values(true)
                         .value_name("PIXELS")
                         .help(format!("image height [allowed: {}]", IMAGE_SIDE.allowed())),
+                )
+                .arg(
+                    Arg::new("method")
+                        .long("method")
+                        .default_value("mesh")
+                        .value_name("METHOD")
+                        .help(format!(
+                            "how the frame is drawn: {} [allowed: {}]",
+                            crate::Method::ALL
+                                .iter()
+                                .map(|m| format!("{m} ({})", m.doc()))
+                                .collect::<Vec<_>>()
+                                .join("; "),
+                            METHODS.allowed()
+                        )),
                 ),
         )
         .subcommand(
@@ -322,6 +343,7 @@ enum Run {
         out: PathBuf,
         width: u32,
         height: u32,
+        method: crate::Method,
     },
     Bake {
         out_dir: PathBuf,
@@ -469,6 +491,12 @@ fn run(top: &ArgMatches) -> Result<()> {
             out: PathBuf::from(string(m, "out").unwrap_or_default()),
             width: image_side(m, "width")?,
             height: image_side(m, "height")?,
+            method: {
+                let text = string(m, "method").unwrap_or_default();
+                crate::Method::from_name(&text).ok_or_else(|| {
+                    Error::invalid("--method", table::shorten(&text), METHODS.allowed())
+                })?
+            },
         },
         "bake" => Run::Bake {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
@@ -497,6 +525,16 @@ fn run(top: &ArgMatches) -> Result<()> {
     if !matches!(run, Run::Window) {
         refuse_flags(m, name, &window_only, "it applies to the window only")?;
     }
+    if let Run::Render { method, .. } = run {
+        if method != crate::Method::Mesh {
+            refuse_flags(
+                m,
+                &format!("render --method {method}"),
+                &MESH_ONLY,
+                "the ray casters draw the continuous surface, not a baked mesh",
+            )?;
+        }
+    }
     if matches!(run, Run::Height { .. }) {
         refuse_flags(
             m,
@@ -523,7 +561,12 @@ fn run(top: &ArgMatches) -> Result<()> {
     let timings = m.get_flag("timings");
     match run {
         Run::Window => crate::app::run_native(resolve_app(m, params)?, script(m)?),
-        Run::Render { out, width, height } => render(&params, &out, width, height, timings),
+        Run::Render {
+            out,
+            width,
+            height,
+            method,
+        } => render(&params, &out, (width, height), method, timings),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
         Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
         Run::Height { points } => {
@@ -538,28 +581,40 @@ fn run(top: &ArgMatches) -> Result<()> {
 fn render(
     params: &TerrainParams,
     out: &Path,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
+    method: crate::Method,
     timings: bool,
 ) -> Result<()> {
     check_png_path(out)?;
     let gpu = Gpu::new()?;
-    let mut terrain = Terrain::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        *params,
-    )?;
     let timer = timer_if(timings, &gpu);
     let view = OrbitCamera::default().view(width as f32 / height as f32);
-    let (pixels, t) = headless::render_image(
-        &gpu,
-        &mut terrain,
-        &view,
-        (width, height),
-        TILE,
-        timer.as_ref(),
-    )?;
+    let (pixels, t) = if method == crate::Method::Mesh {
+        let mut terrain = Terrain::new(
+            &gpu.device,
+            &gpu.queue,
+            Offscreen::targets(RENDER_SAMPLES),
+            *params,
+        )?;
+        headless::render_image(
+            &gpu,
+            &mut terrain,
+            &view,
+            (width, height),
+            TILE,
+            timer.as_ref(),
+        )?
+    } else {
+        headless::render_rays(
+            &gpu,
+            params,
+            &Shading::default(),
+            &view,
+            (width, height),
+            method,
+            timer.as_ref(),
+        )?
+    };
     if timings {
         print_timings(&gpu, t);
     }

@@ -64,6 +64,7 @@ pub mod camera;
 pub mod cli;
 pub mod error;
 pub mod gpu;
+pub mod method;
 #[cfg(feature = "metrics")]
 pub mod metrics;
 pub mod noise;
@@ -76,6 +77,7 @@ pub mod table;
 pub use camera::{OrbitCamera, View};
 pub use error::{Error, Result};
 pub use gpu::{height_at, Targets, Terrain, Textures};
+pub use method::Method;
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
 #[cfg(feature = "scene")]
 pub use scene::BakeInfo;

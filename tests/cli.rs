@@ -489,7 +489,7 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     }
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
-    for m in ["mesh", "raymarch-fragment", "raymarch-compute"] {
+    for m in ["mesh", "raymarch-fragment", "raymarch"] {
         assert!(methods.contains(&m), "no {m} row");
     }
     for row in &rows {
@@ -737,4 +737,52 @@ fn height_prints_the_surface_height_at_each_point() {
     rejects(&["height", "1,x"], &["point", "1,x", "X,Z"]);
     rejects(&["height"], &["X,Z"]);
     rejects(&["height", "--size", "64", "0,0"], &["--size", "height"]);
+}
+
+#[test]
+fn render_draws_the_same_frame_with_every_method() {
+    let dir = scratch("methods");
+    let (w, h) = (160u32, 100u32);
+    let render = |method: &str, extra: &[&str]| {
+        let out = dir.join(format!("{method}-{}.png", extra.len()));
+        let mut args = vec![
+            "render",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "160",
+            "--height",
+            "100",
+            "--method",
+            method,
+        ];
+        args.extend_from_slice(extra);
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{method}: {err}");
+        image::open(&out).unwrap().into_rgb8().into_raw()
+    };
+    let reference = render("reference", &[]);
+    let other_seed = render("reference", &["--seed", "8"]);
+    let control = relief::metrics::image_error(&reference, &other_seed, w, h).0;
+    for m in relief::Method::NAMES {
+        let img = render(m, &[]);
+        let (flip, _) = relief::metrics::image_error(&reference, &img, w, h);
+        eprintln!("{m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
+        // The same frame: far closer to the reference than a different terrain is.
+        assert!(
+            flip < control * 0.75,
+            "{m}: FLIP {flip} vs control {control}"
+        );
+    }
+    // Mesh-only flags mean nothing to a ray caster: refused, not ignored.
+    rejects(
+        &[
+            "render", "--out", "x.png", "--method", "raymarch", "--size", "64",
+        ],
+        &["--size", "raymarch"],
+    );
+    rejects(
+        &["render", "--out", "x.png", "--method", "rays"],
+        &["--method", "rays", "reference"],
+    );
 }

@@ -552,3 +552,77 @@ impl Offscreen {
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 }
+
+/// Averages `factor` x `factor` blocks of an sRGB RGBA8 image in linear light: a
+/// supersampled image down to its display size, as MSAA resolves do.
+pub fn downsample_srgb(rgba: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
+    let (w, h) = (width / factor, height / factor);
+    let lin = |c: u8| f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0));
+    let enc = |l: f64| {
+        let c = if l <= 0.003_130_8 {
+            l * 12.92
+        } else {
+            1.055 * l.powf(1.0 / 2.4) - 0.055
+        };
+        (c * 255.0).round().clamp(0.0, 255.0) as u8
+    };
+    let mut out = Vec::with_capacity((w * h * 4) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let mut acc = [0.0; 3];
+            for sy in 0..factor {
+                for sx in 0..factor {
+                    let i = (((y * factor + sy) * width + x * factor + sx) * 4) as usize;
+                    for c in 0..3 {
+                        acc[c] += lin(rgba[i + c]);
+                    }
+                }
+            }
+            let k = f64::from(factor * factor);
+            out.extend_from_slice(&[enc(acc[0] / k), enc(acc[1] / k), enc(acc[2] / k), 255]);
+        }
+    }
+    out
+}
+
+/// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
+/// distance targets, supersampled where the method asks for it (and the device allows),
+/// averaged in linear light. Returns sRGB RGBA8, with the cast's GPU time when `timer` is given.
+pub fn render_rays(
+    gpu: &Gpu,
+    params: &crate::TerrainParams,
+    shading: &crate::Shading,
+    view: &View,
+    (width, height): (u32, u32),
+    method: crate::Method,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    let (Some(path), Some(rays)) = (method.ray_path(), method.ray_method(params.octaves)) else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let ss = method.supersample();
+    let ss = if width * ss <= max && height * ss <= max {
+        ss
+    } else {
+        1
+    };
+    let caster = super::raymarch::RayMarcher::new(&gpu.device, width * ss, height * ss)?;
+    caster.prepare(&gpu.queue, params, shading, view, rays);
+    super::scoped(&gpu.device, || {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        caster.encode(&mut encoder, path, timer);
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+    })?;
+    let timings = timer.map(|t| t.read(&gpu.device)).transpose()?;
+    let image = read_texture(&gpu.device, &gpu.queue, &caster.color)?;
+    let image = if ss > 1 {
+        downsample_srgb(&image, width * ss, height * ss, ss)
+    } else {
+        image
+    };
+    Ok((image, timings))
+}

@@ -1,0 +1,105 @@
+//! How a frame is drawn, as a value: one list of methods serves `relief render --method`, the
+//! benchmark's sweep, its CSV and chart, and the tests. Each method knows its name, its words
+//! for people, and which GPU path draws it.
+
+use crate::gpu::raymarch::{RayPath, SeedMarch};
+
+/// A way of drawing the terrain.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// relief's pipeline: baked textures, a displaced grid mesh, forward shading, 4x MSAA.
+    #[default]
+    Mesh,
+    /// The seed template's heightfield ray march, in a compute shader.
+    Raymarch,
+    /// The same march in a full-screen fragment shader, as the seed does it.
+    RaymarchFragment,
+    /// relief's conservative ray cast of the continuous surface (every octave, Lipschitz
+    /// steps, bisection), supersampled 3x3: the ground truth.
+    Reference,
+}
+
+impl Method {
+    /// Every method, in the order of docs, charts and tables.
+    pub const ALL: [Method; 4] = [
+        Method::Mesh,
+        Method::Raymarch,
+        Method::RaymarchFragment,
+        Method::Reference,
+    ];
+
+    /// The names `--method` takes, in [`Method::ALL`]'s order.
+    pub const NAMES: &'static [&'static str] =
+        &["mesh", "raymarch", "raymarch-fragment", "reference"];
+
+    /// Its name on the command line, in the CSV and on the chart.
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    /// The method called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name.trim())
+    }
+
+    /// One line for people.
+    pub fn doc(self) -> &'static str {
+        match self {
+            Method::Mesh => "the displaced grid mesh, forward shaded (relief's pipeline)",
+            Method::Raymarch => "the seed template's heightfield ray march, in compute",
+            Method::RaymarchFragment => "the same march in a fragment shader, as the seed does it",
+            Method::Reference => "the conservative ray cast of the continuous surface, 3x3 supersampled: the ground truth",
+        }
+    }
+
+    /// Where a ray-cast method runs (`None` for the mesh).
+    pub fn ray_path(self) -> Option<RayPath> {
+        match self {
+            Method::Mesh => None,
+            Method::Raymarch | Method::Reference => Some(RayPath::Compute),
+            Method::RaymarchFragment => Some(RayPath::Fragment),
+        }
+    }
+
+    /// Supersampling per axis of the image this method draws.
+    pub fn supersample(self) -> u32 {
+        match self {
+            Method::Reference => 3,
+            _ => 1,
+        }
+    }
+
+    /// The ray caster's settings for a scene of `octaves` (seed march knobs at their default).
+    pub fn ray_method(self, octaves: u32) -> Option<crate::gpu::raymarch::RayMethod> {
+        use crate::gpu::raymarch::RayMethod;
+        match self {
+            Method::Mesh => None,
+            Method::Reference => Some(RayMethod::Reference),
+            Method::Raymarch | Method::RaymarchFragment => Some(RayMethod::SeedMarch(SeedMarch {
+                normal_octaves: octaves,
+                ..SeedMarch::default()
+            })),
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip() {
+        for m in Method::ALL {
+            assert_eq!(Method::from_name(m.name()), Some(m));
+            assert!(!m.doc().is_empty());
+        }
+        assert_eq!(Method::NAMES.len(), Method::ALL.len());
+        assert_eq!(Method::from_name("raymarch-compute"), None);
+    }
+}
