@@ -235,7 +235,7 @@ pub fn rgb(rgba: &[u8]) -> Vec<u8> {
         .collect()
 }
 
-pub use crate::gpu::headless::downsample_srgb;
+pub use crate::gpu::downsample_srgb;
 
 /// Bound on the Hessian's spectral norm of one octave of the noise, in lattice units.
 pub const NOISE_MAX_HESSIAN: f64 = 12.0;

@@ -553,37 +553,7 @@ impl Offscreen {
     }
 }
 
-/// Averages `factor` x `factor` blocks of an sRGB RGBA8 image in linear light: a
-/// supersampled image down to its display size, as MSAA resolves do.
-pub fn downsample_srgb(rgba: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
-    let (w, h) = (width / factor, height / factor);
-    let lin = |c: u8| f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0));
-    let enc = |l: f64| {
-        let c = if l <= 0.003_130_8 {
-            l * 12.92
-        } else {
-            1.055 * l.powf(1.0 / 2.4) - 0.055
-        };
-        (c * 255.0).round().clamp(0.0, 255.0) as u8
-    };
-    let mut out = Vec::with_capacity((w * h * 4) as usize);
-    for y in 0..h {
-        for x in 0..w {
-            let mut acc = [0.0; 3];
-            for sy in 0..factor {
-                for sx in 0..factor {
-                    let i = (((y * factor + sy) * width + x * factor + sx) * 4) as usize;
-                    for c in 0..3 {
-                        acc[c] += lin(rgba[i + c]);
-                    }
-                }
-            }
-            let k = f64::from(factor * factor);
-            out.extend_from_slice(&[enc(acc[0] / k), enc(acc[1] / k), enc(acc[2] / k), 255]);
-        }
-    }
-    out
-}
+pub use super::downsample_srgb;
 
 /// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
 /// distance targets, supersampled where the method asks for it (and the device allows),
