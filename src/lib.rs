@@ -64,6 +64,7 @@ pub mod camera;
 pub mod cli;
 pub mod error;
 pub mod gpu;
+pub mod landscape;
 pub mod method;
 #[cfg(feature = "metrics")]
 pub mod metrics;

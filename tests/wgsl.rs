@@ -1,7 +1,7 @@
 //! Every WGSL module relief builds is valid (naga), and the Rust uniform structs have the
 //! WGSL layouts.
 
-use relief::gpu::{shader, BakeUniforms, NormalUniforms, RenderUniforms};
+use relief::gpu::{shader, BakeUniforms, LandscapeUniforms, NormalUniforms, RenderUniforms};
 use std::mem::{offset_of, size_of};
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 6);
+    assert_eq!(modules.len(), 8);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -47,6 +47,35 @@ fn offset(members: &[(String, u32)], name: &str) -> usize {
         .find(|(n, _)| n == name)
         .unwrap_or_else(|| panic!("no member {name}"))
         .1 as usize
+}
+
+#[test]
+fn landscape_uniforms_match_wgsl() {
+    let m = parse(
+        "landscape_bake",
+        &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::LANDSCAPE_BAKE]),
+    );
+    let (size, members) = layout(&m, "LandscapeUniforms");
+    assert_eq!(size as usize, size_of::<LandscapeUniforms>());
+    for (name, at) in [
+        ("origin", offset_of!(LandscapeUniforms, origin)),
+        ("extent", offset_of!(LandscapeUniforms, extent)),
+        ("dest_origin", offset_of!(LandscapeUniforms, dest_origin)),
+        ("wrap", offset_of!(LandscapeUniforms, wrap)),
+        ("layer", offset_of!(LandscapeUniforms, layer)),
+        ("seed", offset_of!(LandscapeUniforms, seed)),
+        ("octaves", offset_of!(LandscapeUniforms, octaves)),
+        (
+            "total_octaves",
+            offset_of!(LandscapeUniforms, total_octaves),
+        ),
+        ("terrain", offset_of!(LandscapeUniforms, terrain)),
+        ("gain", offset_of!(LandscapeUniforms, gain)),
+        ("feature_log2", offset_of!(LandscapeUniforms, feature_log2)),
+        ("level_log2", offset_of!(LandscapeUniforms, level_log2)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
 }
 
 #[test]

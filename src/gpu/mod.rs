@@ -4,6 +4,7 @@
 pub(crate) mod bake;
 #[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
+pub mod landscape;
 pub(crate) mod normals;
 pub mod raymarch;
 pub(crate) mod render;
@@ -11,6 +12,7 @@ pub mod shader;
 pub mod timing;
 
 pub use bake::BakeUniforms;
+pub use landscape::LandscapeUniforms;
 pub use normals::NormalUniforms;
 pub use render::RenderUniforms;
 

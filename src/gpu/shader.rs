@@ -11,6 +11,11 @@ pub const NOISE: &str = include_str!("../../wgsl/noise.wgsl");
 pub const BAKE: &str = include_str!("../../wgsl/bake.wgsl");
 /// `wgsl/normals.wgsl`: the normal pass (needs [`NOISE`]).
 pub const NORMALS: &str = include_str!("../../wgsl/normals.wgsl");
+/// `wgsl/landscape.wgsl`: the endless world's terrain function (needs [`NOISE`]).
+pub const LANDSCAPE: &str = include_str!("../../wgsl/landscape.wgsl");
+/// `wgsl/landscape_bake.wgsl`: bakes rectangles of landscape levels (needs [`NOISE`] and
+/// [`LANDSCAPE`]).
+pub const LANDSCAPE_BAKE: &str = include_str!("../../wgsl/landscape_bake.wgsl");
 /// `wgsl/shade.wgsl`: render uniforms and the shading every renderer shares.
 pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 /// `wgsl/render.wgsl`: the mesh render pass (needs [`SHADE`]).
@@ -33,6 +38,11 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("render", compose(&[SHADE, RENDER])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH])),
+        ("landscape", compose(&[NOISE, LANDSCAPE])),
+        (
+            "landscape_bake",
+            compose(&[NOISE, LANDSCAPE, LANDSCAPE_BAKE]),
+        ),
     ]
 }
 

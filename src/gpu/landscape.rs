@@ -1,0 +1,224 @@
+//! The landscape bake pass: rectangles of the endless world's sample grids into layers of an
+//! `rgba32float` texture array (height, dh/dx, dh/dz, colour channel), at wrapping texel
+//! addresses. Several rectangles per encoder, each with its own uniforms at a dynamic offset.
+
+use super::shader;
+use crate::landscape::Landscape;
+
+/// Mirrors `LandscapeUniforms` in `wgsl/landscape.wgsl` field by field.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LandscapeUniforms {
+    /// World sample coordinates of the rectangle's first texel.
+    pub origin: [i32; 2],
+    /// Rectangle size in samples.
+    pub extent: [u32; 2],
+    /// Texel where the rectangle's first sample goes (wrapping at `wrap`).
+    pub dest_origin: [u32; 2],
+    /// Side of the (square, toroidal) texture.
+    pub wrap: u32,
+    /// Texture-array layer written.
+    pub layer: u32,
+    /// Hash seed.
+    pub seed: u32,
+    /// Octaves kept at this grid spacing.
+    pub octaves: u32,
+    /// All octaves (the normalisation).
+    pub total_octaves: u32,
+    /// [`crate::landscape::TerrainFn::code`].
+    pub terrain: u32,
+    /// Amplitude ratio between octaves.
+    pub gain: f32,
+    /// log2 of octave 0's cell in metres.
+    pub feature_log2: i32,
+    /// log2 of the grid's sample spacing in metres.
+    pub level_log2: i32,
+    /// Padding to the WGSL struct's size.
+    pub _pad: u32,
+}
+
+/// One rectangle to bake.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rect {
+    /// Texture-array layer (a level).
+    pub layer: u32,
+    /// log2 of the layer's sample spacing in metres.
+    pub level_log2: i32,
+    /// World sample coordinates of the first sample.
+    pub origin: [i32; 2],
+    /// Size in samples.
+    pub extent: [u32; 2],
+}
+
+impl LandscapeUniforms {
+    /// The uniforms for `rect` of `land` in a texture of side `wrap`.
+    pub fn new(land: &Landscape, rect: &Rect, wrap: u32) -> Self {
+        let m = |v: i32| v.rem_euclid(wrap as i32) as u32;
+        Self {
+            origin: rect.origin,
+            extent: rect.extent,
+            dest_origin: [m(rect.origin[0]), m(rect.origin[1])],
+            wrap,
+            layer: rect.layer,
+            seed: land.seed,
+            octaves: land.octaves_for_level(rect.level_log2),
+            total_octaves: land.octaves,
+            terrain: land.terrain.code(),
+            gain: land.gain as f32,
+            feature_log2: land.feature_log2,
+            level_log2: rect.level_log2,
+            _pad: 0,
+        }
+    }
+}
+
+/// Where a [`LandscapeBake`] writes: a bind group for one level texture array.
+pub struct LevelTarget {
+    bind_group: wgpu::BindGroup,
+    wrap: u32,
+}
+
+/// Most rectangles one [`LandscapeBake::encode`] records.
+pub const MAX_RECTS: usize = 64;
+
+/// The pass: pipeline, layout and a uniform buffer of [`MAX_RECTS`] aligned slots.
+pub struct LandscapeBake {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    uniforms: wgpu::Buffer,
+    stride: u64,
+}
+
+impl LandscapeBake {
+    /// Format of the level textures.
+    pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+    /// Builds the pipeline.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let module = shader::module(
+            device,
+            "relief:landscape-bake:shader",
+            &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::LANDSCAPE_BAKE]),
+        );
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:landscape-bake:bind-group-layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: true,
+                        min_binding_size: wgpu::BufferSize::new(
+                            std::mem::size_of::<LandscapeUniforms>() as u64,
+                        ),
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: Self::FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline = super::compute_pipeline(
+            device,
+            "relief:landscape-bake",
+            &layout,
+            &module,
+            "landscape_bake_main",
+        );
+        let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
+        let stride = (std::mem::size_of::<LandscapeUniforms>() as u64).next_multiple_of(align);
+        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:landscape-bake:uniforms"),
+            size: stride * MAX_RECTS as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            pipeline,
+            layout,
+            uniforms,
+            stride,
+        }
+    }
+
+    /// A target writing into `levels` (a 2-D array view of a square rgba32float texture of
+    /// side `wrap`).
+    pub fn bind(
+        &self,
+        device: &wgpu::Device,
+        levels: &wgpu::TextureView,
+        wrap: u32,
+    ) -> LevelTarget {
+        let bind_group =
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:landscape-bake:bind-group"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: &self.uniforms,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(
+                                std::mem::size_of::<LandscapeUniforms>() as u64
+                            ),
+                        }),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(levels),
+                    },
+                ],
+            });
+        LevelTarget { bind_group, wrap }
+    }
+
+    /// Writes the uniforms of up to [`MAX_RECTS`] rectangles and records one compute pass
+    /// baking them all (any more are left for the caller to record in another encoder).
+    /// Returns how many were recorded.
+    pub fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &LevelTarget,
+        land: &Landscape,
+        rects: &[Rect],
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> usize {
+        let rects = &rects[..rects.len().min(MAX_RECTS)];
+        if rects.is_empty() {
+            return 0;
+        }
+        let mut bytes = vec![0u8; self.stride as usize * rects.len()];
+        for (i, r) in rects.iter().enumerate() {
+            let u = LandscapeUniforms::new(land, r, target.wrap);
+            let at = i * self.stride as usize;
+            bytes[at..at + std::mem::size_of::<LandscapeUniforms>()]
+                .copy_from_slice(bytemuck::bytes_of(&u));
+        }
+        queue.write_buffer(&self.uniforms, 0, &bytes);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:landscape-bake:pass"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for (i, r) in rects.iter().enumerate() {
+            pass.set_bind_group(0, &target.bind_group, &[(i as u64 * self.stride) as u32]);
+            pass.dispatch_workgroups(
+                r.extent[0].div_ceil(super::WORKGROUP),
+                r.extent[1].div_ceil(super::WORKGROUP),
+                1,
+            );
+        }
+        rects.len()
+    }
+}

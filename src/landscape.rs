@@ -1,0 +1,371 @@
+//! The endless world's terrain function, in f64: the CPU twin of `wgsl/landscape.wgsl`.
+//!
+//! World units are metres. Octave `o` of the noise has a square lattice of cells
+//! `2^(feature_log2 - o)` metres wide, hashed on its integer cell coordinates (wrapping at
+//! 2^32 cells, so the finest octave repeats only after 2^32 of its cells: far beyond 2^20). A
+//! grid of samples spaced `2^level_log2` metres, at integer sample coordinates, lands on each
+//! octave's lattice at an exact integer cell plus an exact binary fraction: the GPU computes
+//! both with integer shifts, so what it bakes does not depend on how far from the origin it is.
+//!
+//! The terrain function is a value ([`TerrainFn`]): plain fBm, or the seed template's
+//! derivative-damped "eroded" fBm (each octave is damped by the slope accumulated so far, so
+//! detail thins out on steep slopes). Both have an analytic gradient here and on the GPU, and a
+//! Lipschitz bound ([`Landscape::lipschitz`]) for conservative ray casting.
+
+use crate::noise::{
+    gradient, lattice_hash, noise_stream, Channel, NOISE_MAX_ABS, NOISE_MAX_GRADIENT,
+};
+
+/// Bound on every second derivative (in lattice units) of one octave of the gradient noise:
+/// sampled over all corner-gradient combinations, the largest |d²n/dx²|, |d²n/dxdy| found is
+/// below 9 (tested below); 12 leaves a margin for what sampling misses.
+pub const NOISE_MAX_SECOND: f64 = 12.0;
+
+/// Largest of 2|D|/(1+|D|²)², the factor by which the damping of the eroded fBm can amplify
+/// the slope of the damped octave (reached at |D| = 1/sqrt(3)).
+pub const DAMPING_SLOPE: f64 = 0.649_519_052_838_329;
+
+/// How the octaves are summed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TerrainFn {
+    /// Plain fBm: the sum of the octaves.
+    #[default]
+    Fbm,
+    /// Derivative-damped fBm: octave `o` is divided by `1 + |D_o|²`, where `D_o` is the sum of
+    /// the lattice-unit gradients of octaves `0..=o` (as in the seed template's terrain).
+    Eroded,
+}
+
+impl TerrainFn {
+    /// Every terrain function's name.
+    pub const NAMES: &'static [&'static str] = &["fbm", "eroded"];
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        match self {
+            TerrainFn::Fbm => "fbm",
+            TerrainFn::Eroded => "eroded",
+        }
+    }
+
+    /// The function called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name.trim() {
+            "fbm" => Some(TerrainFn::Fbm),
+            "eroded" => Some(TerrainFn::Eroded),
+            _ => None,
+        }
+    }
+
+    /// The value the GPU uniforms carry.
+    pub fn code(self) -> u32 {
+        self as u32
+    }
+}
+
+/// The endless world's terrain: everything that decides its heights and colour channel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Landscape {
+    /// Hash seed.
+    pub seed: u32,
+    /// Octave count (all of them are in [`Landscape::height_at`]; a baked level keeps those it
+    /// can represent).
+    pub octaves: u32,
+    /// Amplitude ratio between octaves.
+    pub gain: f64,
+    /// log2 of octave 0's lattice cell, in metres.
+    pub feature_log2: i32,
+    /// World height in metres of normalised height 1.
+    pub peak_height: f64,
+    /// How the octaves are summed.
+    pub terrain: TerrainFn,
+}
+
+/// A normalised height with its gradient per metre, and its Hessian-free companions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Normalised height (or colour channel) in [0, 1].
+    pub value: f64,
+    /// d value / dx and d value / dz, per metre.
+    pub gradient: [f64; 2],
+}
+
+/// Gradient noise in one cell with the corner gradients `g` at offset `f`: value, gradient and
+/// Hessian (xx, xy, yy), all in lattice units.
+pub fn cell_noise_hessian(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64; 3]) {
+    let [ga, gb, gc, gd] = g;
+    let dot = |g: [f64; 2], x: f64, y: f64| g[0] * x + g[1] * y;
+    let a = dot(ga, f[0], f[1]);
+    let b = dot(gb, f[0] - 1.0, f[1]);
+    let c = dot(gc, f[0], f[1] - 1.0);
+    let d = dot(gd, f[0] - 1.0, f[1] - 1.0);
+    let (big_b, big_c, k) = (b - a, c - a, a - b - c + d);
+    // Their gradients (they are affine in f).
+    let db = [gb[0] - ga[0], gb[1] - ga[1]];
+    let dc = [gc[0] - ga[0], gc[1] - ga[1]];
+    let dk = [ga[0] - gb[0] - gc[0] + gd[0], ga[1] - gb[1] - gc[1] + gd[1]];
+    let fade = |t: f64| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    let fade1 = |t: f64| 30.0 * t * t * (t - 1.0) * (t - 1.0);
+    let fade2 = |t: f64| 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
+    let (ux, uy) = (fade(f[0]), fade(f[1]));
+    let (ux1, uy1) = (fade1(f[0]), fade1(f[1]));
+    let (ux2, uy2) = (fade2(f[0]), fade2(f[1]));
+    let value = a + ux * big_b + uy * big_c + ux * uy * k;
+    let gx = ga[0] + ux1 * (big_b + uy * k) + ux * db[0] + uy * dc[0] + ux * uy * dk[0];
+    let gy = ga[1] + uy1 * (big_c + ux * k) + ux * db[1] + uy * dc[1] + ux * uy * dk[1];
+    let hxx = ux2 * (big_b + uy * k) + 2.0 * ux1 * (db[0] + uy * dk[0]);
+    let hyy = uy2 * (big_c + ux * k) + 2.0 * uy1 * (dc[1] + ux * dk[1]);
+    let hxy = ux1 * db[1] + uy1 * dc[0] + ux1 * uy1 * k + ux1 * uy * dk[1] + ux * uy1 * dk[0];
+    (value, [gx, gy], [hxx, hxy, hyy])
+}
+
+/// Gradient noise at lattice position `p` (any real value; corners hashed as wrapping 32-bit
+/// integers): value, gradient and Hessian in lattice units.
+pub fn noise(p: [f64; 2], stream: u32) -> (f64, [f64; 2], [f64; 3]) {
+    let fl = [p[0].floor(), p[1].floor()];
+    let f = [p[0] - fl[0], p[1] - fl[1]];
+    // Wrapping to u32 exactly as the GPU's bitcast of an i32 cell does.
+    let x0 = (fl[0] as i64) as u32;
+    let y0 = (fl[1] as i64) as u32;
+    let (x1, y1) = (x0.wrapping_add(1), y0.wrapping_add(1));
+    let g = [
+        gradient(lattice_hash(x0, y0, stream)),
+        gradient(lattice_hash(x1, y0, stream)),
+        gradient(lattice_hash(x0, y1, stream)),
+        gradient(lattice_hash(x1, y1, stream)),
+    ];
+    cell_noise_hessian(g, f)
+}
+
+impl Landscape {
+    /// Octave `o`'s lattice cell in metres.
+    pub fn cell(&self, o: u32) -> f64 {
+        2f64.powi(self.feature_log2 - o as i32)
+    }
+
+    /// How many octaves a grid spaced `2^level_log2` metres keeps: those whose cell spans at
+    /// least two samples (finer ones would alias).
+    pub fn octaves_for_level(&self, level_log2: i32) -> u32 {
+        let keep = self.feature_log2 - level_log2; // cells of >= 2 samples: o <= keep - 1
+        keep.clamp(0, self.octaves as i32) as u32
+    }
+
+    /// Sum of the amplitudes of all octaves (what the sum is normalised by).
+    fn norm(&self) -> f64 {
+        (0..self.octaves).map(|o| self.gain.powi(o as i32)).sum()
+    }
+
+    /// The channel at world (x, z) in metres from its first `octaves` octaves (normalised by all
+    /// of them), with its gradient per metre.
+    pub fn sample(&self, channel: Channel, x: f64, z: f64, octaves: u32) -> Sample {
+        let eroded = self.terrain == TerrainFn::Eroded && channel == Channel::Height;
+        let mut sum = 0.0;
+        let mut grad = [0.0; 2];
+        // Accumulated lattice-unit gradient (eroded only) and its derivative per metre.
+        let mut acc = [0.0; 2];
+        let mut dacc = [[0.0; 2]; 2]; // dacc[i][j] = d acc_i / d world_j
+        let mut amplitude = 1.0;
+        for o in 0..octaves.min(self.octaves) {
+            let freq = 1.0 / self.cell(o);
+            let (n, g, h) = noise([x * freq, z * freq], noise_stream(self.seed, channel, o));
+            if eroded {
+                acc = [acc[0] + g[0], acc[1] + g[1]];
+                dacc = [
+                    [dacc[0][0] + h[0] * freq, dacc[0][1] + h[1] * freq],
+                    [dacc[1][0] + h[1] * freq, dacc[1][1] + h[2] * freq],
+                ];
+                let q = 1.0 + acc[0] * acc[0] + acc[1] * acc[1];
+                sum += amplitude * n / q;
+                for j in 0..2 {
+                    let dq = 2.0 * (acc[0] * dacc[0][j] + acc[1] * dacc[1][j]);
+                    grad[j] += amplitude * (g[j] * freq / q - n * dq / (q * q));
+                }
+            } else {
+                sum += amplitude * n;
+                grad = [
+                    grad[0] + amplitude * g[0] * freq,
+                    grad[1] + amplitude * g[1] * freq,
+                ];
+            }
+            amplitude *= self.gain;
+        }
+        let scale = 0.5 / (self.norm() * NOISE_MAX_ABS);
+        Sample {
+            value: 0.5 + scale * sum,
+            gradient: [scale * grad[0], scale * grad[1]],
+        }
+    }
+
+    /// World height in metres of the continuous surface (every octave) at (x, z).
+    pub fn height_at(&self, x: f64, z: f64) -> f64 {
+        self.peak_height * self.sample(Channel::Height, x, z, self.octaves).value
+    }
+
+    /// What a grid spaced `2^level_log2` metres bakes at integer sample (i, j): the channel
+    /// from the octaves the level keeps, at world (i, j) * spacing.
+    pub fn level_sample(&self, channel: Channel, level_log2: i32, i: i64, j: i64) -> Sample {
+        let s = 2f64.powi(level_log2);
+        self.sample(
+            channel,
+            i as f64 * s,
+            j as f64 * s,
+            self.octaves_for_level(level_log2),
+        )
+    }
+
+    /// Bound on |grad height| in metres per metre of the first `octaves` octaves: what a
+    /// conservative ray march needs to never step through the surface.
+    pub fn lipschitz(&self, octaves: u32) -> f64 {
+        let scale = self.peak_height * 0.5 / (self.norm() * NOISE_MAX_ABS);
+        let mut bound = 0.0;
+        let mut curvature = 0.0; // sum over k <= o of NOISE_MAX_SECOND * freq_k
+        let mut amplitude = 1.0;
+        for o in 0..octaves.min(self.octaves) {
+            let freq = 1.0 / self.cell(o);
+            bound += amplitude * NOISE_MAX_GRADIENT * freq;
+            if self.terrain == TerrainFn::Eroded {
+                curvature += NOISE_MAX_SECOND * freq;
+                // The damping's own slope: |n| * 2|D|/(1+|D|²)² * |dD/dx|.
+                bound += amplitude * NOISE_MAX_ABS * DAMPING_SLOPE * curvature;
+            }
+            amplitude *= self.gain;
+        }
+        scale * bound
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn land(terrain: TerrainFn) -> Landscape {
+        Landscape {
+            seed: 7,
+            octaves: 9,
+            gain: 0.5,
+            feature_log2: 11,
+            peak_height: 900.0,
+            terrain,
+        }
+    }
+
+    #[test]
+    fn noise_derivatives_match_finite_differences() {
+        let e = 1e-5;
+        for (k, p) in [[0.3, 0.7], [12.25, -3.6], [-1e6 + 0.1, 5e5 + 0.9]]
+            .iter()
+            .enumerate()
+        {
+            let stream = 11 + k as u32;
+            let (v, g, h) = noise(*p, stream);
+            let at = |dx: f64, dy: f64| noise([p[0] + dx, p[1] + dy], stream);
+            let gx = (at(e, 0.0).0 - at(-e, 0.0).0) / (2.0 * e);
+            let gy = (at(0.0, e).0 - at(0.0, -e).0) / (2.0 * e);
+            // Far from the origin f64 keeps ~1e-10 of the position: differences lose digits.
+            let tol = if p[0].abs() > 1e3 { 1e-4 } else { 1e-6 };
+            assert!(
+                (gx - g[0]).abs() < tol && (gy - g[1]).abs() < tol,
+                "{p:?}: {g:?} vs {gx} {gy}"
+            );
+            let hxx = (at(e, 0.0).1[0] - at(-e, 0.0).1[0]) / (2.0 * e);
+            let hxy = (at(0.0, e).1[0] - at(0.0, -e).1[0]) / (2.0 * e);
+            let hyy = (at(0.0, e).1[1] - at(0.0, -e).1[1]) / (2.0 * e);
+            for (a, b) in [(hxx, h[0]), (hxy, h[1]), (hyy, h[2])] {
+                assert!(
+                    (a - b).abs() < 100.0 * tol,
+                    "{p:?}: hessian {h:?} vs {hxx} {hxy} {hyy}"
+                );
+            }
+            assert!(v.abs() <= NOISE_MAX_ABS + 1e-12);
+        }
+    }
+
+    #[test]
+    fn second_derivatives_stay_under_their_bound() {
+        // Every corner-gradient combination (8^4) on a grid of cell positions.
+        let g = |i: u32| gradient(i);
+        let mut worst: f64 = 0.0;
+        for c in 0..4096u32 {
+            let corners = [
+                g(c & 15),
+                g((c >> 3) & 15),
+                g((c >> 6) & 15),
+                g((c >> 9) & 15),
+            ];
+            for i in 0..=16 {
+                for j in 0..=16 {
+                    let f = [f64::from(i) / 16.0, f64::from(j) / 16.0];
+                    let (_, _, h) = cell_noise_hessian(corners, f);
+                    worst = worst.max(h[0].abs()).max(h[1].abs()).max(h[2].abs());
+                }
+            }
+        }
+        assert!(
+            worst < 9.0 && worst > 1.0,
+            "largest second derivative {worst}"
+        );
+        assert!(worst < NOISE_MAX_SECOND);
+    }
+
+    #[test]
+    fn gradients_are_analytic_for_both_terrain_functions() {
+        for t in [TerrainFn::Fbm, TerrainFn::Eroded] {
+            let l = land(t);
+            for (x, z) in [(10.5, -33.25), (1e6 + 0.125, -2e6 + 7.5), (-4096.0, 4096.0)] {
+                let s = l.sample(Channel::Height, x, z, l.octaves);
+                let e = 1e-4;
+                let at =
+                    |dx: f64, dz: f64| l.sample(Channel::Height, x + dx, z + dz, l.octaves).value;
+                let gx = (at(e, 0.0) - at(-e, 0.0)) / (2.0 * e);
+                let gz = (at(0.0, e) - at(0.0, -e)) / (2.0 * e);
+                let tol = 1e-6 * (1.0 + s.gradient[0].abs() + s.gradient[1].abs());
+                assert!(
+                    (gx - s.gradient[0]).abs() < tol && (gz - s.gradient[1]).abs() < tol,
+                    "{t:?} at ({x}, {z}): {:?} vs ({gx}, {gz})",
+                    s.gradient
+                );
+                assert!((0.0..=1.0).contains(&s.value), "{t:?}: {}", s.value);
+            }
+        }
+    }
+
+    #[test]
+    fn the_lipschitz_bound_holds_where_sampled() {
+        for t in [TerrainFn::Fbm, TerrainFn::Eroded] {
+            let l = land(t);
+            let bound = l.lipschitz(l.octaves);
+            let mut worst: f64 = 0.0;
+            for i in 0..20_000 {
+                let (x, z) = (f64::from(i) * 7.3 - 5000.0, f64::from(i % 97) * 13.1 + 1e5);
+                let g = l.sample(Channel::Height, x, z, l.octaves).gradient;
+                worst = worst.max(l.peak_height * g[0].hypot(g[1]));
+            }
+            assert!(worst < bound, "{t:?}: slope {worst} over bound {bound}");
+            assert!(
+                worst > bound / 20.0,
+                "{t:?}: bound {bound} far above slope {worst}"
+            );
+        }
+    }
+
+    #[test]
+    fn levels_keep_the_octaves_they_can_hold_and_the_world_does_not_repeat() {
+        let l = land(TerrainFn::Fbm);
+        // Octave cells 2048, 1024, ..., 8 m: a 1 m grid keeps all 9, a 512 m grid keeps 2.
+        assert_eq!(l.octaves_for_level(0), 9);
+        assert_eq!(l.octaves_for_level(9), 2);
+        assert_eq!(l.octaves_for_level(11), 0);
+        // Samples 2^20 finest cells apart differ (no short period).
+        let far = l.cell(l.octaves - 1) * f64::from(1u32 << 20);
+        assert_ne!(l.height_at(3.0, 5.0), l.height_at(3.0 + far, 5.0));
+        // A level sample is the continuous function at the sample's position.
+        let s = l.level_sample(Channel::Height, -2, 1_000_003, -7);
+        let c = l.sample(
+            Channel::Height,
+            1_000_003.0 / 4.0,
+            -7.0 / 4.0,
+            l.octaves_for_level(-2),
+        );
+        assert_eq!(s, c);
+    }
+}

@@ -1,0 +1,131 @@
+// The endless world's terrain function (composed after noise.wgsl, whose hash, gradients and
+// fade it uses). Its CPU twin, in f64, is `src/landscape.rs`.
+//
+// World units are metres. Octave `o` has lattice cells 2^(feature_log2 - o) metres wide, hashed
+// on wrapping 32-bit integer cell coordinates. A sample grid spaced 2^level_log2 metres is
+// addressed by integer sample coordinates; each octave's cell and fraction are taken from them
+// with integer shifts, so every sample is exact wherever it lies (no f32 world positions).
+
+struct LandscapeUniforms {
+    // World sample coordinates of the first texel of the rectangle baked.
+    origin: vec2<i32>,
+    // Size of the rectangle baked, in samples.
+    extent: vec2<u32>,
+    // Where the rectangle's first texel goes in the (toroidal) texture, and its side.
+    dest_origin: vec2<u32>,
+    wrap: u32,
+    // Texture-array layer written.
+    layer: u32,
+    seed: u32,
+    // Octaves this grid keeps, and all octaves (the normalisation).
+    octaves: u32,
+    total_octaves: u32,
+    // 0: fBm, 1: derivative-damped ("eroded") fBm.
+    terrain: u32,
+    gain: f32,
+    feature_log2: i32,
+    level_log2: i32,
+    _pad: u32,
+}
+
+// Gradient noise at cell `cell` (wrapping) and offset `f`: value, gradient and, for the eroded
+// terrain, the Hessian (xx, xy, yy), all in lattice units.
+struct NoiseD {
+    value: f32,
+    grad: vec2<f32>,
+    hess: vec3<f32>,
+}
+
+fn fade2(t: vec2<f32>) -> vec2<f32> {
+    return 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
+}
+
+fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32) -> NoiseD {
+    let x0 = bitcast<u32>(cell.x);
+    let y0 = bitcast<u32>(cell.y);
+    let x1 = x0 + 1u;
+    let y1 = y0 + 1u;
+    let ga = gradient(lattice_hash(x0, y0, stream));
+    let gb = gradient(lattice_hash(x1, y0, stream));
+    let gc = gradient(lattice_hash(x0, y1, stream));
+    let gd = gradient(lattice_hash(x1, y1, stream));
+    let a = dot(ga, f);
+    let b = dot(gb, f - vec2<f32>(1.0, 0.0));
+    let c = dot(gc, f - vec2<f32>(0.0, 1.0));
+    let d = dot(gd, f - vec2<f32>(1.0, 1.0));
+    let bb = b - a;
+    let cc = c - a;
+    let k = a - b - c + d;
+    let db = gb - ga;
+    let dc = gc - ga;
+    let dk = ga - gb - gc + gd;
+    let u = fade(f);
+    let u1 = fade_derivative(f);
+    let u2 = fade2(f);
+    var out: NoiseD;
+    out.value = a + u.x * bb + u.y * cc + u.x * u.y * k;
+    out.grad = vec2<f32>(
+        ga.x + u1.x * (bb + u.y * k) + u.x * db.x + u.y * dc.x + u.x * u.y * dk.x,
+        ga.y + u1.y * (cc + u.x * k) + u.x * db.y + u.y * dc.y + u.x * u.y * dk.y,
+    );
+    out.hess = vec3<f32>(
+        u2.x * (bb + u.y * k) + 2.0 * u1.x * (db.x + u.y * dk.x),
+        u1.x * db.y + u1.y * dc.x + u1.x * u1.y * k + u1.x * u.y * dk.y + u.x * u1.y * dk.x,
+        u2.y * (cc + u.x * k) + 2.0 * u1.y * (dc.y + u.x * dk.y),
+    );
+    return out;
+}
+
+// Sample `s` of a grid spaced 2^level_log2 metres in the lattice of an octave whose cells are
+// 2^cell_log2 metres (cell_log2 > level_log2): cell = s >> shift, fraction = low bits / 2^shift.
+struct Split {
+    cell: vec2<i32>,
+    frac: vec2<f32>,
+}
+
+fn lattice_split(s: vec2<i32>, shift: u32) -> Split {
+    let mask = (1 << shift) - 1;
+    var out: Split;
+    out.cell = s >> vec2<u32>(shift);
+    out.frac = vec2<f32>(s & vec2<i32>(mask)) / f32(1u << shift);
+    return out;
+}
+
+// The channel at world sample `s` of grid `level_log2`: (value in [0,1], d/dx, d/dz per metre).
+fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
+    let eroded = u.terrain == 1u && channel == CHANNEL_HEIGHT;
+    var sum = 0.0;
+    var grad = vec2<f32>(0.0);
+    var acc = vec2<f32>(0.0);
+    // d acc / d world: rows are acc.x and acc.y.
+    var dacc_x = vec2<f32>(0.0);
+    var dacc_y = vec2<f32>(0.0);
+    var amplitude = 1.0;
+    var norm = 0.0;
+    for (var o = 0u; o < u.total_octaves; o++) {
+        if o < u.octaves {
+            let cell_log2 = u.feature_log2 - i32(o);
+            let shift = u32(cell_log2 - u.level_log2);
+            let split = lattice_split(s, shift);
+            let n = cell_noise_d(split.cell, split.frac, noise_stream(u.seed, channel, o));
+            // Lattice units to metres: a power of two, so exact.
+            let freq = ldexp(1.0, -cell_log2);
+            if eroded {
+                acc += n.grad;
+                dacc_x += vec2<f32>(n.hess.x, n.hess.y) * freq;
+                dacc_y += vec2<f32>(n.hess.y, n.hess.z) * freq;
+                let q = 1.0 + dot(acc, acc);
+                sum += amplitude * n.value / q;
+                let dq = 2.0 * (acc.x * dacc_x + acc.y * dacc_y);
+                grad += amplitude * (n.grad * freq / q - n.value * dq / (q * q));
+            } else {
+                sum += amplitude * n.value;
+                grad += amplitude * n.grad * freq;
+            }
+        }
+        norm += amplitude;
+        amplitude *= u.gain;
+    }
+    let scale = 0.5 / (norm * NOISE_MAX_ABS);
+    return vec3<f32>(0.5 + scale * sum, scale * grad);
+}
