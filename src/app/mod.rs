@@ -86,6 +86,8 @@ pub trait Report {
     fn notice(&mut self, message: &str);
     /// A one-line error the app keeps running after.
     fn warn(&mut self, message: &str);
+    /// A change the user asked for took effect: a previous refusal no longer applies.
+    fn accepted(&mut self) {}
     /// The parameters changed (the page updates its URL and controls).
     fn options(&mut self, _options: &AppOptions) {}
     /// A frame was presented.
@@ -262,6 +264,7 @@ impl App {
         self.options = options;
         self.keep_camera_above();
         self.report.options(&self.options);
+        self.report.accepted();
         self.changed();
         Ok(())
     }

@@ -195,9 +195,9 @@ impl Report for Page {
         set_text("error", message);
     }
 
-    fn options(&mut self, options: &AppOptions) {
-        set_body_data("query", &options.to_query());
-        // A change that took effect clears a previous refusal (never a fatal error).
+    fn accepted(&mut self) {
+        // A change that took effect clears a previous refusal (never a fatal error). The
+        // twice-a-second URL updates of a scrolling terrain do not: a refusal stays readable.
         if document()
             .and_then(|d| d.body())
             .and_then(|b| b.dataset().get("error"))
@@ -205,6 +205,10 @@ impl Report for Page {
         {
             set_text("error", "");
         }
+    }
+
+    fn options(&mut self, options: &AppOptions) {
+        set_body_data("query", &options.to_query());
         if let Some(w) = web_sys::window() {
             if let Ok(e) = web_sys::Event::new("relief-options") {
                 let _ = w.dispatch_event(&e);

@@ -156,6 +156,10 @@ await withBrowser(webgpu, async (browser) => {
     { timeout: 30000 });
   const seedField = await page.inputValue('input[data-key="seed"]');
   check(seedField === "7", `a refused seed snaps back to the seed in force (field: ${seedField})`);
+  // The refusal stays readable while the terrain scrolls (the URL updates twice a second).
+  await page.waitForTimeout(1500);
+  const still = await page.locator("#error").innerText();
+  check(still.includes("seed"), `the refusal is still on the page 1.5 s later ("${still.slice(0, 80)}")`);
 
   // The buttons fit inside the panel.
   const panel = await page.locator("#controls").boundingBox();
@@ -183,6 +187,9 @@ await withBrowser(webgpu, async (browser) => {
   const redrawn = await page.waitForFunction((b) => Number(document.body.dataset.frames) > b, after,
     { timeout: 60000 }).then(() => true, () => false);
   check(redrawn, "a control change draws again");
+  const cleared = await page.waitForFunction(() => document.querySelector("#error").textContent === "", null,
+    { timeout: 30000 }).then(() => true, () => false);
+  check(cleared, "a change that took effect clears the earlier refusal");
 
   // Every row of the table reaches the page through its URL.
   const rows = await page.evaluate(async () => JSON.parse((await import("./web/pkg/relief.js")).params_table()));
