@@ -11,7 +11,8 @@ use crate::gpu::timing::{GpuTimer, Slot, Timings};
 use crate::params::{params, srgb_to_linear, SceneParam, Shading, TerrainParams};
 use crate::scene::BakeInfo;
 use crate::table::{self, Kind, Param, Value};
-use crate::{OrbitCamera, Terrain};
+use crate::world::{world_param, WorldKind, WorldParams, WORLD_PARAMS};
+use crate::{OrbitCamera, Terrain, World, WorldView};
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::path::{Path, PathBuf};
 
@@ -167,11 +168,66 @@ pub fn command() -> Command {
     for p in params() {
         cmd = cmd.arg(value_arg(p, &scene));
     }
+    let world = WorldParams::default();
+    for p in WORLD_PARAMS
+        .iter()
+        .filter(|p| crate::params::param(p.key).is_none())
+    {
+        cmd = cmd.arg(
+            value_arg(p, &world).help(format!("--world endless only: {}", flag_help(p, &world))),
+        );
+    }
     let app = AppOptions::default();
     for p in &OPTIONS {
         cmd = cmd.arg(value_arg(p, &app).help(format!("window only: {}", flag_help(p, &app))));
     }
     cmd.arg(
+        Arg::new("world")
+            .long("world")
+            .global(true)
+            .value_name("WORLD")
+            .help(format!(
+                "tile (the seed blog's periodic tile, seen from outside) or endless (a landscape \
+                 in metres to the horizon; render and height only so far) [default: tile] \
+                 [allowed: {}]",
+                WORLDS.allowed()
+            )),
+    )
+    .arg(
+        Arg::new("eye")
+            .long("eye")
+            .global(true)
+            .value_name("X,Y,Z")
+            .allow_hyphen_values(true)
+            .help("render: camera position (world units; metres in the endless world)"),
+    )
+    .arg(
+        Arg::new("look-at")
+            .long("look-at")
+            .global(true)
+            .value_name("X,Y,Z")
+            .allow_hyphen_values(true)
+            .help("render: the point the camera looks at"),
+    )
+    .arg(
+        Arg::new("fov")
+            .long("fov")
+            .global(true)
+            .value_name("DEG")
+            .allow_hyphen_values(true)
+            .help(format!(
+                "render: vertical field of view in degrees [default: 45] [allowed: {}]",
+                FOV.allowed()
+            )),
+    )
+    .arg(
+        Arg::new("stats")
+            .long("stats")
+            .global(true)
+            .action(ArgAction::SetTrue)
+            .help("render: print what the frame drew as `key value` lines (triangles, texels baked, levels, screen-error bound)"),
+    )
+    .arg(
         Arg::new("scene")
             .long("scene")
             .global(true)
@@ -206,6 +262,31 @@ pub fn command() -> Command {
             .allow_hyphen_values(true),
     )
 }
+
+/// `--world`'s names.
+const WORLDS: Kind = Kind::Choice(WorldKind::NAMES);
+
+/// `--fov`'s range in degrees (open at both ends in truth: 0 and 180 draw nothing).
+const FOV: Kind = Kind::Float {
+    min: 1.0,
+    max: 179.0,
+};
+
+/// Largest |coordinate| of `--eye` and `--look-at`.
+const MAX_COORD: f64 = 1e9;
+
+/// Scene keys of the tile world that the endless world has no use for.
+pub const TILE_ONLY: [&str; 6] = [
+    "size",
+    "grid",
+    "frequency",
+    "height_scale",
+    "offset",
+    "normals",
+];
+
+/// Flags of `relief render`'s camera and statistics.
+const CAMERA_FLAGS: [&str; 4] = ["eye", "look-at", "fov", "stats"];
 
 /// `--exit-after`'s range.
 const EXIT_AFTER: Kind = Kind::Float {
@@ -344,6 +425,8 @@ enum Run {
         width: u32,
         height: u32,
         method: crate::Method,
+        camera: Camera,
+        stats: bool,
     },
     Bake {
         out_dir: PathBuf,
@@ -355,6 +438,101 @@ enum Run {
     Height {
         points: Vec<[f64; 2]>,
     },
+}
+
+/// The camera `relief render` was given: each part optional, defaults by world.
+#[derive(Clone, Copy, Debug, Default)]
+struct Camera {
+    eye: Option<[f64; 3]>,
+    look_at: Option<[f64; 3]>,
+    fov_deg: Option<f32>,
+}
+
+/// `X,Y,Z`: three finite numbers within ±[`MAX_COORD`].
+fn triple(m: &ArgMatches, id: &str) -> Result<Option<[f64; 3]>> {
+    let Some(text) = string(m, id) else {
+        return Ok(None);
+    };
+    let bad = || {
+        Error::invalid(
+            format!("--{id}"),
+            table::shorten(&text),
+            format!("X,Y,Z: three finite numbers, each within ±{MAX_COORD:e}"),
+        )
+    };
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(bad());
+    }
+    let mut out = [0.0; 3];
+    for (o, t) in out.iter_mut().zip(parts) {
+        let v: f64 = t.trim().parse().map_err(|_| bad())?;
+        if !v.is_finite() || v.abs() > MAX_COORD {
+            return Err(bad());
+        }
+        *o = v;
+    }
+    Ok(Some(out))
+}
+
+fn camera(m: &ArgMatches) -> Result<Camera> {
+    let fov_deg = match string(m, "fov") {
+        None => None,
+        Some(text) => match FOV.parse(&text) {
+            Some(Value::Float(v)) => Some(v),
+            _ => {
+                return Err(Error::invalid(
+                    "--fov",
+                    table::shorten(&text),
+                    format!("{} degrees", FOV.allowed()),
+                ))
+            }
+        },
+    };
+    let camera = Camera {
+        eye: triple(m, "eye")?,
+        look_at: triple(m, "look-at")?,
+        fov_deg,
+    };
+    if let (Some(e), Some(t)) = (camera.eye, camera.look_at) {
+        let d = [t[0] - e[0], t[1] - e[1], t[2] - e[2]];
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if len <= 1e-6 * (1.0 + e.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
+            return Err(Error::Usage(format!(
+                "--look-at {} is the --eye position: the camera must look somewhere else",
+                table::shorten(&string(m, "look-at").unwrap_or_default())
+            )));
+        }
+    }
+    Ok(camera)
+}
+
+fn world_kind(m: &ArgMatches) -> Result<WorldKind> {
+    match string(m, "world") {
+        None => Ok(WorldKind::Tile),
+        Some(text) => WorldKind::from_name(&text)
+            .ok_or_else(|| Error::invalid("--world", table::shorten(&text), WORLDS.allowed())),
+    }
+}
+
+/// The endless world: defaults, then the flags (scene files describe the tile only).
+fn resolve_world(m: &ArgMatches) -> Result<WorldParams> {
+    let mut p = WorldParams::default();
+    for row in WORLD_PARAMS.iter().filter(|r| given(m, r.key)) {
+        let text = string(m, row.key).unwrap_or_default();
+        (row.set)(&mut p, flag_value(row, &text)?);
+    }
+    p.validate().map_err(|e| match e {
+        Error::InvalidParam {
+            name,
+            value,
+            allowed,
+        } if world_param(&name).is_some() => {
+            Error::invalid(format!("--{}", name.replace('_', "-")), value, allowed)
+        }
+        other => other,
+    })?;
+    Ok(p)
 }
 
 fn string(m: &ArgMatches, id: &str) -> Option<String> {
@@ -497,6 +675,8 @@ fn run(top: &ArgMatches) -> Result<()> {
                     Error::invalid("--method", table::shorten(&text), METHODS.allowed())
                 })?
             },
+            camera: camera(m)?,
+            stats: m.get_flag("stats"),
         },
         "bake" => Run::Bake {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
@@ -525,6 +705,9 @@ fn run(top: &ArgMatches) -> Result<()> {
     if !matches!(run, Run::Window) {
         refuse_flags(m, name, &window_only, "it applies to the window only")?;
     }
+    if !matches!(run, Run::Render { .. }) {
+        refuse_flags(m, name, &CAMERA_FLAGS, "it applies to relief render only")?;
+    }
     if let Run::Render { method, .. } = run {
         if method != crate::Method::Mesh {
             refuse_flags(
@@ -542,6 +725,12 @@ fn run(top: &ArgMatches) -> Result<()> {
             &HEIGHT_REFUSES,
             "heights come from the continuous surface, not from what is drawn",
         )?;
+        refuse_flags(
+            m,
+            name,
+            &["pixel_error"],
+            "heights come from the continuous surface, not from what is drawn",
+        )?;
     }
     if matches!(run, Run::Bench { .. }) {
         refuse_flags(
@@ -557,6 +746,49 @@ fn run(top: &ArgMatches) -> Result<()> {
             "the benchmark always measures GPU time",
         )?;
     }
+    let world = world_kind(m)?;
+    let world_only: Vec<&str> = WORLD_PARAMS
+        .iter()
+        .map(|p| p.key)
+        .filter(|k| crate::params::param(k).is_none())
+        .collect();
+    match world {
+        WorldKind::Tile => refuse_flags(
+            m,
+            name,
+            &world_only,
+            "it applies to --world endless only (the tile is 2 units wide)",
+        )?,
+        WorldKind::Endless => {
+            if !matches!(run, Run::Render { .. } | Run::Height { .. }) {
+                return Err(Error::Usage(format!(
+                    "--world endless is drawn by relief render and measured by relief height; \
+                     relief {name} has the tile only so far"
+                )));
+            }
+            refuse_flags(
+                m,
+                &format!("{name} --world endless"),
+                &TILE_ONLY,
+                "it applies to the tile world only",
+            )?;
+            refuse_flags(
+                m,
+                &format!("{name} --world endless"),
+                &["scene"],
+                "scene files describe the tile world only so far",
+            )?;
+            if let Run::Render { method, .. } = run {
+                if method != crate::Method::Mesh {
+                    return Err(Error::Usage(format!(
+                        "--method {method} draws the tile world only so far; --world endless \
+                         is drawn with --method mesh"
+                    )));
+                }
+            }
+            return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
+        }
+    }
     let params = resolve_scene(m)?;
     let timings = m.get_flag("timings");
     match run {
@@ -566,7 +798,16 @@ fn run(top: &ArgMatches) -> Result<()> {
             width,
             height,
             method,
-        } => render(&params, &out, (width, height), method, timings),
+            camera,
+            stats,
+        } => render(
+            &params,
+            &out,
+            (width, height),
+            method,
+            &camera,
+            Flags { timings, stats },
+        ),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
         Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
         Run::Height { points } => {
@@ -578,17 +819,120 @@ fn run(top: &ArgMatches) -> Result<()> {
     }
 }
 
+/// What `relief render` prints besides the image.
+#[derive(Clone, Copy, Debug)]
+struct Flags {
+    timings: bool,
+    stats: bool,
+}
+
+/// The tile world's view: the default orbit, or the camera given (all in tile units).
+fn tile_view(camera: &Camera, (width, height): (u32, u32)) -> crate::View {
+    let orbit = OrbitCamera::default();
+    let aspect = width as f32 / height as f32;
+    if camera.eye.is_none() && camera.look_at.is_none() && camera.fov_deg.is_none() {
+        return orbit.view(aspect);
+    }
+    let eye = camera
+        .eye
+        .map_or(orbit.eye(), |e| glam::DVec3::from(e).as_vec3());
+    let target = camera
+        .look_at
+        .map_or(orbit.target, |t| glam::DVec3::from(t).as_vec3());
+    let fov = camera.fov_deg.map_or(orbit.fov_y, |d| d.to_radians());
+    let distance = (target - eye).length().max(1e-3);
+    let up = if (target - eye).normalize().y.abs() > 0.999 {
+        glam::Vec3::Z
+    } else {
+        glam::Vec3::Y
+    };
+    let proj =
+        glam::Mat4::perspective_rh(fov, aspect, (distance * 0.01).max(0.001), distance + 10.0);
+    crate::View {
+        view_proj: proj * glam::Mat4::look_at_rh(eye, target, up),
+        eye,
+    }
+}
+
+/// The endless world's view: by default from 1200 m above the ground, looking east-north-east
+/// and a little down over ridges that run out to the horizon (chosen by eye).
+fn world_view(camera: &Camera, params: &WorldParams, size: (u32, u32)) -> WorldView {
+    let land = &params.land;
+    let eye = camera.eye.map_or_else(
+        || glam::DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0),
+        glam::DVec3::from,
+    );
+    let target = camera.look_at.map_or_else(
+        || eye + glam::DVec3::new(7000.0, -1000.0, 3000.0),
+        glam::DVec3::from,
+    );
+    let fov = camera.fov_deg.unwrap_or(45.0).to_radians();
+    WorldView::look_at(eye, target, fov, size)
+}
+
+fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
+    match run {
+        Run::Height { points } => {
+            for [x, z] in points {
+                println!("{}", params.land.height_at(x, z));
+            }
+            Ok(())
+        }
+        Run::Render {
+            out,
+            width,
+            height,
+            camera,
+            stats,
+            ..
+        } => {
+            check_png_path(&out)?;
+            let gpu = Gpu::new()?;
+            let timer = timer_if(timings, &gpu);
+            let view = world_view(&camera, &params, (width, height));
+            let mut world = World::new(
+                &gpu.device,
+                &gpu.queue,
+                Offscreen::targets(RENDER_SAMPLES),
+                params,
+            )?;
+            let (pixels, t) = headless::render_world_image(
+                &gpu,
+                &mut world,
+                &view,
+                (width, height),
+                TILE,
+                timer.as_ref(),
+            )?;
+            if timings {
+                print_timings(&gpu, t);
+            }
+            if stats {
+                for line in world.stats().lines() {
+                    println!("{line}");
+                }
+            }
+            write_png(&out, width, height, image::ColorType::Rgba8, &pixels)
+        }
+        _ => Err(Error::Usage(
+            "--world endless applies to relief render and relief height only".into(),
+        )),
+    }
+}
+
 fn render(
     params: &TerrainParams,
     out: &Path,
     (width, height): (u32, u32),
     method: crate::Method,
-    timings: bool,
+    camera: &Camera,
+    flags: Flags,
 ) -> Result<()> {
     check_png_path(out)?;
+    let Flags { timings, stats } = flags;
     let gpu = Gpu::new()?;
     let timer = timer_if(timings, &gpu);
-    let view = OrbitCamera::default().view(width as f32 / height as f32);
+    let view = tile_view(camera, (width, height));
     let (pixels, t) = if method == crate::Method::Mesh {
         let mut terrain = Terrain::new(
             &gpu.device,
@@ -617,6 +961,21 @@ fn render(
     };
     if timings {
         print_timings(&gpu, t);
+    }
+    if stats {
+        // The tile: one grid, baked whole once.
+        let mesh = method == crate::Method::Mesh;
+        let cells = u64::from(params.grid - 1);
+        println!("triangles {}", if mesh { 2 * cells * cells } else { 0 });
+        println!(
+            "texels_baked {}",
+            if mesh {
+                u64::from(params.size).pow(2)
+            } else {
+                0
+            }
+        );
+        println!("levels 1");
     }
     write_png(out, width, height, image::ColorType::Rgba8, &pixels)
 }

@@ -62,6 +62,7 @@ pub mod bench;
 pub mod camera;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod cli;
+pub mod clipmap;
 pub mod error;
 pub mod gpu;
 pub mod landscape;
@@ -74,15 +75,18 @@ pub mod raycast;
 #[cfg(feature = "scene")]
 pub mod scene;
 pub mod table;
+pub mod world;
 
 pub use camera::{OrbitCamera, View};
 pub use error::{Error, Result};
+pub use gpu::world::{World, WorldStats, WorldView};
 pub use gpu::{height_at, Targets, Terrain, Textures};
 pub use method::Method;
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
 #[cfg(feature = "scene")]
 pub use scene::BakeInfo;
 pub use wgpu;
+pub use world::{WorldKind, WorldParams};
 
 /// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].
 pub const WORLD_SIZE: f64 = 2.0;

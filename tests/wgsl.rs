@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 8);
+    assert_eq!(modules.len(), 9);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -128,5 +128,44 @@ fn world_size_agrees_with_render_wgsl() {
             relief::WORLD_SIZE
         )),
         "shade.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
+    );
+}
+
+#[test]
+fn world_uniforms_match_wgsl() {
+    use relief::gpu::world::{LevelUniforms, WorldUniforms};
+    let m = parse("world", &shader::compose(&[shader::SHADE, shader::WORLD]));
+    let (size, members) = layout(&m, "WorldUniforms");
+    assert_eq!(size as usize, size_of::<WorldUniforms>());
+    for (name, at) in [
+        ("eye", offset_of!(WorldUniforms, eye)),
+        ("cells", offset_of!(WorldUniforms, cells)),
+        ("patch_cells", offset_of!(WorldUniforms, patch_cells)),
+        ("side", offset_of!(WorldUniforms, side)),
+        ("morphing", offset_of!(WorldUniforms, morphing)),
+        ("morph", offset_of!(WorldUniforms, morph)),
+        ("peak", offset_of!(WorldUniforms, peak)),
+        ("levels", offset_of!(WorldUniforms, levels)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
+    let (size, members) = layout(&m, "Level");
+    assert_eq!(size as usize, size_of::<LevelUniforms>());
+    for (name, at) in [
+        ("origin_rel", offset_of!(LevelUniforms, origin_rel)),
+        ("delta", offset_of!(LevelUniforms, delta)),
+        ("origin_mod", offset_of!(LevelUniforms, origin_mod)),
+        ("shift", offset_of!(LevelUniforms, shift)),
+        ("layer", offset_of!(LevelUniforms, layer)),
+        ("coarse", offset_of!(LevelUniforms, coarse)),
+        ("has_coarse", offset_of!(LevelUniforms, has_coarse)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
+    // The level array holds every level a clipmap can have.
+    assert_eq!(
+        std::mem::size_of_val(&<WorldUniforms as bytemuck::Zeroable>::zeroed().levels)
+            / size_of::<LevelUniforms>(),
+        relief::clipmap::MAX_LEVELS
     );
 }

@@ -2,6 +2,7 @@
 //! offscreen target drawn through the same [`Terrain`] calls as the window, and readback.
 
 use super::timing::{GpuTimer, Slot, Timings};
+use super::world::{World, WorldView};
 use super::{Targets, Terrain};
 use crate::camera::View;
 use crate::error::{Error, Result};
@@ -63,6 +64,7 @@ pub fn encode_texture_copy(
         encoder,
         texture,
         wgpu::TextureAspect::All,
+        0,
         0..texture.height(),
     )
 }
@@ -75,12 +77,14 @@ fn row_pitch(texture: &wgpu::Texture, aspect: wgpu::TextureAspect) -> u32 {
     (texture.width() * bpp).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
 }
 
-/// Records a copy of rows `rows` of one aspect of a 2-D texture into a new `MAP_READ` buffer.
+/// Records a copy of rows `rows` of one aspect of one layer of a 2-D texture (array) into a
+/// new `MAP_READ` buffer.
 fn encode_rows_copy(
     device: &wgpu::Device,
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
     aspect: wgpu::TextureAspect,
+    layer: u32,
     rows: std::ops::Range<u32>,
 ) -> (wgpu::Buffer, u32) {
     let pitch = row_pitch(texture, aspect);
@@ -97,7 +101,7 @@ fn encode_rows_copy(
             origin: wgpu::Origin3d {
                 x: 0,
                 y: rows.start,
-                z: 0,
+                z: layer,
             },
             ..texture.as_image_copy()
         },
@@ -124,7 +128,8 @@ pub const MAX_READBACK_BYTES: u64 = 64 << 20;
 
 /// Reads a 2-D texture back in bands of whole rows, each band at most `band_bytes` (and the
 /// device's buffer limit), calling `sink(first_row, rows)` with the rows tightly packed.
-/// Textures of any size the device can hold are read this way without one huge buffer.
+/// Textures of any size the device can hold are read this way without one huge buffer. The
+/// layers of an array texture follow each other (layer `k`'s row `y` is row `k * height + y`).
 pub fn read_texture_bands(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -142,26 +147,29 @@ pub fn read_texture_bands(
     let band = u32::try_from(limit / pitch).unwrap_or(u32::MAX).max(1);
     let row =
         (texture.width() * texture.format().block_copy_size(Some(aspect)).unwrap_or(4)) as usize;
-    let mut y = 0;
-    while y < texture.height() {
-        let rows = y..(y + band).min(texture.height());
-        let (buffer, pitch) = super::scoped(device, || {
-            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("relief:readback"),
-            });
-            let copy = encode_rows_copy(device, &mut encoder, texture, aspect, rows.clone());
-            queue.submit([encoder.finish()]);
-            copy
-        })?;
-        let bytes = map_read(device, &buffer)?;
-        let packed: Vec<u8> = bytes
-            .chunks(pitch as usize)
-            .take((rows.end - rows.start) as usize)
-            .flat_map(|r| &r[..row])
-            .copied()
-            .collect();
-        sink(rows.start, &packed);
-        y = rows.end;
+    for layer in 0..texture.depth_or_array_layers() {
+        let mut y = 0;
+        while y < texture.height() {
+            let rows = y..(y + band).min(texture.height());
+            let (buffer, pitch) = super::scoped(device, || {
+                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("relief:readback"),
+                });
+                let copy =
+                    encode_rows_copy(device, &mut encoder, texture, aspect, layer, rows.clone());
+                queue.submit([encoder.finish()]);
+                copy
+            })?;
+            let bytes = map_read(device, &buffer)?;
+            let packed: Vec<u8> = bytes
+                .chunks(pitch as usize)
+                .take((rows.end - rows.start) as usize)
+                .flat_map(|r| &r[..row])
+                .copied()
+                .collect();
+            sink(layer * texture.height() + rows.start, &packed);
+            y = rows.end;
+        }
     }
     Ok(())
 }
@@ -268,9 +276,47 @@ pub fn render_image(
     gpu: &Gpu,
     terrain: &mut Terrain,
     view: &View,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     tile: u32,
     timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    let samples = terrain.targets().sample_count;
+    tiled(gpu, size, tile, samples, |target, crop| {
+        let tile_view = View {
+            view_proj: crop * view.view_proj,
+            ..*view
+        };
+        target.render(gpu, terrain, &tile_view, timer)
+    })
+}
+
+/// [`render_image`] for the endless world (each tile culls its own patches).
+pub fn render_world_image(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    size: (u32, u32),
+    tile: u32,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    let samples = world.targets().sample_count;
+    tiled(gpu, size, tile, samples, |target, crop| {
+        let tile_view = WorldView {
+            crop: crop * view.crop,
+            ..*view
+        };
+        target.render_world(gpu, world, &tile_view, timer)
+    })
+}
+
+/// Draws a `width` x `height` image in tiles of at most `tile` pixels a side: `draw(target,
+/// crop)` draws the tile whose clip-space crop is `crop` into `target`.
+fn tiled(
+    gpu: &Gpu,
+    (width, height): (u32, u32),
+    tile: u32,
+    samples: u32,
+    mut draw: impl FnMut(&Offscreen, glam::Mat4) -> Result<(Vec<u8>, Option<Timings>)>,
 ) -> Result<(Vec<u8>, Option<Timings>)> {
     for (name, v) in [("width", width), ("height", height)] {
         if !(1..=MAX_IMAGE).contains(&v) {
@@ -278,10 +324,9 @@ pub fn render_image(
         }
     }
     let tile = tile.clamp(1, gpu.device.limits().max_texture_dimension_2d);
-    let samples = terrain.targets().sample_count;
     if width <= tile && height <= tile {
         let target = Offscreen::new(&gpu.device, width, height, samples)?;
-        return target.render(gpu, terrain, view, timer);
+        return draw(&target, glam::Mat4::IDENTITY);
     }
     let (tw, th) = (width.min(tile), height.min(tile));
     let target = Offscreen::new(&gpu.device, tw, th, samples)?;
@@ -290,11 +335,7 @@ pub fn render_image(
     for y0 in (0..height).step_by(th as usize) {
         for x0 in (0..width).step_by(tw as usize) {
             let crop = crop_matrix((width, height), (x0, y0), (tw, th));
-            let tile_view = View {
-                view_proj: crop * view.view_proj,
-                ..*view
-            };
-            let (pixels, t) = target.render(gpu, terrain, &tile_view, timer)?;
+            let (pixels, t) = draw(&target, crop)?;
             match (&mut total, t) {
                 (None, t) => total = t,
                 (Some(sum), Some(t)) => {
@@ -499,38 +540,93 @@ impl Offscreen {
         view: &View,
         timer: Option<&GpuTimer>,
     ) -> Result<(Vec<u8>, Option<Timings>)> {
-        if terrain.targets() != &self.targets {
+        self.check_targets(terrain.targets())?;
+        let clear = super::clear_color(terrain.shading().sky_color, Self::COLOR_FORMAT);
+        let terrain = std::cell::RefCell::new(terrain);
+        self.frame(
+            gpu,
+            clear,
+            timer,
+            |encoder| {
+                let mut t = terrain.borrow_mut();
+                t.encode_bake_timed(encoder, timer);
+                t.prepare(&gpu.queue, view);
+                Ok(())
+            },
+            |pass| terrain.borrow().render(pass),
+        )
+    }
+
+    /// [`Offscreen::render`] for the endless world: moves its levels to `view`, bakes what
+    /// they uncovered, selects and draws the visible patches.
+    pub fn render_world(
+        &self,
+        gpu: &Gpu,
+        world: &mut World,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(Vec<u8>, Option<Timings>)> {
+        self.check_targets(world.targets())?;
+        let clear = super::clear_color(world.shading().sky_color, Self::COLOR_FORMAT);
+        let world = std::cell::RefCell::new(world);
+        self.frame(
+            gpu,
+            clear,
+            timer,
+            |encoder| {
+                let mut w = world.borrow_mut();
+                w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
+                w.prepare(&gpu.queue, view);
+                Ok(())
+            },
+            |pass| world.borrow().render(pass),
+        )
+    }
+
+    fn check_targets(&self, targets: &Targets) -> Result<()> {
+        if targets != &self.targets {
             return Err(Error::invalid(
                 "targets",
-                format!("{:?}", terrain.targets()),
+                format!("{targets:?}"),
                 format!("{:?} (the offscreen target's)", self.targets),
             ));
         }
+        Ok(())
+    }
+
+    /// One frame: `record` records the compute work and writes uniforms, `draw` draws into
+    /// the pass (cleared to `clear`); the colour is read back as tightly packed RGBA8.
+    fn frame(
+        &self,
+        gpu: &Gpu,
+        clear: wgpu::Color,
+        timer: Option<&GpuTimer>,
+        record: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<()>,
+        draw: impl FnOnce(&mut wgpu::RenderPass<'_>),
+    ) -> Result<(Vec<u8>, Option<Timings>)> {
         let device = &gpu.device;
-        let buffer_pitch = super::scoped(device, || {
+        let buffer_pitch = super::scoped(device, || -> Result<_> {
             let color_view = self.color.create_view(&Default::default());
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("relief:offscreen:frame"),
             });
-            terrain.encode_bake_timed(&mut encoder, timer);
-            terrain.prepare(&gpu.queue, view);
+            record(&mut encoder)?;
             {
-                let clear = super::clear_color(terrain.shading().sky_color, Self::COLOR_FORMAT);
                 let mut pass = self.begin_pass(
                     &mut encoder,
                     &color_view,
                     clear,
                     timer.map(|t| t.render_writes(Slot::Render)),
                 );
-                terrain.render(&mut pass);
+                draw(&mut pass);
             }
             let copy = encode_texture_copy(device, &mut encoder, &self.color);
             if let Some(t) = timer {
                 t.resolve(&mut encoder);
             }
             gpu.queue.submit([encoder.finish()]);
-            copy
-        })?;
+            Ok(copy)
+        })??;
         let (buffer, pitch) = buffer_pitch;
         let bytes = map_read(device, &buffer)?;
         let timings = timer.map(|t| t.read(device)).transpose()?;

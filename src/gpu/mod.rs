@@ -10,6 +10,7 @@ pub mod raymarch;
 pub(crate) mod render;
 pub mod shader;
 pub mod timing;
+pub mod world;
 
 pub use bake::BakeUniforms;
 pub use landscape::LandscapeUniforms;

@@ -20,6 +20,8 @@ pub const LANDSCAPE_BAKE: &str = include_str!("../../wgsl/landscape_bake.wgsl");
 pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 /// `wgsl/render.wgsl`: the mesh render pass (needs [`SHADE`]).
 pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
+/// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`]).
+pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
 /// `wgsl/raymarch.wgsl`: the ray casters, reference and the seed's march (needs [`NOISE`] and
 /// [`SHADE`]).
 pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
@@ -37,6 +39,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),
         ("render", compose(&[SHADE, RENDER])),
+        ("world", compose(&[SHADE, WORLD])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH])),
         ("landscape", compose(&[NOISE, LANDSCAPE])),
         (

@@ -1,0 +1,545 @@
+//! The endless world's level-of-detail layout: nested square grids (geometry clipmaps) around
+//! the camera, as data. No GPU here: [`crate::gpu::world`] bakes and draws what this decides.
+//!
+//! Level `l` is a grid of `cells x cells` cells spaced `2^(finest_log2 + l)` metres, its
+//! samples baked into layer `l` of a texture array of side `cells + 1` with wrap-around
+//! (toroidal) addressing, so a level that moves bakes only the rows and columns it uncovers.
+//! Each level is split into `PATCHES x PATCHES` square patches of `patch` cells; a level draws
+//! the patches that the next finer level does not cover (a ring), and those inside the view
+//! frustum.
+//!
+//! Why clipmaps rather than a CDLOD quadtree: the levels are camera-centred squares, so each
+//! one is a single toroidal texture layer that the bake updates by strips; with origins snapped
+//! to multiples of two patches, every level's hole (the finer level) falls on patch boundaries,
+//! so rings are whole patches and no stitching strips are needed. Cracks are prevented as in
+//! CDLOD: near its outer edge a level's odd vertices slide onto their even neighbours and take
+//! the coarser level's heights, so at the edge the fine level's geometry is exactly the coarse
+//! level's (the same integer positions, the same texels).
+//!
+//! The quality knob is the screen-space error in pixels. A level's mesh deviates vertically
+//! from the continuous surface by at most `error` metres (measured from the CPU twin, see
+//! [`level_error`]); a vertical deviation δ at distance d covers at most `K·δ/d` pixels, with
+//! `K = height_px / (2 tan(fov_y / 2))`. Level `l` is never drawn closer than `1.5 patch`
+//! of its cells from the camera (the finer level covers that), and its morph band (where the
+//! coarser level's error applies) no closer than `2.5 patch` cells, so the patch size follows
+//! from the knob: [`Clipmap::patch_for`].
+
+use crate::landscape::Landscape;
+use crate::noise::Channel;
+
+/// Patches per level side (even; the finer level covers the middle `PATCHES / 2`).
+pub const PATCHES: i32 = 8;
+/// Most levels a clipmap has (with 4-cell patches and 2^-4 m samples, 24 levels reach past
+/// 60 km; coarser samples reach far beyond).
+pub const MAX_LEVELS: usize = 24;
+/// Smallest and largest patch side in cells.
+pub const PATCH_RANGE: (u32, u32) = (4, 128);
+/// How far the coarsest level reaches at least, in metres (past any horizon a camera a few
+/// kilometres up sees over the highest peaks of the default world).
+pub const REACH: f64 = 120_000.0;
+
+/// A level of the clipmap: where it is and what it costs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Level {
+    /// log2 of the sample spacing in metres.
+    pub spacing_log2: i32,
+    /// World sample coordinates (in this level's samples) of the level's first sample; a
+    /// multiple of two patches.
+    pub origin: [i32; 2],
+    /// Texture-array layer holding its samples.
+    pub layer: u32,
+    /// Largest vertical deviation, in metres, of this level's mesh from the continuous surface.
+    pub error: f64,
+    /// Whether it is drawn (and kept baked) for the current camera.
+    pub active: bool,
+}
+
+impl Level {
+    /// Sample spacing in metres.
+    pub fn spacing(&self) -> f64 {
+        2f64.powi(self.spacing_log2)
+    }
+}
+
+/// A rectangle of a level's samples to bake (world sample coordinates of the level).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Strip {
+    /// The level's index.
+    pub level: usize,
+    /// First sample.
+    pub origin: [i32; 2],
+    /// Size in samples.
+    pub extent: [u32; 2],
+}
+
+/// One patch to draw: a level and the patch's column and row in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct Patch {
+    /// Index of the level.
+    pub level: u32,
+    /// Column and row of the patch within the level, 0..PATCHES.
+    pub at: [u32; 2],
+    /// Padding (the instance attribute is four u32s).
+    pub _pad: u32,
+}
+
+/// The camera as the clipmap needs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Eye {
+    /// Position in world metres.
+    pub position: [f64; 3],
+    /// Height of the ground under it, metres.
+    pub ground: f64,
+    /// `K` of the screen-error bound: pixels per unit of (deviation / distance).
+    pub pixels_per_radian: f64,
+}
+
+/// The levels, their layout and what changed.
+#[derive(Clone, Debug)]
+pub struct Clipmap {
+    /// Cells per patch side.
+    pub patch: u32,
+    /// log2 of the finest level's spacing in metres.
+    pub finest_log2: i32,
+    /// The levels, finest first.
+    pub levels: Vec<Level>,
+    /// Width of the morph band at a level's outer edge, in its cells.
+    pub morph: u32,
+    /// Whether the morph is on (off only to show the cracks it prevents, in tests).
+    pub morphing: bool,
+}
+
+/// How far a mesh of `land` sampled every `2^spacing_log2` metres (with the octaves that grid
+/// keeps, interpolated across its cells) strays vertically from the continuous surface, in
+/// metres: the largest deviation over 1024 scattered points, times 1.5 for what the sampling
+/// misses. The fBm is statistically the same everywhere, so this holds across the world; it is
+/// a measured bound, not a proof.
+pub fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
+    let s = 2f64.powi(spacing_log2);
+    let octaves = land.octaves_for_level(spacing_log2);
+    let mut worst: f64 = 0.0;
+    let mut state = 0x9e37_79b9u32 ^ land.seed;
+    let mut next = || {
+        state = crate::noise::pcg(state);
+        f64::from(state) / 4_294_967_296.0
+    };
+    for _ in 0..1024 {
+        // A cell somewhere within a few hundred feature cells, a point inside it.
+        let span = 256.0 * land.cell(0) / s;
+        let (ci, cj) = ((next() * span).floor(), (next() * span).floor());
+        let (fx, fz) = (next(), next());
+        let h = |i: f64, j: f64| {
+            land.sample(Channel::Height, i * s, j * s, octaves).value * land.peak_height
+        };
+        let (a, b, c, d) = (
+            h(ci, cj),
+            h(ci + 1.0, cj),
+            h(ci, cj + 1.0),
+            h(ci + 1.0, cj + 1.0),
+        );
+        // The triangle the GPU draws: the diagonal from (0,0) to (1,1).
+        let mesh = if fx >= fz {
+            a + fx * (b - a) + fz * (d - b)
+        } else {
+            a + fz * (c - a) + fx * (d - c)
+        };
+        let truth = land.height_at((ci + fx) * s, (cj + fz) * s);
+        worst = worst.max((truth - mesh).abs());
+    }
+    1.5 * worst
+}
+
+impl Clipmap {
+    /// Cells per level side.
+    pub fn cells(&self) -> u32 {
+        self.patch * PATCHES as u32
+    }
+
+    /// Side of each level's (toroidal) texture layer: one sample more than the cells.
+    pub fn side(&self) -> u32 {
+        self.cells() + 1
+    }
+
+    /// The patch side that keeps the screen error of every level under `pixel_error` pixels
+    /// for a view with `pixels_per_radian` (see the module docs), with the error that bound
+    /// leaves (over `pixel_error` only where the largest patch is not enough).
+    pub fn patch_for(errors: &[(i32, f64)], pixel_error: f64, pixels_per_radian: f64) -> u32 {
+        // Level l at distance >= 1.5 patch cells; its morph band, with the coarser level's
+        // error, at >= 2.5 patch cells.
+        let need = |i: usize| {
+            let (log2, e) = errors[i];
+            let s = 2f64.powi(log2);
+            let coarse = errors.get(i + 1).map_or(0.0, |c| c.1);
+            (e / 1.5).max(coarse / 2.5) / s
+        };
+        let worst = (0..errors.len()).map(need).fold(0.0, f64::max);
+        let cells = pixels_per_radian * worst / pixel_error.max(1e-6);
+        (cells.ceil().max(1.0) as u32)
+            .next_power_of_two()
+            .clamp(PATCH_RANGE.0, PATCH_RANGE.1)
+    }
+
+    /// The layout for `land` under the knob `pixel_error` (pixels) at `pixels_per_radian`.
+    pub fn new(land: &Landscape, pixel_error: f64, pixels_per_radian: f64) -> Self {
+        // The finest level keeps every octave (the finest octave's cells span two samples).
+        let finest_log2 = land.feature_log2 - land.octaves as i32;
+        let errors: Vec<(i32, f64)> = (0..MAX_LEVELS as i32)
+            .map(|l| (finest_log2 + l, level_error(land, finest_log2 + l)))
+            .collect();
+        Self::with_errors(land, &errors, pixel_error, pixels_per_radian)
+    }
+
+    /// [`Clipmap::new`] with the levels' errors already measured (`(spacing_log2, error)`,
+    /// finest first, [`MAX_LEVELS`] of them).
+    pub fn with_errors(
+        land: &Landscape,
+        errors: &[(i32, f64)],
+        pixel_error: f64,
+        pixels_per_radian: f64,
+    ) -> Self {
+        let finest_log2 = land.feature_log2 - land.octaves as i32;
+        let patch = Self::patch_for(errors, pixel_error, pixels_per_radian);
+        // Enough levels that the coarsest reaches REACH from the camera in every direction.
+        let cells = f64::from(patch) * f64::from(PATCHES as u32);
+        let mut count = 1;
+        while count < MAX_LEVELS
+            && (cells / 2.0 - f64::from(patch)) * 2f64.powi(finest_log2 + count as i32 - 1) < REACH
+        {
+            count += 1;
+        }
+        let levels = errors[..count]
+            .iter()
+            .enumerate()
+            .map(|(l, &(spacing_log2, error))| Level {
+                spacing_log2,
+                origin: [i32::MIN; 2],
+                layer: l as u32,
+                error,
+                active: false,
+            })
+            .collect();
+        Self {
+            patch,
+            finest_log2,
+            levels,
+            morph: (patch / 2).max(2),
+            morphing: true,
+        }
+    }
+
+    /// Where level `l` goes for an eye at world (x, z): the multiple of two patches nearest to
+    /// centring it on the eye.
+    pub fn origin_for(&self, l: usize, x: f64, z: f64) -> [i32; 2] {
+        let s = self.levels[l].spacing();
+        let step = 2.0 * f64::from(self.patch);
+        let half = f64::from(self.cells()) / 2.0;
+        let snap = |c: f64| (((c / s - half) / step).round() * step) as i32;
+        [snap(x), snap(z)]
+    }
+
+    /// The first level drawn: finer ones are skipped while even at the eye's height above the
+    /// ground their coarser neighbour's error stays under the knob.
+    fn first_level(&self, eye: &Eye, pixel_error: f64) -> usize {
+        let altitude = (eye.position[1] - eye.ground).max(0.0);
+        let mut first = 0;
+        while first + 1 < self.levels.len()
+            && eye.pixels_per_radian * self.levels[first + 1].error <= pixel_error * altitude
+        {
+            first += 1;
+        }
+        first
+    }
+
+    /// Moves the levels for `eye` and returns the strips to bake: whole levels that became
+    /// active or jumped more than their size, else the rows and columns they uncovered.
+    pub fn update(&mut self, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
+        let first = self.first_level(eye, pixel_error);
+        let side = self.side() as i32;
+        let mut strips = Vec::new();
+        for l in 0..self.levels.len() {
+            let active = l >= first;
+            let new = self.origin_for(l, eye.position[0], eye.position[2]);
+            let level = &mut self.levels[l];
+            let old = level.origin;
+            let was = level.active;
+            level.active = active;
+            if !active {
+                continue;
+            }
+            level.origin = new;
+            let fresh = !was
+                || old[0] == i32::MIN
+                || (new[0] - old[0]).abs() >= side
+                || (new[1] - old[1]).abs() >= side;
+            if fresh {
+                strips.push(Strip {
+                    level: l,
+                    origin: new,
+                    extent: [side as u32; 2],
+                });
+                continue;
+            }
+            // Columns uncovered along x, over the new rows; then rows uncovered along z, over
+            // the columns both squares share (no texel twice).
+            let (dx, dz) = (new[0] - old[0], new[1] - old[1]);
+            if dx != 0 {
+                let x0 = if dx > 0 { old[0] + side } else { new[0] };
+                strips.push(Strip {
+                    level: l,
+                    origin: [x0, new[1]],
+                    extent: [dx.unsigned_abs(), side as u32],
+                });
+            }
+            if dz != 0 {
+                let z0 = if dz > 0 { old[1] + side } else { new[1] };
+                let x0 = new[0].max(old[0]);
+                let width = side - dx.abs();
+                strips.push(Strip {
+                    level: l,
+                    origin: [x0, z0],
+                    extent: [width as u32, dz.unsigned_abs()],
+                });
+            }
+        }
+        strips
+    }
+
+    /// The finer level's square inside level `l`, in patches of level `l` (column, row of its
+    /// first patch), or `None` for the first active level.
+    pub fn hole(&self, l: usize) -> Option<[i32; 2]> {
+        let finer = self.levels.get(l.checked_sub(1)?)?;
+        if !finer.active {
+            return None;
+        }
+        let o = self.levels[l].origin;
+        let b = self.patch as i32;
+        Some([
+            (finer.origin[0] / 2 - o[0]) / b,
+            (finer.origin[1] / 2 - o[1]) / b,
+        ])
+    }
+
+    /// The patches to draw: every active level's ring, less what `visible` (a test on the
+    /// patch's box in world metres, min and max corners) rejects.
+    pub fn patches(
+        &self,
+        height_range: [f64; 2],
+        mut visible: impl FnMut([f64; 3], [f64; 3]) -> bool,
+    ) -> Vec<Patch> {
+        let mut out = Vec::new();
+        let half = PATCHES / 2;
+        for (l, level) in self.levels.iter().enumerate() {
+            if !level.active {
+                continue;
+            }
+            let hole = self.hole(l);
+            let s = level.spacing();
+            let b = self.patch as i32;
+            for py in 0..PATCHES {
+                for px in 0..PATCHES {
+                    if let Some([hx, hy]) = hole {
+                        if (hx..hx + half).contains(&px) && (hy..hy + half).contains(&py) {
+                            continue;
+                        }
+                    }
+                    let x0 = f64::from(level.origin[0] + px * b) * s;
+                    let z0 = f64::from(level.origin[1] + py * b) * s;
+                    let size = f64::from(b) * s;
+                    if visible(
+                        [x0, height_range[0], z0],
+                        [x0 + size, height_range[1], z0 + size],
+                    ) {
+                        out.push(Patch {
+                            level: l as u32,
+                            at: [px as u32, py as u32],
+                            _pad: 0,
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The screen error, in pixels, that this layout keeps under for a view with
+    /// `pixels_per_radian` (the bound of the module docs, over the active levels).
+    pub fn error_bound(&self, pixels_per_radian: f64) -> f64 {
+        let b = f64::from(self.patch);
+        let active: Vec<&Level> = self.levels.iter().filter(|l| l.active).collect();
+        let mut worst: f64 = 0.0;
+        for (i, level) in active.iter().enumerate() {
+            let s = level.spacing();
+            let own = level.error / (1.5 * b * s);
+            let coarse = active.get(i + 1).map_or(0.0, |c| c.error / (2.5 * b * s));
+            worst = worst.max(own.max(coarse));
+        }
+        pixels_per_radian * worst
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::landscape::TerrainFn;
+
+    fn land() -> Landscape {
+        Landscape {
+            seed: 7,
+            octaves: 10,
+            gain: 0.47,
+            feature_log2: 10,
+            peak_height: 600.0,
+            terrain: TerrainFn::Fbm,
+        }
+    }
+
+    fn eye(x: f64, z: f64) -> Eye {
+        Eye {
+            position: [x, 300.0, z],
+            ground: 0.0,
+            pixels_per_radian: 300.0,
+        }
+    }
+
+    #[test]
+    fn finer_levels_nest_inside_coarser_ones_on_patch_boundaries() {
+        let mut map = Clipmap::new(&land(), 1.0, 300.0);
+        let mut state = 1u32;
+        for _ in 0..500 {
+            state = crate::noise::pcg(state);
+            let x = (f64::from(state) / 4e9 - 0.5) * 1e7;
+            state = crate::noise::pcg(state);
+            let z = (f64::from(state) / 4e9 - 0.5) * 1e7;
+            map.update(&eye(x, z), 1.0);
+            for l in 1..map.levels.len() {
+                let Some([hx, hy]) = map.hole(l) else {
+                    continue;
+                };
+                let b = map.patch as i32;
+                let (fine, coarse) = (map.levels[l - 1].origin, map.levels[l].origin);
+                // Exactly on patch boundaries, and at least one patch from every edge.
+                assert_eq!(fine[0] / 2 - coarse[0], hx * b, "x {x} z {z} level {l}");
+                assert_eq!(fine[1] / 2 - coarse[1], hy * b);
+                assert!(
+                    (1..=PATCHES / 2 - 1).contains(&hx),
+                    "hole {hx} at level {l}"
+                );
+                assert!(
+                    (1..=PATCHES / 2 - 1).contains(&hy),
+                    "hole {hy} at level {l}"
+                );
+            }
+            // The eye is inside the first level, at least (cells/2 - patch) from its edges.
+            let l0 = map.levels.iter().find(|l| l.active).unwrap();
+            let c = f64::from(map.cells());
+            let e = [
+                (x / l0.spacing()) - f64::from(l0.origin[0]),
+                (z / l0.spacing()) - f64::from(l0.origin[1]),
+            ];
+            for v in e {
+                assert!(
+                    v >= c / 2.0 - f64::from(map.patch) - 1e-9
+                        && v <= c / 2.0 + f64::from(map.patch) + 1e-9
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn strips_cover_exactly_what_a_moved_level_uncovers() {
+        // Loose enough for the smallest patches: a small square to check sample by sample.
+        let mut map = Clipmap::new(&land(), 64.0, 300.0);
+        assert_eq!(map.patch, PATCH_RANGE.0);
+        let side = map.side() as i64;
+        map.update(&eye(0.0, 0.0), 64.0);
+        let mut state = 5u32;
+        for _ in 0..60 {
+            state = crate::noise::pcg(state);
+            let step = f64::from(state % 97) - 48.0;
+            state = crate::noise::pcg(state);
+            let step_z = f64::from(state % 97) - 48.0;
+            let before: Vec<Level> = map.levels.clone();
+            let e = eye(before_x(&map) + step * 3.0, before_z(&map) + step_z * 3.0);
+            let strips = map.update(&e, 64.0);
+            for (l, level) in map.levels.iter().enumerate() {
+                if !level.active {
+                    continue;
+                }
+                let old = before[l].origin;
+                let mut count = std::collections::HashMap::new();
+                for s in strips.iter().filter(|s| s.level == l) {
+                    for j in 0..i64::from(s.extent[1]) {
+                        for i in 0..i64::from(s.extent[0]) {
+                            *count
+                                .entry((i64::from(s.origin[0]) + i, i64::from(s.origin[1]) + j))
+                                .or_insert(0) += 1;
+                        }
+                    }
+                }
+                for j in 0..side {
+                    for i in 0..side {
+                        let (x, z) = (
+                            i64::from(level.origin[0]) + i,
+                            i64::from(level.origin[1]) + j,
+                        );
+                        let was = before[l].active
+                            && (i64::from(old[0])..i64::from(old[0]) + side).contains(&x)
+                            && (i64::from(old[1])..i64::from(old[1]) + side).contains(&z);
+                        let n = count.remove(&(x, z)).unwrap_or(0);
+                        assert_eq!(n, usize::from(!was), "level {l} sample ({x}, {z})");
+                    }
+                }
+                assert!(count.is_empty(), "level {l} baked outside its square");
+            }
+        }
+    }
+
+    fn before_x(map: &Clipmap) -> f64 {
+        let l = map.levels.iter().find(|l| l.active).unwrap();
+        (f64::from(l.origin[0]) + f64::from(map.cells()) / 2.0) * l.spacing()
+    }
+
+    fn before_z(map: &Clipmap) -> f64 {
+        let l = map.levels.iter().find(|l| l.active).unwrap();
+        (f64::from(l.origin[1]) + f64::from(map.cells()) / 2.0) * l.spacing()
+    }
+
+    #[test]
+    fn level_errors_shrink_with_spacing_and_the_knob_sizes_patches() {
+        let land = land();
+        let coarse = level_error(&land, 6);
+        let fine = level_error(&land, 0);
+        assert!(fine < coarse && fine > 0.0, "fine {fine} coarse {coarse}");
+        let errors: Vec<(i32, f64)> = (0..8).map(|l| (l, level_error(&land, l))).collect();
+        let tight = Clipmap::patch_for(&errors, 0.5, 1000.0);
+        let loose = Clipmap::patch_for(&errors, 8.0, 1000.0);
+        assert!(tight > loose, "{tight} {loose}");
+        // The bound the layout reports is what the knob asked for (unless patches max out).
+        let mut map = Clipmap::new(&land, 2.0, 1000.0);
+        map.update(&eye(0.0, 0.0), 2.0);
+        let bound = map.error_bound(1000.0);
+        assert!(
+            bound <= 2.0 || map.patch == PATCH_RANGE.1,
+            "bound {bound} patch {}",
+            map.patch
+        );
+    }
+
+    #[test]
+    fn a_high_eye_skips_fine_levels_and_culling_drops_patches() {
+        let mut map = Clipmap::new(&land(), 1.0, 300.0);
+        map.update(&eye(0.0, 0.0), 1.0);
+        let low = map.levels.iter().filter(|l| l.active).count();
+        let mut high = eye(0.0, 0.0);
+        high.position[1] = 5000.0;
+        map.update(&high, 1.0);
+        let few = map.levels.iter().filter(|l| l.active).count();
+        assert!(few < low, "{few} levels at 5 km, {low} at 300 m");
+        let all = map.patches([0.0, 600.0], |_, _| true).len();
+        let none = map.patches([0.0, 600.0], |_, _| false).len();
+        let rings = (PATCHES * PATCHES - PATCHES * PATCHES / 4) as usize;
+        assert_eq!(all, (few - 1) * rings + (PATCHES * PATCHES) as usize);
+        assert_eq!(none, 0);
+    }
+}

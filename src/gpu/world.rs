@@ -1,0 +1,706 @@
+//! [`World`]: the endless landscape as middleware. The camera drives it: each frame
+//! [`World::encode_bake`] moves the clipmap's levels ([`crate::clipmap`]) and bakes only the
+//! strips they uncovered; [`World::prepare`] selects the patches inside the view frustum and
+//! writes the frame's uniforms; [`World::render`] draws them into the host's pass.
+
+use glam::{DVec3, Mat4, Vec3, Vec4};
+
+use super::landscape::{LandscapeBake, LevelTarget, Rect};
+use super::render::RenderUniforms;
+use super::timing::{GpuTimer, Slot};
+use super::{scoped, shader, Targets};
+use crate::camera::View;
+use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
+use crate::error::{Error, Result};
+use crate::landscape::Landscape;
+use crate::params::{Shading, TerrainParams};
+pub use crate::world::WorldParams;
+
+/// A camera in the endless world: an eye in f64 metres, a direction and a lens.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldView {
+    /// Eye position in world metres (f64: it may be far from the origin).
+    pub eye: DVec3,
+    /// Unit direction looked along.
+    pub forward: Vec3,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+    /// Target size in pixels (the screen-error bound is in these pixels).
+    pub size: (u32, u32),
+    /// Applied after the projection (a crop to a tile of the image; identity otherwise).
+    pub crop: Mat4,
+}
+
+impl WorldView {
+    /// A view from `eye` towards `target` with a vertical field of view of `fov_y` radians.
+    pub fn look_at(eye: DVec3, target: DVec3, fov_y: f32, size: (u32, u32)) -> Self {
+        let forward = (target - eye).normalize_or(DVec3::Z).as_vec3();
+        Self {
+            eye,
+            forward,
+            fov_y,
+            size,
+            crop: Mat4::IDENTITY,
+        }
+    }
+
+    /// `K` of the screen-error bound: pixels per radian at the image centre.
+    pub fn pixels_per_radian(&self) -> f64 {
+        f64::from(self.size.1.max(1)) / (2.0 * f64::from(self.fov_y * 0.5).tan())
+    }
+
+    /// Projection times view, with the camera at the origin (positions are camera-relative).
+    pub fn relative_matrix(&self, near: f32, far: f32) -> Mat4 {
+        let up = if self.forward.y.abs() > 0.999 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
+        let aspect = self.size.0.max(1) as f32 / self.size.1.max(1) as f32;
+        let proj = Mat4::perspective_rh(self.fov_y, aspect, near, far);
+        self.crop * proj * Mat4::look_to_rh(Vec3::ZERO, self.forward, up)
+    }
+}
+
+/// What the last frame cost, as `relief render --stats` prints it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WorldStats {
+    /// Triangles drawn (patches inside the frustum times their triangles).
+    pub triangles: u64,
+    /// Patches drawn.
+    pub patches: u32,
+    /// Texels baked by the last `encode_bake` (four channels each).
+    pub texels_baked: u64,
+    /// Levels drawn.
+    pub levels: u32,
+    /// Level count of the clipmap (drawn or not).
+    pub levels_total: u32,
+    /// Cells per patch side.
+    pub patch_cells: u32,
+    /// Spacing of the finest level drawn, metres.
+    pub finest_spacing: f64,
+    /// The screen-error bound of the layout, pixels.
+    pub error_bound_px: f64,
+}
+
+impl WorldStats {
+    /// `key value` lines.
+    pub fn lines(&self) -> Vec<String> {
+        vec![
+            format!("triangles {}", self.triangles),
+            format!("patches {}", self.patches),
+            format!("texels_baked {}", self.texels_baked),
+            format!("levels {}", self.levels),
+            format!("levels_total {}", self.levels_total),
+            format!("patch_cells {}", self.patch_cells),
+            format!("finest_spacing_m {}", self.finest_spacing),
+            format!("error_bound_px {:.3}", self.error_bound_px),
+        ]
+    }
+}
+
+/// Mirrors `Level` in `wgsl/world.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LevelUniforms {
+    /// Level origin in finest samples relative to the camera's reference sample.
+    pub origin_rel: [i32; 2],
+    /// Origin less twice the coarser level's, in this level's samples.
+    pub delta: [i32; 2],
+    /// Origin modulo the texture side.
+    pub origin_mod: [u32; 2],
+    /// log2 of spacing over the finest spacing.
+    pub shift: u32,
+    /// Texture-array layer.
+    pub layer: u32,
+    /// Index of the coarser level.
+    pub coarse: u32,
+    /// 1 when there is a coarser level to morph towards.
+    pub has_coarse: u32,
+    /// Padding.
+    pub _pad: [u32; 2],
+}
+
+/// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WorldUniforms {
+    /// xz: eye less the reference sample, metres; y: eye height; w: finest spacing.
+    pub eye: [f32; 4],
+    /// Cells per level side.
+    pub cells: u32,
+    /// Cells per patch side.
+    pub patch_cells: u32,
+    /// Texture side.
+    pub side: u32,
+    /// 1 while morphing.
+    pub morphing: u32,
+    /// Morph band in cells.
+    pub morph: f32,
+    /// World height of normalised height 1.
+    pub peak: f32,
+    /// Padding.
+    pub _pad: [u32; 2],
+    /// The levels.
+    pub levels: [LevelUniforms; MAX_LEVELS],
+}
+
+/// The endless world on the host's device: see the module docs.
+pub struct World {
+    params: WorldParams,
+    shading: Shading,
+    targets: Targets,
+    errors: Vec<(i32, f64)>,
+    map: Clipmap,
+    map_k: f64,
+    texture: wgpu::Texture,
+    bake: LandscapeBake,
+    bake_target: LevelTarget,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    bind_group: wgpu::BindGroup,
+    render_uniforms: wgpu::Buffer,
+    world_uniforms: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    instances: wgpu::Buffer,
+    instance_count: u32,
+    stats: WorldStats,
+    /// The reference sample of the last `prepare` (finest-level samples).
+    reference: [i64; 2],
+}
+
+/// Instances the patch buffer holds: every patch of every level.
+const MAX_PATCHES: usize = MAX_LEVELS * (PATCHES * PATCHES) as usize;
+
+impl World {
+    /// Builds the pipelines and the level textures for `params`, drawn into `targets`; the
+    /// first [`World::encode_bake`] bakes every level the view needs.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        targets: Targets,
+        params: WorldParams,
+    ) -> Result<Self> {
+        let _ = queue;
+        params.validate()?;
+        let errors = level_errors(&params.land);
+        // Laid out for a 1080p, 45-degree view until the first frame says otherwise.
+        let k = 1080.0 / (2.0 * (22.5f64).to_radians().tan());
+        let map = layout(&params, &errors, k);
+        scoped(device, || {
+            let bake = LandscapeBake::new(device);
+            let (texture, bake_target) = level_texture(device, &bake, &map);
+            let module = shader::module(
+                device,
+                "relief:world:shader",
+                &shader::compose(&[shader::SHADE, shader::WORLD]),
+            );
+            let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("relief:world:bind-group-layout"),
+                entries: &[
+                    super::uniform_entry::<RenderUniforms>(0, vf),
+                    super::uniform_entry::<WorldUniforms>(1, vf),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 2,
+                        visibility: vf,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                            view_dimension: wgpu::TextureViewDimension::D2Array,
+                            multisampled: false,
+                        },
+                        count: None,
+                    },
+                ],
+            });
+            let pipeline = render_pipeline(device, &layout, &module, &targets);
+            let render_uniforms =
+                super::uniform_buffer::<RenderUniforms>(device, "relief:world:render-uniforms");
+            let world_uniforms =
+                super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
+            let bind_group = bind(device, &layout, &render_uniforms, &world_uniforms, &texture);
+            let (indices, index_count) = patch_indices(device, map.patch);
+            let instances = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("relief:world:patches"),
+                size: (MAX_PATCHES * std::mem::size_of::<Patch>()) as u64,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            World {
+                params,
+                shading: Shading::default(),
+                targets,
+                errors,
+                map,
+                map_k: k,
+                texture,
+                bake,
+                bake_target,
+                pipeline,
+                layout,
+                bind_group,
+                render_uniforms,
+                world_uniforms,
+                indices,
+                index_count,
+                instances,
+                instance_count: 0,
+                stats: WorldStats::default(),
+                reference: [0; 2],
+            }
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &WorldParams {
+        &self.params
+    }
+
+    /// The formats this world draws into.
+    pub fn targets(&self) -> &Targets {
+        &self.targets
+    }
+
+    /// The shading.
+    pub fn shading(&self) -> &Shading {
+        &self.shading
+    }
+
+    /// Replaces the shading; nothing is re-baked.
+    pub fn set_shading(&mut self, shading: Shading) {
+        self.shading = shading;
+    }
+
+    /// The level layout (for tests and tools).
+    pub fn clipmap(&self) -> &Clipmap {
+        &self.map
+    }
+
+    /// Turns the morph between levels off (it prevents cracks; off only to show them).
+    pub fn set_morphing(&mut self, on: bool) {
+        self.map.morphing = on;
+    }
+
+    /// The level texture array: side x side x levels, rgba32float (height, dh/dx, dh/dz,
+    /// colour channel), toroidally addressed.
+    pub fn level_texture(&self) -> &wgpu::Texture {
+        &self.texture
+    }
+
+    /// What the last frame cost.
+    pub fn stats(&self) -> WorldStats {
+        self.stats
+    }
+
+    /// World height in metres of the continuous surface at (x, z), from the CPU twin.
+    pub fn height_at(&self, x: f64, z: f64) -> f64 {
+        self.params.land.height_at(x, z)
+    }
+
+    /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out.
+    pub fn set_params(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
+        params.validate()?;
+        if params.land != self.params.land {
+            self.errors = level_errors(&params.land);
+        }
+        self.params = params;
+        self.relayout(device, self.map_k)
+    }
+
+    fn relayout(&mut self, device: &wgpu::Device, k: f64) -> Result<()> {
+        let morphing = self.map.morphing;
+        let map = layout(&self.params, &self.errors, k);
+        let (texture, target) = scoped(device, || level_texture(device, &self.bake, &map))?;
+        if map.patch != self.map.patch {
+            let (indices, count) = patch_indices(device, map.patch);
+            self.indices = indices;
+            self.index_count = count;
+        }
+        self.bind_group = bind(
+            device,
+            &self.layout,
+            &self.render_uniforms,
+            &self.world_uniforms,
+            &texture,
+        );
+        self.texture = texture;
+        self.bake_target = target;
+        self.map = map;
+        self.map.morphing = morphing;
+        self.map_k = k;
+        Ok(())
+    }
+
+    fn eye(&self, view: &WorldView) -> Eye {
+        Eye {
+            position: view.eye.to_array(),
+            ground: self.params.land.height_at(view.eye.x, view.eye.z),
+            pixels_per_radian: view.pixels_per_radian(),
+        }
+    }
+
+    /// Moves the levels to `view` and records the bake of whatever they uncovered (nothing if
+    /// the camera stayed within its levels' snapping step) into the host's encoder. A view
+    /// whose pixels per radian differ much from the layout's re-lays out the levels first (new
+    /// textures, everything re-baked). Returns the texels baked.
+    pub fn encode_bake(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+    ) -> Result<u64> {
+        self.encode_bake_timed(device, queue, encoder, view, None)
+    }
+
+    /// [`World::encode_bake`], timing the bake pass (when there is one) into `timer`.
+    pub fn encode_bake_timed(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) -> Result<u64> {
+        let k = view.pixels_per_radian();
+        if !(k.is_finite() && k > 0.0 && view.eye.is_finite()) {
+            return Err(Error::invalid(
+                "view",
+                format!("{:?}", view.eye),
+                "a finite eye and field of view",
+            ));
+        }
+        let patch = Clipmap::patch_for(&self.errors, self.params.pixel_error, k);
+        if patch != self.map.patch {
+            self.relayout(device, k)?;
+        }
+        let eye = self.eye(view);
+        let strips = self.map.update(&eye, self.params.pixel_error);
+        let rects: Vec<Rect> = strips
+            .iter()
+            .map(|s| Rect {
+                layer: self.map.levels[s.level].layer,
+                level_log2: self.map.levels[s.level].spacing_log2,
+                origin: s.origin,
+                extent: s.extent,
+            })
+            .collect();
+        // At most two strips per level: always within one pass's uniform slots.
+        debug_assert!(rects.len() <= super::landscape::MAX_RECTS);
+        if !rects.is_empty() {
+            self.bake.encode(
+                queue,
+                encoder,
+                &self.bake_target,
+                &self.params.land,
+                &rects,
+                timer.map(|t| t.compute_writes(Slot::Bake)),
+            );
+        }
+        let texels = rects
+            .iter()
+            .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
+            .sum();
+        self.stats.texels_baked = texels;
+        Ok(texels)
+    }
+
+    /// Selects the patches inside `view`'s frustum and writes the frame's uniforms.
+    pub fn prepare(&mut self, queue: &wgpu::Queue, view: &WorldView) {
+        let s0 = 2f64.powi(self.map.finest_log2);
+        let reference = [(view.eye.x / s0).floor(), (view.eye.z / s0).floor()];
+        self.reference = [reference[0] as i64, reference[1] as i64];
+        let eye_frac = [
+            view.eye.x - reference[0] * s0,
+            view.eye.z - reference[1] * s0,
+        ];
+        let land = &self.params.land;
+        let altitude = (view.eye.y - land.height_at(view.eye.x, view.eye.z)).max(0.0);
+        let coarsest = self.map.levels.last().expect("a clipmap has levels");
+        let far = (f64::from(self.map.cells()) * coarsest.spacing()) as f32;
+        let near = (altitude as f32 * 0.1).clamp(0.05, 20.0);
+        let matrix = self.relative_matrix(view, near, far);
+        let planes = frustum_planes(&matrix);
+        let eye = view.eye;
+        let patches = self.map.patches([0.0, land.peak_height], |lo, hi| {
+            let lo = (DVec3::from(lo) - eye).as_vec3();
+            let hi = (DVec3::from(hi) - eye).as_vec3();
+            planes.iter().all(|p| {
+                let v = Vec3::new(
+                    if p.x >= 0.0 { hi.x } else { lo.x },
+                    if p.y >= 0.0 { hi.y } else { lo.y },
+                    if p.z >= 0.0 { hi.z } else { lo.z },
+                );
+                p.truncate().dot(v) + p.w >= 0.0
+            })
+        });
+        queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&patches));
+        self.instance_count = patches.len() as u32;
+
+        let mut levels = [LevelUniforms::default(); MAX_LEVELS];
+        let side = i64::from(self.map.side());
+        let n = self.map.levels.len();
+        for (l, level) in self.map.levels.iter().enumerate() {
+            let shift = level.spacing_log2 - self.map.finest_log2;
+            let coarse = (l + 1 < n).then(|| self.map.levels[l + 1]);
+            let origin = [i64::from(level.origin[0]), i64::from(level.origin[1])];
+            levels[l] = LevelUniforms {
+                origin_rel: [
+                    ((origin[0] << shift) - self.reference[0]) as i32,
+                    ((origin[1] << shift) - self.reference[1]) as i32,
+                ],
+                // Inactive levels keep a stale origin: wrapping, never used.
+                delta: coarse.map_or([0; 2], |c| {
+                    [
+                        level.origin[0].wrapping_sub(c.origin[0].wrapping_mul(2)),
+                        level.origin[1].wrapping_sub(c.origin[1].wrapping_mul(2)),
+                    ]
+                }),
+                origin_mod: [
+                    origin[0].rem_euclid(side) as u32,
+                    origin[1].rem_euclid(side) as u32,
+                ],
+                shift: shift as u32,
+                layer: level.layer,
+                coarse: if coarse.is_some() {
+                    l as u32 + 1
+                } else {
+                    l as u32
+                },
+                has_coarse: u32::from(coarse.is_some_and(|c| c.active)),
+                _pad: [0; 2],
+            };
+        }
+        let world = WorldUniforms {
+            eye: [
+                eye_frac[0] as f32,
+                view.eye.y as f32,
+                eye_frac[1] as f32,
+                s0 as f32,
+            ],
+            cells: self.map.cells(),
+            patch_cells: self.map.patch,
+            side: self.map.side(),
+            morphing: u32::from(self.map.morphing),
+            morph: self.map.morph as f32,
+            peak: land.peak_height as f32,
+            _pad: [0; 2],
+            levels,
+        };
+        queue.write_buffer(&self.world_uniforms, 0, bytemuck::bytes_of(&world));
+
+        let encode = !self.targets.color_format.is_srgb();
+        let tile = TerrainParams {
+            height_scale: land.peak_height as f32,
+            snow_height: self.params.snow_height,
+            ao_exponent: self.params.ao_exponent,
+            ..TerrainParams::default()
+        };
+        let relative = View {
+            view_proj: matrix,
+            eye: Vec3::ZERO,
+        };
+        let uniforms = RenderUniforms {
+            grid: 0,
+            tex_size: 0,
+            ..RenderUniforms::new(&tile, &self.shading, &relative, encode)
+        };
+        queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
+
+        let active: Vec<_> = self.map.levels.iter().filter(|l| l.active).collect();
+        let b = u64::from(self.map.patch);
+        self.stats = WorldStats {
+            triangles: patches.len() as u64 * 2 * b * b,
+            patches: patches.len() as u32,
+            texels_baked: self.stats.texels_baked,
+            levels: active.len() as u32,
+            levels_total: n as u32,
+            patch_cells: self.map.patch,
+            finest_spacing: active.first().map_or(0.0, |l| l.spacing()),
+            error_bound_px: self.map.error_bound(view.pixels_per_radian()),
+        };
+    }
+
+    fn relative_matrix(&self, view: &WorldView, near: f32, far: f32) -> Mat4 {
+        view.relative_matrix(near, far)
+    }
+
+    /// Draws the patches selected by the last [`World::prepare`] into the host's pass.
+    pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        if self.instance_count == 0 {
+            return;
+        }
+        pass.push_debug_group("relief:world");
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_vertex_buffer(0, self.instances.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..self.instance_count);
+        pass.pop_debug_group();
+    }
+}
+
+fn level_errors(land: &Landscape) -> Vec<(i32, f64)> {
+    let finest = land.feature_log2 - land.octaves as i32;
+    (0..MAX_LEVELS as i32)
+        .map(|l| (finest + l, crate::clipmap::level_error(land, finest + l)))
+        .collect()
+}
+
+fn layout(params: &WorldParams, errors: &[(i32, f64)], k: f64) -> Clipmap {
+    Clipmap::with_errors(&params.land, errors, params.pixel_error, k)
+}
+
+fn level_texture(
+    device: &wgpu::Device,
+    bake: &LandscapeBake,
+    map: &Clipmap,
+) -> (wgpu::Texture, LevelTarget) {
+    let side = map.side();
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("relief:world:levels"),
+        size: wgpu::Extent3d {
+            width: side,
+            height: side,
+            depth_or_array_layers: map.levels.len() as u32,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: LandscapeBake::FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = array_view(&texture);
+    let target = bake.bind(device, &view, side);
+    (texture, target)
+}
+
+fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some("relief:world:levels-view"),
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+fn bind(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    render: &wgpu::Buffer,
+    world: &wgpu::Buffer,
+    texture: &wgpu::Texture,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("relief:world:bind-group"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: render.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: world.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&array_view(texture)),
+            },
+        ],
+    })
+}
+
+/// The index buffer of one patch: (patch + 1)^2 vertices, two triangles per cell, each cell
+/// split along the diagonal from its (0, 0) to its (1, 1) corner (as `level_error` assumes).
+fn patch_indices(device: &wgpu::Device, patch: u32) -> (wgpu::Buffer, u32) {
+    let row = patch + 1;
+    let mut indices = Vec::with_capacity((patch * patch * 6) as usize);
+    for j in 0..patch {
+        for i in 0..patch {
+            let a = j * row + i;
+            let (b, c, d) = (a + 1, a + row, a + row + 1);
+            indices.extend_from_slice(&[a, b, d, a, d, c]);
+        }
+    }
+    let buffer = wgpu::util::DeviceExt::create_buffer_init(
+        device,
+        &wgpu::util::BufferInitDescriptor {
+            label: Some("relief:world:patch-indices"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX,
+        },
+    );
+    (buffer, indices.len() as u32)
+}
+
+fn render_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    targets: &Targets,
+) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("relief:world:pipeline-layout"),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("relief:world:pipeline"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<Patch>() as u64,
+                step_mode: wgpu::VertexStepMode::Instance,
+                attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+            })],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: targets.sample_count,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: targets.color_format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The six planes (a x + b y + c z + d >= 0 inside) of a wgpu clip-space frustum (depth 0..1).
+fn frustum_planes(m: &Mat4) -> [Vec4; 6] {
+    let r = |i: usize| m.row(i);
+    [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(2),
+        r(3) - r(2),
+    ]
+}

@@ -1,0 +1,332 @@
+//! Which world relief draws, and the endless world's parameters with their table.
+//!
+//! Two worlds: `tile`, the seed blog's square tile seen from outside (its parameters are
+//! [`crate::params::PARAMS`]), and `endless`, a landscape in metres to the horizon drawn by the
+//! clipmap renderer ([`crate::gpu::world::World`]), whose parameters are [`WORLD_PARAMS`]. A key
+//! of one world's table that the other lacks is refused under the other (never ignored).
+
+use crate::error::{Error, Result};
+use crate::landscape::{Landscape, TerrainFn};
+use crate::table::{Control, Kind, Param, Value};
+
+/// The worlds relief can draw.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WorldKind {
+    /// The seed blog's periodic tile, seen from outside.
+    #[default]
+    Tile,
+    /// An endless landscape in metres, seen from inside, to the horizon.
+    Endless,
+}
+
+impl WorldKind {
+    /// Every world's name.
+    pub const NAMES: &'static [&'static str] = &["tile", "endless"];
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        match self {
+            WorldKind::Tile => "tile",
+            WorldKind::Endless => "endless",
+        }
+    }
+
+    /// The world called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name.trim() {
+            "tile" => Some(WorldKind::Tile),
+            "endless" => Some(WorldKind::Endless),
+            _ => None,
+        }
+    }
+}
+
+/// Largest octave count of the endless world.
+pub const MAX_WORLD_OCTAVES: u32 = 20;
+/// Largest feature size (octave 0's lattice cell), metres.
+pub const MAX_FEATURE_SIZE: u32 = 1 << 20;
+/// The finest octave's cell may not be under 2^-MIN_CELL_LOG2 metres.
+pub const MIN_CELL_LOG2: i32 = -7;
+
+/// Everything that decides what the endless world looks like and how finely it is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldParams {
+    /// The terrain function and its scale.
+    pub land: Landscape,
+    /// The quality knob: the largest screen-space geometric error, in pixels.
+    pub pixel_error: f64,
+    /// Normalised height (0..1) of the snow line.
+    pub snow_height: f32,
+    /// Height-AO exponent.
+    pub ao_exponent: f32,
+}
+
+impl Default for WorldParams {
+    /// Eroded mountains some 2 km high with ridges about 4 km apart, detail down to a metre,
+    /// drawn to within a pixel.
+    fn default() -> Self {
+        Self {
+            land: Landscape {
+                seed: 7,
+                octaves: 12,
+                gain: 0.47,
+                feature_log2: 12,
+                peak_height: 2400.0,
+                terrain: TerrainFn::Eroded,
+            },
+            pixel_error: 1.0,
+            snow_height: 0.63,
+            ao_exponent: 1.0,
+        }
+    }
+}
+
+/// One row of the endless world's table.
+pub type WorldParam = Param<WorldParams>;
+
+/// A table float as the f64 its shortest decimal text means (0.47, not 0.4699999988).
+fn float(v: Value) -> Option<f64> {
+    match v {
+        Value::Float(x) => x.to_string().parse().ok(),
+        _ => None,
+    }
+}
+
+/// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
+/// mean the same there; the others are the endless world's own.
+pub static WORLD_PARAMS: [WorldParam; 9] = [
+    Param {
+        key: "seed",
+        doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
+        kind: Kind::Int {
+            min: 0,
+            max: u32::MAX,
+        },
+        control: Control::Number,
+        get: |p| Value::Int(p.land.seed),
+        set: |p, v| {
+            if let Value::Int(x) = v {
+                p.land.seed = x;
+            }
+        },
+    },
+    Param {
+        key: "octaves",
+        doc: "fBm octaves (the finest cell, feature_size / 2^(octaves-1), at least 1/128 m)",
+        kind: Kind::Int {
+            min: 1,
+            max: MAX_WORLD_OCTAVES,
+        },
+        control: Control::Slider {
+            min: 1.0,
+            max: 16.0,
+            step: 1.0,
+        },
+        get: |p| Value::Int(p.land.octaves),
+        set: |p, v| {
+            if let Value::Int(x) = v {
+                p.land.octaves = x;
+            }
+        },
+    },
+    Param {
+        key: "gain",
+        doc: "amplitude ratio between octaves",
+        kind: Kind::Float { min: 0.0, max: 1.0 },
+        control: Control::Slider {
+            min: 0.0,
+            max: 1.0,
+            step: 0.01,
+        },
+        get: |p| Value::Float(p.land.gain as f32),
+        set: |p, v| {
+            if let Some(x) = float(v) {
+                p.land.gain = x;
+            }
+        },
+    },
+    Param {
+        key: "feature_size",
+        doc: "octave 0's lattice cell in metres, a power of two (the spacing of the big ridges)",
+        kind: Kind::Int {
+            min: 1,
+            max: MAX_FEATURE_SIZE,
+        },
+        control: Control::None,
+        get: |p| Value::Int(1u32 << p.land.feature_log2.clamp(0, 20)),
+        set: |p, v| {
+            if let Value::Int(x) = v {
+                // Not a power of two: kept as an impossible log2 for validate to name.
+                p.land.feature_log2 = if x.is_power_of_two() {
+                    x.trailing_zeros() as i32
+                } else {
+                    -1000 - x.min(1 << 30) as i32
+                };
+            }
+        },
+    },
+    Param {
+        key: "peak_height",
+        doc: "world height in metres of normalised height 1 (the highest the terrain can reach)",
+        kind: Kind::Float {
+            min: 1.0,
+            max: 20000.0,
+        },
+        control: Control::Slider {
+            min: 100.0,
+            max: 6000.0,
+            step: 50.0,
+        },
+        get: |p| Value::Float(p.land.peak_height as f32),
+        set: |p, v| {
+            if let Some(x) = float(v) {
+                p.land.peak_height = x;
+            }
+        },
+    },
+    Param {
+        key: "terrain",
+        doc: "fbm (plain fBm) or eroded (detail damped on steep slopes, as in the seed template)",
+        kind: Kind::Choice(TerrainFn::NAMES),
+        control: Control::Select,
+        get: |p| Value::Choice(p.land.terrain.name()),
+        set: |p, v| {
+            if let Value::Choice(name) = v {
+                p.land.terrain = TerrainFn::from_name(name).unwrap_or_default();
+            }
+        },
+    },
+    Param {
+        key: "pixel_error",
+        doc: "largest screen-space geometric error in pixels: sets the levels' grid density",
+        kind: Kind::Float {
+            min: 0.25,
+            max: 64.0,
+        },
+        control: Control::Slider {
+            min: 0.25,
+            max: 8.0,
+            step: 0.25,
+        },
+        get: |p| Value::Float(p.pixel_error as f32),
+        set: |p, v| {
+            if let Some(x) = float(v) {
+                p.pixel_error = x;
+            }
+        },
+    },
+    Param {
+        key: "snow_height",
+        doc: "normalised height (0..1) above which snow lies",
+        kind: Kind::Float { min: 0.0, max: 1.0 },
+        control: Control::Slider {
+            min: 0.0,
+            max: 1.0,
+            step: 0.01,
+        },
+        get: |p| Value::Float(p.snow_height),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.snow_height = x;
+            }
+        },
+    },
+    Param {
+        key: "ao_exponent",
+        doc: "height ambient occlusion h^k (0 turns it off)",
+        kind: Kind::Float {
+            min: 0.0,
+            max: crate::params::MAX_AO_EXPONENT,
+        },
+        control: Control::Slider {
+            min: 0.0,
+            max: 4.0,
+            step: 0.05,
+        },
+        get: |p| Value::Float(p.ao_exponent),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.ao_exponent = x;
+            }
+        },
+    },
+];
+
+/// The endless world's row for `key` (dashes accepted).
+pub fn world_param(key: &str) -> Option<&'static WorldParam> {
+    let key = key.trim().replace('-', "_");
+    WORLD_PARAMS.iter().find(|p| p.key == key)
+}
+
+impl WorldParams {
+    /// Checks every field against its row, then the rules between them, naming the parameter.
+    pub fn validate(&self) -> Result<()> {
+        for row in &WORLD_PARAMS {
+            row.check((row.get)(self))?;
+        }
+        let l = &self.land;
+        if !(0..=20).contains(&l.feature_log2) {
+            return Err(Error::invalid(
+                "feature_size",
+                if l.feature_log2 < -1000 {
+                    (-1000 - l.feature_log2).to_string()
+                } else {
+                    format!("2^{}", l.feature_log2)
+                },
+                format!("a power of two from 1 to {MAX_FEATURE_SIZE} metres"),
+            ));
+        }
+        // Finest cell feature / 2^(octaves-1) >= 2^MIN_CELL_LOG2.
+        let most = (l.feature_log2 - MIN_CELL_LOG2 + 1).clamp(1, MAX_WORLD_OCTAVES as i32);
+        if l.octaves as i32 > most {
+            return Err(Error::invalid(
+                "octaves",
+                l.octaves,
+                format!(
+                    "1..={most} with feature_size {} (finest cell at least 1/128 m)",
+                    1u32 << l.feature_log2
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_every_row_round_trips() {
+        let p = WorldParams::default();
+        p.validate().unwrap();
+        for row in &WORLD_PARAMS {
+            let text = (row.get)(&p).to_string();
+            let mut q = WorldParams::default();
+            (row.set)(&mut q, row.parse(&text).unwrap());
+            assert_eq!(q, p, "{}", row.key);
+        }
+    }
+
+    #[test]
+    fn bad_values_name_their_parameter() {
+        let mut p = WorldParams::default();
+        (world_param("feature-size").unwrap().set)(&mut p, Value::Int(3000));
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains("feature_size") && e.contains("3000"), "{e}");
+        let mut p = WorldParams::default();
+        p.land.feature_log2 = 2;
+        p.land.octaves = 20;
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains("octaves") && e.contains("1..=10"), "{e}");
+        let p = WorldParams {
+            pixel_error: 0.0,
+            ..Default::default()
+        };
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("pixel_error"));
+    }
+}

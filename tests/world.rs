@@ -1,0 +1,256 @@
+//! The endless world's clipmap renderer on lavapipe, at small sizes: incremental baking equals
+//! baking from scratch (and the twin), no cracks between levels (and the morph is what
+//! prevents them), culling, and motion far from the origin.
+
+mod common;
+
+use glam::DVec3;
+use relief::gpu::headless::{self, Gpu, Offscreen};
+use relief::landscape::{Landscape, TerrainFn};
+use relief::noise::Channel;
+use relief::{World, WorldParams, WorldView};
+
+/// A small world: ridges 256 m apart, 150 m high, detail to 2 m; a loose knob keeps patches
+/// (and lavapipe's work) small.
+fn params() -> WorldParams {
+    WorldParams {
+        land: Landscape {
+            seed: 11,
+            octaves: 8,
+            gain: 0.5,
+            feature_log2: 8,
+            peak_height: 150.0,
+            terrain: TerrainFn::Fbm,
+        },
+        pixel_error: 16.0,
+        ..WorldParams::default()
+    }
+}
+
+const SIZE: (u32, u32) = (192, 128);
+
+fn world(gpu: &Gpu, params: WorldParams) -> World {
+    World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).expect("world")
+}
+
+/// A view from `eye` (metres above the ground there: `eye[1]`) towards `dir`.
+fn view(land: &Landscape, x: f64, z: f64, above: f64, dir: DVec3) -> WorldView {
+    let eye = DVec3::new(x, land.height_at(x, z) + above, z);
+    WorldView::look_at(eye, eye + dir, 50f32.to_radians(), SIZE)
+}
+
+fn bake_only(gpu: &Gpu, world: &mut World, view: &WorldView) -> u64 {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let texels = world
+        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, view)
+        .expect("bake");
+    gpu.queue.submit([encoder.finish()]);
+    texels
+}
+
+fn levels(gpu: &Gpu, world: &World) -> Vec<[f32; 4]> {
+    bytemuck::pod_collect_to_vec(
+        &headless::read_texture(&gpu.device, &gpu.queue, world.level_texture()).unwrap(),
+    )
+}
+
+#[test]
+fn incremental_baking_equals_a_fresh_bake_and_the_twin() {
+    let gpu = common::gpu();
+    let p = params();
+    let land = p.land;
+    let mut walked = world(&gpu, p);
+    // A walk: small steps (strips), a long jump (whole levels), a climb (finer levels
+    // dropped, then taken up again), diagonal moves.
+    let mut last = view(&land, 0.0, 0.0, 20.0, DVec3::X);
+    bake_only(&gpu, &mut walked, &last);
+    let mut baked = Vec::new();
+    for (i, (x, z, above)) in [
+        (3.0, 1.0, 20.0),
+        (17.0, -9.0, 20.0),
+        (60.0, 41.0, 25.0),
+        (5000.0, -3000.0, 20.0),
+        (5013.0, -2990.0, 600.0),
+        (5020.0, -2970.0, 15.0),
+        (4990.0, -2990.0, 15.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        last = view(&land, x, z, above, DVec3::new(1.0, -0.2, 0.3));
+        baked.push((i, bake_only(&gpu, &mut walked, &last)));
+    }
+    // Small steps bake strips, not whole levels.
+    let whole = u64::from(walked.clipmap().side()).pow(2);
+    assert!(baked[0].1 < whole, "a 3 m step baked {} texels", baked[0].1);
+    let mut fresh = world(&gpu, p);
+    bake_only(&gpu, &mut fresh, &last);
+    assert_eq!(walked.clipmap().levels, fresh.clipmap().levels);
+    let side = walked.clipmap().side() as usize;
+    let (a, b) = (levels(&gpu, &walked), levels(&gpu, &fresh));
+    let map = fresh.clipmap();
+    for (l, level) in map.levels.iter().enumerate().filter(|(_, l)| l.active) {
+        let layer = l * side * side;
+        let (wa, wb) = (
+            &a[layer..layer + side * side],
+            &b[layer..layer + side * side],
+        );
+        let differ = wa.iter().zip(wb).filter(|(x, y)| x != y).count();
+        assert_eq!(
+            differ, 0,
+            "level {l}: {differ} texels differ from a fresh bake"
+        );
+        // Spot checks against the twin: texel of sample (i, j) is at (i, j) mod side.
+        for k in 0..16i64 {
+            let (i, j) = (
+                i64::from(level.origin[0]) + (k * 37) % side as i64,
+                i64::from(level.origin[1]) + (k * 53) % side as i64,
+            );
+            let t = wb
+                [(j.rem_euclid(side as i64) as usize) * side + i.rem_euclid(side as i64) as usize];
+            let h = land.level_sample(Channel::Height, level.spacing_log2, i, j);
+            let c = land.level_sample(Channel::Color, level.spacing_log2, i, j);
+            // f32 sums of up to 8 octaves against f64: 3e-7 as in tests/landscape.rs.
+            assert!(
+                (f64::from(t[0]) - h.value).abs() < 3e-7
+                    && (f64::from(t[3]) - c.value).abs() < 3e-7,
+                "level {l} sample ({i}, {j}): GPU {t:?}, twin {} {}",
+                h.value,
+                c.value
+            );
+            let g =
+                (f64::from(t[1]) - h.gradient[0]).abs() + (f64::from(t[2]) - h.gradient[1]).abs();
+            let scale = h.gradient[0].abs() + h.gradient[1].abs() + 1e-3 / level.spacing();
+            assert!(
+                g < 1e-4 * scale.max(1e-3),
+                "level {l} gradient {t:?} twin {:?}",
+                h.gradient
+            );
+        }
+    }
+}
+
+/// Magenta pixels below the first terrain pixel of their column: holes in the surface. (A
+/// view looking down enough that every ray below the skyline meets the ground.)
+fn holes(pixels: &[u8], (w, h): (u32, u32)) -> usize {
+    let magenta = |i: usize| {
+        let p = &pixels[i * 4..i * 4 + 3];
+        p[0] > 240 && p[1] < 16 && p[2] > 240
+    };
+    let mut count = 0;
+    for x in 0..w as usize {
+        let top = (0..h as usize).find(|&y| !magenta(y * w as usize + x));
+        if let Some(top) = top {
+            count += (top..h as usize)
+                .filter(|&y| magenta(y * w as usize + x))
+                .count();
+        }
+    }
+    count
+}
+
+#[test]
+fn no_cracks_between_levels_and_the_morph_is_what_prevents_them() {
+    let gpu = common::gpu();
+    let p = params();
+    let land = p.land;
+    let mut w = world(&gpu, p);
+    w.set_shading(relief::Shading {
+        sky_color: [1.0, 0.0, 1.0],
+        ..Default::default()
+    });
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let mut with = 0;
+    let mut without = 0;
+    let mut transitions = 0;
+    for step in 0..6 {
+        let a = f64::from(step) * 0.9;
+        let dir = DVec3::new(a.cos(), -0.45, a.sin());
+        let v = view(
+            &land,
+            40.0 * f64::from(step),
+            -25.0 * f64::from(step),
+            30.0,
+            dir,
+        );
+        w.set_morphing(true);
+        let (on, _) = target.render_world(&gpu, &mut w, &v, None).unwrap();
+        transitions = transitions.max(w.stats().levels);
+        w.set_morphing(false);
+        let (off, _) = target.render_world(&gpu, &mut w, &v, None).unwrap();
+        with += holes(&on, SIZE);
+        without += holes(&off, SIZE);
+        if step == 0 {
+            let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
+            image::save_buffer(
+                dir.join("world-cracks-on.png"),
+                &on,
+                SIZE.0,
+                SIZE.1,
+                image::ColorType::Rgba8,
+            )
+            .unwrap();
+            image::save_buffer(
+                dir.join("world-cracks-off.png"),
+                &off,
+                SIZE.0,
+                SIZE.1,
+                image::ColorType::Rgba8,
+            )
+            .unwrap();
+        }
+    }
+    assert!(transitions >= 3, "the views cross {transitions} levels");
+    assert_eq!(with, 0, "{with} crack pixels with morphing on");
+    assert!(without > 0, "the control saw no cracks with morphing off");
+}
+
+#[test]
+fn a_view_of_only_sky_draws_nothing() {
+    let gpu = common::gpu();
+    let p = params();
+    let mut w = world(&gpu, p);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let up = view(&p.land, 0.0, 0.0, 400.0, DVec3::new(0.0, 1.0, 0.2));
+    target.render_world(&gpu, &mut w, &up, None).unwrap();
+    assert_eq!(w.stats().triangles, 0, "{:?}", w.stats());
+    let down = view(&p.land, 0.0, 0.0, 400.0, DVec3::new(1.0, -0.3, 0.0));
+    target.render_world(&gpu, &mut w, &down, None).unwrap();
+    assert!(w.stats().triangles > 0);
+}
+
+fn mean_abs_diff(a: &[u8], b: &[u8]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| f64::from(x.abs_diff(*y)))
+        .sum::<f64>()
+        / a.len() as f64
+}
+
+#[test]
+fn far_from_the_origin_a_small_step_moves_the_picture_as_it_does_near_it() {
+    let gpu = common::gpu();
+    let p = params();
+    let land = p.land;
+    let mut w = world(&gpu, p);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let dir = DVec3::new(0.8, -0.35, 0.5);
+    let mut change = Vec::new();
+    for origin in [0.0, 1.0e6] {
+        let a = view(&land, origin + 3.0, origin - 7.0, 20.0, dir);
+        let mut b = a;
+        b.eye += DVec3::new(0.05, 0.0, 0.03);
+        let (pa, _) = target.render_world(&gpu, &mut w, &a, None).unwrap();
+        let (pb, _) = target.render_world(&gpu, &mut w, &b, None).unwrap();
+        change.push(mean_abs_diff(&pa, &pb));
+    }
+    let (near, far) = (change[0], change[1]);
+    assert!(
+        near > 0.0 && far > 0.0,
+        "a 6 cm step changed nothing: near {near}, far {far}"
+    );
+    assert!(
+        far < 3.0 * near + 0.05 && far > near / 3.0,
+        "a 6 cm step 10^6 m out changed the picture by {far} (near the origin {near})"
+    );
+}

@@ -1,0 +1,134 @@
+// The endless world's render pass: the clipmap's patches (src/clipmap.rs) drawn as instances
+// of one indexed (patch+1)^2 grid, displaced by the levels' baked heights, in camera-relative
+// coordinates; shaded per pixel from the baked gradient by shade.wgsl (composed before this).
+//
+// Positions are exact where levels meet: a vertex's offset from the camera's reference sample
+// is an integer count of finest-level samples (small: levels are camera-centred), times the
+// finest spacing (a power of two), less the eye's offset from that sample. At a level's outer
+// edge the morph is complete (alpha = 1): odd vertices sit on their even neighbours and take
+// the coarser level's texels, so both levels produce the same vertices, bit for bit.
+
+struct Level {
+    // Level origin, in finest samples, relative to the camera's reference sample.
+    origin_rel: vec2<i32>,
+    // This level's origin less twice the coarser level's, in this level's samples (even).
+    delta: vec2<i32>,
+    // Level origin modulo the texture side: the texel of the level's first sample.
+    origin_mod: vec2<u32>,
+    // log2 of this level's spacing over the finest level's.
+    shift: u32,
+    layer: u32,
+    // Index of the coarser level, and whether there is one to morph towards.
+    coarse: u32,
+    has_coarse: u32,
+    _pad: vec2<u32>,
+}
+
+struct WorldUniforms {
+    // xz: eye position less the reference sample's, in metres; y: eye height; w: finest spacing.
+    eye: vec4<f32>,
+    // Cells per level side, cells per patch side, texture side.
+    cells: u32,
+    patch_cells: u32,
+    side: u32,
+    // 1 while morphing is on.
+    morphing: u32,
+    // Width of the morph band in cells, world height of normalised height 1.
+    morph: f32,
+    peak: f32,
+    _pad: vec2<u32>,
+    levels: array<Level, 24>,
+}
+
+@group(0) @binding(0) var<uniform> r: RenderUniforms;
+@group(0) @binding(1) var<uniform> w: WorldUniforms;
+@group(0) @binding(2) var level_tex: texture_2d_array<f32>;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    // Camera-relative position (the camera sits at the origin).
+    @location(0) rel: vec3<f32>,
+    // Position in this level's and the coarser level's samples, from their first samples.
+    @location(1) fine: vec2<f32>,
+    @location(2) coarse: vec2<f32>,
+    @location(3) alpha: f32,
+    @location(4) @interpolate(flat) level: u32,
+}
+
+fn texel(lv: Level, ij: vec2<i32>) -> vec4<f32> {
+    let c = clamp(ij, vec2<i32>(0), vec2<i32>(i32(w.cells)));
+    let t = (lv.origin_mod + vec2<u32>(c)) % vec2<u32>(w.side);
+    return textureLoad(level_tex, vec2<i32>(t), i32(lv.layer), 0);
+}
+
+// Bilinear by hand (rgba32float is not filterable in core WebGPU). At integer positions the
+// weights are exactly 0, so the texel itself comes back unchanged.
+fn sample_level(lv: Level, p: vec2<f32>) -> vec4<f32> {
+    let p0 = floor(p);
+    let t = p - p0;
+    let i = vec2<i32>(p0);
+    let a = texel(lv, i);
+    let b = texel(lv, i + vec2<i32>(1, 0));
+    let c = texel(lv, i + vec2<i32>(0, 1));
+    let d = texel(lv, i + vec2<i32>(1, 1));
+    return mix(mix(a, b, t.x), mix(c, d, t.x), t.y);
+}
+
+// Blend towards the coarser level, exact at both ends.
+fn morph_blend(fine: vec4<f32>, coarse: vec4<f32>, alpha: f32) -> vec4<f32> {
+    if alpha <= 0.0 {
+        return fine;
+    }
+    if alpha >= 1.0 {
+        return coarse;
+    }
+    return mix(fine, coarse, alpha);
+}
+
+@vertex
+fn vs_main(
+    @builtin(vertex_index) vi: u32,
+    @location(0) patch_instance: vec4<u32>,
+) -> VertexOut {
+    let level = patch_instance.x;
+    let lv = w.levels[level];
+    let row = w.patch_cells + 1u;
+    let local = patch_instance.yz * w.patch_cells + vec2<u32>(vi % row, vi / row);
+    // Distance to the level's outer edge in cells, and the morph towards the coarser level.
+    let edge = min(min(local.x, local.y), min(w.cells - local.x, w.cells - local.y));
+    var alpha = 0.0;
+    if lv.has_coarse != 0u && w.morphing != 0u {
+        alpha = clamp((w.morph - f32(edge)) / w.morph, 0.0, 1.0);
+    }
+    let odd = vec2<f32>(local & vec2<u32>(1u));
+    let p = vec2<f32>(local) - alpha * odd;
+    let clv = w.levels[lv.coarse];
+    let q = (vec2<f32>(lv.delta) + p) * 0.5;
+    var s = sample_level(lv, p);
+    if alpha > 0.0 {
+        s = morph_blend(s, sample_level(clv, q), alpha);
+    }
+    let scale = f32(1u << lv.shift);
+    let xz = (vec2<f32>(lv.origin_rel) + p * scale) * w.eye.w - w.eye.xz;
+    let rel = vec3<f32>(xz.x, s.x * w.peak - w.eye.y, xz.y);
+    var out: VertexOut;
+    out.clip = r.view_proj * vec4<f32>(rel, 1.0);
+    out.rel = rel;
+    out.fine = p;
+    out.coarse = q;
+    out.alpha = alpha;
+    out.level = level;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let lv = w.levels[in.level];
+    var s = sample_level(lv, in.fine);
+    if in.alpha > 0.0 {
+        s = morph_blend(s, sample_level(w.levels[lv.coarse], in.coarse), in.alpha);
+    }
+    // Gradient per metre of normalised height, to a unit normal in metres.
+    let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));
+    return vec4<f32>(shade(r, in.rel, n, s.x, s.w), 1.0);
+}
