@@ -292,7 +292,7 @@ fn wait(gpu: &Gpu) -> Result<()> {
 /// Runs `frame` back to back for the warm-up (at least `warmup` frames and `warmup_ms`), then
 /// `frames` timed frames, each submitted and waited for; returns the GPU timings and the wall
 /// time of each timed frame.
-fn measure(
+pub(crate) fn measure(
     gpu: &Gpu,
     options: &Options,
     timer: Option<&GpuTimer>,

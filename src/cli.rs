@@ -331,7 +331,24 @@ pub fn options_markdown() -> String {
         } else {
             "every command, scene files, URL"
         };
-        out.push_str(&row(p, &scene, applies));
+        let applies = if TILE_ONLY.contains(&p.key) {
+            format!("{applies}; tile world only")
+        } else {
+            format!("{applies}; both worlds")
+        };
+        out.push_str(&row(p, &scene, &applies));
+    }
+    let world = WorldParams::default();
+    for p in WORLD_PARAMS
+        .iter()
+        .filter(|p| crate::params::param(p.key).is_none())
+    {
+        let applies = if p.key == "pixel_error" {
+            "render --world endless"
+        } else {
+            "render, height --world endless"
+        };
+        out.push_str(&row(p, &world, applies));
     }
     let app = AppOptions::default();
     for p in &OPTIONS {
@@ -760,10 +777,13 @@ fn run(top: &ArgMatches) -> Result<()> {
             "it applies to --world endless only (the tile is 2 units wide)",
         )?,
         WorldKind::Endless => {
-            if !matches!(run, Run::Render { .. } | Run::Height { .. }) {
+            if !matches!(
+                run,
+                Run::Render { .. } | Run::Height { .. } | Run::Bench { .. }
+            ) {
                 return Err(Error::Usage(format!(
-                    "--world endless is drawn by relief render and measured by relief height; \
-                     relief {name} has the tile only so far"
+                    "--world endless is drawn by relief render, measured by relief height and \
+                     benchmarked by relief bench; relief {name} has the tile only so far"
                 )));
             }
             refuse_flags(
@@ -914,10 +934,50 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             }
             write_png(&out, width, height, image::ColorType::Rgba8, &pixels)
         }
+        Run::Bench { out_dir, quick } => bench_endless(&params, &out_dir, quick),
         _ => Err(Error::Usage(
-            "--world endless applies to relief render and relief height only".into(),
+            "--world endless applies to relief render, height and bench only".into(),
         )),
     }
+}
+
+/// `relief bench --world endless`: landscape views over the pixel-error knob and a flight.
+fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
+    use crate::bench::Options;
+    check_out_dir(dir)?;
+    let gpu = Gpu::new()?;
+    let (options, knobs): (Options, &[f64]) = if quick {
+        (Options::QUICK, &[8.0, 16.0])
+    } else {
+        (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
+    };
+    println!(
+        "relief bench --world endless{} on {}: {} views x {} knobs and a flight at {}x{}",
+        if quick { " --quick" } else { "" },
+        gpu.describe(),
+        3,
+        knobs.len(),
+        options.width,
+        options.height
+    );
+    let rows = crate::bench_world::run(&gpu, params, knobs, &options, |what| {
+        eprint!("\r\x1b[K{what}");
+    })?;
+    eprint!("\r\x1b[K");
+    let csv = crate::bench_world::csv(&rows, &gpu.describe(), &options);
+    print!("{csv}");
+    let created = create_dirs(dir)?;
+    let path = dir.join("landscape.csv");
+    let tmp = temp_name(&path);
+    let result = std::fs::write(&tmp, csv)
+        .map_err(|e| Error::io(&tmp, e))
+        .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e)));
+    if result.is_err() {
+        if let Some(c) = created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    }
+    result
 }
 
 fn render(

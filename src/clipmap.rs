@@ -34,6 +34,12 @@ pub const PATCHES: i32 = 8;
 pub const MAX_LEVELS: usize = 24;
 /// Smallest and largest patch side in cells.
 pub const PATCH_RANGE: (u32, u32) = (4, 128);
+/// Levels finer than the finest octave needs (every octave is kept there): they bring the
+/// interpolation error of the finest octaves down where the eye is close to the ground.
+pub const EXTRA_FINE: i32 = 3;
+/// Largest extent of the clipmap in finest samples: camera-relative vertex positions stay exact
+/// integers in f32 (under 2^24, with a margin).
+pub const MAX_EXTENT_LOG2: i32 = 23;
 /// How far the coarsest level reaches at least, in metres (past any horizon a camera a few
 /// kilometres up sees over the highest peaks of the default world).
 pub const REACH: f64 = 120_000.0;
@@ -108,6 +114,14 @@ pub struct Clipmap {
     pub morph: u32,
     /// Whether the morph is on (off only to show the cracks it prevents, in tests).
     pub morphing: bool,
+    /// The eye's height above the ground at the last [`Clipmap::update`], metres.
+    pub altitude: f64,
+}
+
+/// log2 of the finest level's spacing for `land`: half the finest octave's cell, then
+/// [`EXTRA_FINE`] levels finer.
+pub fn finest_log2(land: &Landscape) -> i32 {
+    land.feature_log2 - land.octaves as i32 - EXTRA_FINE
 }
 
 /// How far a mesh of `land` sampled every `2^spacing_log2` metres (with the octaves that grid
@@ -182,8 +196,7 @@ impl Clipmap {
 
     /// The layout for `land` under the knob `pixel_error` (pixels) at `pixels_per_radian`.
     pub fn new(land: &Landscape, pixel_error: f64, pixels_per_radian: f64) -> Self {
-        // The finest level keeps every octave (the finest octave's cells span two samples).
-        let finest_log2 = land.feature_log2 - land.octaves as i32;
+        let finest_log2 = finest_log2(land);
         let errors: Vec<(i32, f64)> = (0..MAX_LEVELS as i32)
             .map(|l| (finest_log2 + l, level_error(land, finest_log2 + l)))
             .collect();
@@ -198,12 +211,15 @@ impl Clipmap {
         pixel_error: f64,
         pixels_per_radian: f64,
     ) -> Self {
-        let finest_log2 = land.feature_log2 - land.octaves as i32;
+        let finest_log2 = finest_log2(land);
         let patch = Self::patch_for(errors, pixel_error, pixels_per_radian);
-        // Enough levels that the coarsest reaches REACH from the camera in every direction.
+        // Enough levels that the coarsest reaches REACH from the camera in every direction,
+        // as long as positions stay exact.
         let cells = f64::from(patch) * f64::from(PATCHES as u32);
+        let cells_log2 = (patch * PATCHES as u32).ilog2() as i32;
         let mut count = 1;
         while count < MAX_LEVELS
+            && cells_log2 + count as i32 <= MAX_EXTENT_LOG2
             && (cells / 2.0 - f64::from(patch)) * 2f64.powi(finest_log2 + count as i32 - 1) < REACH
         {
             count += 1;
@@ -225,6 +241,7 @@ impl Clipmap {
             levels,
             morph: (patch / 2).max(2),
             morphing: true,
+            altitude: 0.0,
         }
     }
 
@@ -254,6 +271,7 @@ impl Clipmap {
     /// Moves the levels for `eye` and returns the strips to bake: whole levels that became
     /// active or jumped more than their size, else the rows and columns they uncovered.
     pub fn update(&mut self, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
+        self.altitude = (eye.position[1] - eye.ground).max(0.0);
         let first = self.first_level(eye, pixel_error);
         let side = self.side() as i32;
         let mut strips = Vec::new();
@@ -363,14 +381,20 @@ impl Clipmap {
     }
 
     /// The screen error, in pixels, that this layout keeps under for a view with
-    /// `pixels_per_radian` (the bound of the module docs, over the active levels).
+    /// `pixels_per_radian` (the bound of the module docs, over the active levels). The first
+    /// active level has no finer level inside it: its nearest point is the ground under the
+    /// eye, [`Clipmap::altitude`] away (less on ground steeper than the view: not counted).
     pub fn error_bound(&self, pixels_per_radian: f64) -> f64 {
         let b = f64::from(self.patch);
         let active: Vec<&Level> = self.levels.iter().filter(|l| l.active).collect();
         let mut worst: f64 = 0.0;
         for (i, level) in active.iter().enumerate() {
             let s = level.spacing();
-            let own = level.error / (1.5 * b * s);
+            let own = if i == 0 {
+                level.error / self.altitude.max(1e-3)
+            } else {
+                level.error / (1.5 * b * s)
+            };
             let coarse = active.get(i + 1).map_or(0.0, |c| c.error / (2.5 * b * s));
             worst = worst.max(own.max(coarse));
         }

@@ -20,6 +20,11 @@
 //! The window app, the headless `relief render`, and the tests all go through these same
 //! three calls; only the target differs.
 //!
+//! The endless world ([`World`], [`WorldParams`], [`WorldView`]) is the same middleware shape
+//! for a landscape in metres seen from inside: geometry clipmap levels ([`clipmap`]) baked by
+//! strips as the camera moves ([`World::encode_bake`] takes the view), drawn as patch rings
+//! morphing into each other without cracks, sized by a screen-space error knob.
+//!
 //! ## Conventions
 //!
 //! - World space is y-up. One tile spans x, z in [-[`WORLD_SIZE`]/2, [`WORLD_SIZE`]/2]; the
@@ -59,6 +64,8 @@
 pub mod app;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod bench_world;
 pub mod camera;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod cli;

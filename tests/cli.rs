@@ -786,3 +786,259 @@ fn render_draws_the_same_frame_with_every_method() {
         &["--method", "rays", "reference"],
     );
 }
+
+/// Renders the endless world small and loose (fast on a software GPU); returns the pixels and
+/// the `--stats` lines.
+fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>) {
+    let out = dir.join(format!("{name}.png"));
+    let mut args = vec![
+        "render",
+        "--world",
+        "endless",
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "96",
+        "--height",
+        "64",
+        "--stats",
+    ];
+    if !extra.contains(&"--pixel-error") {
+        args.extend_from_slice(&["--pixel-error", "16"]);
+    }
+    args.extend_from_slice(extra);
+    let (code, stdout, err) = relief(&args);
+    assert_eq!(code, 0, "{extra:?}: {err}");
+    assert_eq!(err, "", "{extra:?}: stderr not clean");
+    let stats = stdout
+        .lines()
+        .filter_map(|l| {
+            let (k, v) = l.split_once(' ')?;
+            Some((k.to_owned(), v.parse().ok()?))
+        })
+        .collect();
+    (image::open(&out).unwrap().into_rgb8().into_raw(), stats)
+}
+
+fn stat(stats: &[(String, f64)], key: &str) -> f64 {
+    stats
+        .iter()
+        .find(|(k, _)| k == key)
+        .unwrap_or_else(|| panic!("no {key} in {stats:?}"))
+        .1
+}
+
+#[test]
+fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
+    let dir = scratch("endless");
+    let (base, stats) = render_endless(&dir, "base", &[]);
+    for key in [
+        "triangles",
+        "texels_baked",
+        "levels",
+        "error_bound_px",
+        "patch_cells",
+    ] {
+        assert!(stat(&stats, key) >= 0.0);
+    }
+    assert!(
+        stat(&stats, "triangles") > 0.0 && stat(&stats, "levels") >= 3.0,
+        "{stats:?}"
+    );
+    assert!(stat(&stats, "error_bound_px") <= 16.0, "{stats:?}");
+    // Every row of the endless world's table, through its flag: the picture changes (the
+    // knob changes the triangles; the picture may stay nearly the same).
+    for row in &relief::world::WORLD_PARAMS {
+        let value = match row.key {
+            "seed" => "8",
+            "octaves" => "6",
+            "gain" => "0.6",
+            "feature_size" => "1024",
+            "peak_height" => "900",
+            "terrain" => "fbm",
+            "pixel_error" => "4",
+            "snow_height" => "0.3",
+            "ao_exponent" => "3",
+            other => panic!("no test value for {other}: add one"),
+        };
+        let flag = format!("--{}", row.flag());
+        let (img, s) = render_endless(&dir, row.key, &[&flag, value]);
+        if row.key == "pixel_error" {
+            assert!(
+                stat(&s, "triangles") > stat(&stats, "triangles"),
+                "{flag} {value}: {s:?} against {stats:?}"
+            );
+        } else {
+            assert_ne!(img, base, "{flag} {value} left the picture unchanged");
+        }
+    }
+    // The camera flags move the camera.
+    let (moved, _) = render_endless(&dir, "eye", &["--eye", "500,2400,-800"]);
+    assert_ne!(moved, base);
+    let (turned, _) = render_endless(&dir, "look", &["--look-at", "0,0,9000"]);
+    assert_ne!(turned, base);
+    let (wide, _) = render_endless(&dir, "fov", &["--fov", "80"]);
+    assert_ne!(wide, base);
+    // Looking straight up: sky only, nothing drawn.
+    let (_, up) = render_endless(&dir, "up", &["--eye", "0,3000,0", "--look-at", "0,9000,1"]);
+    assert_eq!(stat(&up, "triangles"), 0.0, "{up:?}");
+}
+
+#[test]
+fn the_endless_world_heights_and_the_tile_camera() {
+    let (code, stdout, err) = relief(&[
+        "height",
+        "--world",
+        "endless",
+        "--seed",
+        "3",
+        "0,0",
+        "125.5,-3000",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let land = relief::WorldParams {
+        land: relief::landscape::Landscape {
+            seed: 3,
+            ..relief::WorldParams::default().land
+        },
+        ..Default::default()
+    }
+    .land;
+    let got: Vec<f64> = stdout.lines().map(|l| l.parse().unwrap()).collect();
+    assert_eq!(
+        got,
+        vec![land.height_at(0.0, 0.0), land.height_at(125.5, -3000.0)]
+    );
+    // The tile takes the camera flags too.
+    let dir = scratch("tile-camera");
+    let render = |name: &str, extra: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--size",
+            "64",
+            "--grid",
+            "32",
+        ];
+        args.extend_from_slice(extra);
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{err}");
+        image::open(&out).unwrap().into_rgb8().into_raw()
+    };
+    let base = render("base", &[]);
+    assert_ne!(render("eye", &["--eye", "0,2,2.5"]), base);
+    assert_ne!(render("fov", &["--fov", "70"]), base);
+}
+
+#[test]
+fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
+    let dir = scratch("bad-camera");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    let render = |extra: &[&str], needles: &[&str]| {
+        let mut args = vec!["render", "--out", out];
+        args.extend_from_slice(extra);
+        rejects(&args, needles);
+    };
+    render(&["--eye", "nan,0,0"], &["--eye", "nan", "X,Y,Z"]);
+    render(&["--eye", "1,2"], &["--eye", "X,Y,Z"]);
+    render(&["--look-at", "1,2,3,4"], &["--look-at", "X,Y,Z"]);
+    render(&["--eye", "1e300,0,0"], &["--eye", "X,Y,Z"]);
+    render(
+        &["--eye", "0,5,0", "--look-at", "0,5,0"],
+        &["--look-at", "--eye"],
+    );
+    render(&["--fov", "0"], &["--fov", "0", "degrees"]);
+    render(&["--fov", "180"], &["--fov", "180"]);
+    render(&["--fov", "wide"], &["--fov", "wide"]);
+    render(&["--world", "moon"], &["--world", "moon", "endless"]);
+    render(&["--world", "endless", "--size", "64"], &["--size", "tile"]);
+    render(
+        &["--world", "endless", "--offset", "1,2"],
+        &["--offset", "tile"],
+    );
+    render(
+        &["--world", "endless", "--scene", "a.toml"],
+        &["--scene", "tile"],
+    );
+    render(
+        &["--world", "endless", "--method", "reference"],
+        &["--method", "reference", "mesh"],
+    );
+    render(
+        &["--world", "endless", "--feature-size", "3000"],
+        &["feature-size", "3000", "power of two"],
+    );
+    render(
+        &[
+            "--world",
+            "endless",
+            "--feature-size",
+            "16",
+            "--octaves",
+            "20",
+        ],
+        &["--octaves", "20", "1..=12"],
+    );
+    render(
+        &["--world", "endless", "--pixel-error", "0"],
+        &["--pixel-error", "0"],
+    );
+    render(&["--peak-height", "100"], &["--peak-height", "endless"]);
+    rejects(
+        &[
+            "bake",
+            "--out-dir",
+            dir.to_str().unwrap(),
+            "--world",
+            "endless",
+        ],
+        &["--world endless", "bake"],
+    );
+    rejects(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
+    rejects(
+        &["height", "--world", "endless", "--pixel-error", "2", "0,0"],
+        &["--pixel-error", "height"],
+    );
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+}
+
+#[test]
+fn bench_world_endless_quick_writes_landscape_csv() {
+    let dir = scratch("bench-endless");
+    let out = dir.join("out");
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(out.join("landscape.csv")).unwrap();
+    assert_eq!(
+        csv,
+        stdout.split_once('\n').unwrap().1,
+        "printed and written differ"
+    );
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    let header: Vec<&str> = rows[0].split(',').collect();
+    // Three views at two knobs, and the flight.
+    assert_eq!(rows.len(), 1 + 3 * 2 + 1, "{csv}");
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for row in &rows[1..7] {
+        let v: Vec<&str> = row.split(',').collect();
+        let measured: f64 = v[col("measured_max_px")].parse().unwrap();
+        let bound: f64 = v[col("error_bound_px")].parse().unwrap();
+        assert!(measured <= bound, "{row}");
+        assert!(v[col("triangles")].parse::<u64>().unwrap() > 0, "{row}");
+    }
+    assert!(rows[7].starts_with("flight,"), "{csv}");
+}

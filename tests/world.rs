@@ -254,3 +254,31 @@ fn far_from_the_origin_a_small_step_moves_the_picture_as_it_does_near_it() {
         "a 6 cm step 10^6 m out changed the picture by {far} (near the origin {near})"
     );
 }
+
+#[test]
+fn the_screen_error_bound_holds_where_measured() {
+    let gpu = common::gpu();
+    for knob in [16.0, 4.0] {
+        let p = WorldParams {
+            pixel_error: knob,
+            ..params()
+        };
+        let land = p.land;
+        let mut w = world(&gpu, p);
+        for (above, dir) in [
+            (3.0, DVec3::new(1.0, -0.02, 0.3)),
+            (40.0, DVec3::new(-0.4, -0.3, 1.0)),
+            (300.0, DVec3::new(0.5, -0.6, -0.5)),
+        ] {
+            let v = view(&land, 17.0, -40.0, above, dir);
+            let e = headless::world_screen_error(&gpu, &mut w, &v, 1).unwrap();
+            let bound = w.stats().error_bound_px;
+            eprintln!("knob {knob} px, {above} m up: measured max {:.3} px, p99 {:.3} px over {} pixels; bound {bound:.3} px", e.max, e.p99, e.pixels);
+            assert!(e.pixels > 1000, "{e:?}");
+            assert!(
+                e.max <= bound,
+                "knob {knob}, {above} m up: measured {e:?} over the bound {bound}"
+            );
+        }
+    }
+}

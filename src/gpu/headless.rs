@@ -651,6 +651,69 @@ impl Offscreen {
 
 pub use super::downsample_srgb;
 
+/// The screen-space geometric error of a drawn frame of the endless world, measured against the
+/// continuous surface: each pixel's depth is turned back into the point drawn there, and its
+/// vertical distance δ from the surface (the twin's `height_at`) at distance d counts as
+/// `K·δ/d` pixels, the quantity [`crate::clipmap`]'s bound bounds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ScreenError {
+    /// Largest over the pixels measured, in pixels.
+    pub max: f64,
+    /// 99th percentile, pixels.
+    pub p99: f64,
+    /// Pixels measured (terrain pixels on the sampling grid).
+    pub pixels: usize,
+}
+
+/// Draws `world` through `view` single-sampled (the world must target
+/// `Offscreen::targets(1)`) and measures [`ScreenError`] at every `stride`-th pixel each way.
+pub fn world_screen_error(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    stride: u32,
+) -> Result<ScreenError> {
+    let (w, h) = view.size;
+    let target = Offscreen::new(&gpu.device, w, h, 1)?;
+    target.render_world(gpu, world, view, None)?;
+    let depth = target.read_depth(gpu)?;
+    let inverse = world.relative_matrix().inverse();
+    let k = view.pixels_per_radian();
+    let mut errors = Vec::new();
+    let stride = stride.max(1) as usize;
+    for py in (0..h as usize).step_by(stride) {
+        for px in (0..w as usize).step_by(stride) {
+            let d = depth[py * w as usize + px];
+            if d >= 1.0 {
+                continue; // sky
+            }
+            let ndc = glam::DVec4::new(
+                (px as f64 + 0.5) / f64::from(w) * 2.0 - 1.0,
+                1.0 - (py as f64 + 0.5) / f64::from(h) * 2.0,
+                f64::from(d),
+                1.0,
+            );
+            let p = inverse.as_dmat4() * ndc;
+            let rel = p.truncate() / p.w;
+            let at = view.eye + rel;
+            let delta = (at.y - world.height_at(at.x, at.z)).abs();
+            errors.push(k * delta / rel.length().max(1e-9));
+        }
+    }
+    errors.sort_by(f64::total_cmp);
+    let pick = |q: f64| {
+        errors
+            .get(((errors.len() as f64 * q) as usize).min(errors.len().saturating_sub(1)))
+            .copied()
+            .unwrap_or(0.0)
+    };
+    Ok(ScreenError {
+        max: errors.last().copied().unwrap_or(0.0),
+        p99: pick(0.99),
+        pixels: errors.len(),
+    })
+}
+
 /// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
 /// distance targets, supersampled where the method asks for it (and the device allows),
 /// averaged in linear light. Returns sRGB RGBA8, with the cast's GPU time when `timer` is given.

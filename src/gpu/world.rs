@@ -168,6 +168,8 @@ pub struct World {
     stats: WorldStats,
     /// The reference sample of the last `prepare` (finest-level samples).
     reference: [i64; 2],
+    /// The camera-relative projection of the last `prepare`.
+    matrix: Mat4,
 }
 
 /// Instances the patch buffer holds: every patch of every level.
@@ -248,6 +250,7 @@ impl World {
                 instance_count: 0,
                 stats: WorldStats::default(),
                 reference: [0; 2],
+                matrix: Mat4::IDENTITY,
             }
         })
     }
@@ -420,7 +423,8 @@ impl World {
         let coarsest = self.map.levels.last().expect("a clipmap has levels");
         let far = (f64::from(self.map.cells()) * coarsest.spacing()) as f32;
         let near = (altitude as f32 * 0.1).clamp(0.05, 20.0);
-        let matrix = self.relative_matrix(view, near, far);
+        let matrix = view.relative_matrix(near, far);
+        self.matrix = matrix;
         let planes = frustum_planes(&matrix);
         let eye = view.eye;
         let patches = self.map.patches([0.0, land.peak_height], |lo, hi| {
@@ -522,8 +526,10 @@ impl World {
         };
     }
 
-    fn relative_matrix(&self, view: &WorldView, near: f32, far: f32) -> Mat4 {
-        view.relative_matrix(near, far)
+    /// The camera-relative projection times view of the last [`World::prepare`] (positions
+    /// relative to the eye): what turns its depth buffer back into positions.
+    pub fn relative_matrix(&self) -> Mat4 {
+        self.matrix
     }
 
     /// Draws the patches selected by the last [`World::prepare`] into the host's pass.
@@ -542,7 +548,7 @@ impl World {
 }
 
 fn level_errors(land: &Landscape) -> Vec<(i32, f64)> {
-    let finest = land.feature_log2 - land.octaves as i32;
+    let finest = crate::clipmap::finest_log2(land);
     (0..MAX_LEVELS as i32)
         .map(|l| (finest + l, crate::clipmap::level_error(land, finest + l)))
         .collect()

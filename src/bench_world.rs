@@ -1,0 +1,323 @@
+//! `relief bench --world endless`: the clipmap renderer on landscape views (along the ground
+//! to the horizon, grazing over a ridge, high and oblique) over the pixel-error knob, and a
+//! flight along a path: triangles, texels baked per frame, the screen-error bound and GPU
+//! times (warm-up, then the median), written as `landscape.csv`.
+
+use crate::bench::{measure, Options};
+use crate::error::Result;
+use crate::gpu::headless::{world_screen_error, Gpu, Offscreen, ScreenError, RENDER_SAMPLES};
+use crate::gpu::timing::{GpuTimer, Slot};
+use crate::world::WorldParams;
+use crate::{World, WorldView};
+use glam::DVec3;
+
+/// A named landscape view.
+#[derive(Clone, Copy, Debug)]
+pub struct LandscapeView {
+    /// Its name in the CSV.
+    pub name: &'static str,
+    /// The camera (size filled in per run).
+    pub view: WorldView,
+}
+
+/// The benchmark's views of `params`' world at `size`.
+pub fn views(params: &WorldParams, size: (u32, u32)) -> Vec<LandscapeView> {
+    let land = params.land;
+    let fov = 45f32.to_radians();
+    let ground = |x: f64, z: f64| land.height_at(x, z);
+    // Along the ground: 2 m above it, looking level, to the horizon.
+    let eye = DVec3::new(0.0, ground(0.0, 0.0) + 2.0, 0.0);
+    let horizon = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.01, 0.2), fov, size);
+    // Grazing over a ridge: the highest point on a 4 km line, 5 m above it, looking level.
+    let (mut best, mut top) = (0.0, f64::MIN);
+    for i in 0..400 {
+        let x = 3000.0 + f64::from(i) * 10.0;
+        let h = ground(x, 1000.0);
+        if h > top {
+            (best, top) = (x, h);
+        }
+    }
+    let eye = DVec3::new(best, top + 5.0, 1000.0);
+    let ridge = WorldView::look_at(eye, eye + DVec3::new(0.3, -0.02, 1.0), fov, size);
+    // High and oblique: 3 km above the ground, 30 degrees down.
+    let eye = DVec3::new(-5000.0, ground(-5000.0, 2000.0) + 3000.0, 2000.0);
+    let oblique = WorldView::look_at(eye, eye + DVec3::new(0.8, -0.5, 0.33), fov, size);
+    vec![
+        LandscapeView {
+            name: "horizon",
+            view: horizon,
+        },
+        LandscapeView {
+            name: "ridge",
+            view: ridge,
+        },
+        LandscapeView {
+            name: "oblique",
+            view: oblique,
+        },
+    ]
+}
+
+/// One measured configuration.
+#[derive(Clone, Debug)]
+pub struct WorldRow {
+    /// View name (or `flight`).
+    pub view: String,
+    /// The knob.
+    pub pixel_error: f64,
+    /// Cells per patch side.
+    pub patch_cells: u32,
+    /// Levels drawn.
+    pub levels: u32,
+    /// Triangles drawn.
+    pub triangles: u64,
+    /// Screen-error bound of the layout, pixels.
+    pub error_bound_px: f64,
+    /// Measured screen error against the continuous surface (max and 99th percentile over
+    /// every other pixel each way), pixels; `None` for the flight.
+    pub measured: Option<ScreenError>,
+    /// Texels baked per frame: median and largest (a still view bakes nothing after the first).
+    pub texels_median: u64,
+    /// Largest texels baked in one timed frame.
+    pub texels_max: u64,
+    /// Median GPU time of the render pass, ms.
+    pub render_ms: Option<f64>,
+    /// Median and largest GPU time of the bake pass among frames that baked, ms.
+    pub bake_ms: Option<f64>,
+    /// Largest bake time, ms.
+    pub bake_max_ms: Option<f64>,
+    /// Median wall time per frame, ms.
+    pub wall_ms: f64,
+    /// Mean texels baked per timed frame.
+    pub texels_mean: f64,
+    /// Mean GPU bake time per timed frame (frames that baked nothing count as 0), ms.
+    pub bake_ms_mean: Option<f64>,
+}
+
+fn median<T: Copy + PartialOrd>(mut v: Vec<T>) -> Option<T> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    Some(v[v.len() / 2])
+}
+
+/// Measures `views` at each knob, then a flight along a straight path low over the ground.
+pub fn run(
+    gpu: &Gpu,
+    params: &WorldParams,
+    knobs: &[f64],
+    options: &Options,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<WorldRow>> {
+    let size = (options.width, options.height);
+    let timer = GpuTimer::new(&gpu.device, &gpu.queue);
+    let target = Offscreen::new(&gpu.device, size.0, size.1, RENDER_SAMPLES)?;
+    let color = target.color.create_view(&Default::default());
+    let mut rows = Vec::new();
+    let frame = |world: &mut World,
+                 view: &WorldView,
+                 encoder: &mut wgpu::CommandEncoder,
+                 timer: Option<&GpuTimer>|
+     -> u64 {
+        let texels = world
+            .encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)
+            .unwrap_or(0);
+        world.prepare(&gpu.queue, view);
+        let mut pass = target.begin_pass(
+            encoder,
+            &color,
+            wgpu::Color::BLACK,
+            timer.map(|t| t.render_writes(Slot::Render)),
+        );
+        world.render(&mut pass);
+        texels
+    };
+    for &knob in knobs {
+        let p = WorldParams {
+            pixel_error: knob,
+            ..*params
+        };
+        for v in views(&p, size) {
+            progress(&format!("{} at {knob} px", v.name));
+            let mut world = World::new(
+                &gpu.device,
+                &gpu.queue,
+                Offscreen::targets(RENDER_SAMPLES),
+                p,
+            )?;
+            let mut texels = Vec::new();
+            let (times, wall) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
+                texels.push(frame(&mut world, &v.view, encoder, timer));
+            })?;
+            let s = world.stats();
+            let timed = &texels[texels.len() - wall.len()..];
+            let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
+            let measured = world_screen_error(gpu, &mut single, &v.view, 2)?;
+            rows.push(WorldRow {
+                view: v.name.to_owned(),
+                pixel_error: knob,
+                patch_cells: s.patch_cells,
+                levels: s.levels,
+                triangles: s.triangles,
+                error_bound_px: s.error_bound_px,
+                measured: Some(measured),
+                texels_median: median(timed.to_vec()).unwrap_or(0),
+                texels_max: timed.iter().copied().max().unwrap_or(0),
+                render_ms: median(
+                    times
+                        .iter()
+                        .filter_map(|t| t[Slot::Render as usize])
+                        .collect(),
+                ),
+                bake_ms: median(
+                    times
+                        .iter()
+                        .filter_map(|t| t[Slot::Bake as usize])
+                        .collect(),
+                ),
+                bake_max_ms: times
+                    .iter()
+                    .filter_map(|t| t[Slot::Bake as usize])
+                    .reduce(f64::max),
+                wall_ms: median(wall).unwrap_or(0.0),
+                texels_mean: mean_texels(timed),
+                bake_ms_mean: mean_bake(&times),
+            });
+        }
+    }
+    // A flight at 300 km/h, 40 m above the ground, at 60 frames a second: every frame moves
+    // the camera 1.4 m and bakes what the levels uncover.
+    // At the given knob, or (in the quick run) at the loosest one measured.
+    let quick = options.frames < 10;
+    let p = WorldParams {
+        pixel_error: if quick {
+            knobs.iter().copied().fold(params.pixel_error, f64::max)
+        } else {
+            params.pixel_error
+        },
+        ..*params
+    };
+    progress("flight");
+    // Long enough for every fine level to move several times.
+    let flight = Options {
+        frames: if quick { 40 } else { 600 },
+        ..*options
+    };
+    let mut world = World::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        p,
+    )?;
+    let land = p.land;
+    let mut t = 0.0f64;
+    let mut texels = Vec::new();
+    let mut triangles = Vec::new();
+    let (times, wall) = measure(gpu, &flight, timer.as_ref(), |encoder, timer| {
+        t += 1.0 / 60.0;
+        let x = t * 83.3;
+        let z = 0.3 * x;
+        let eye = DVec3::new(x, land.height_at(x, z) + 40.0, z);
+        let view = WorldView::look_at(
+            eye,
+            eye + DVec3::new(1.0, -0.08, 0.3),
+            45f32.to_radians(),
+            size,
+        );
+        texels.push(frame(&mut world, &view, encoder, timer));
+        triangles.push(world.stats().triangles);
+    })?;
+    let s = world.stats();
+    let timed = &texels[texels.len() - wall.len()..];
+    rows.push(WorldRow {
+        view: "flight".to_owned(),
+        pixel_error: p.pixel_error,
+        patch_cells: s.patch_cells,
+        levels: s.levels,
+        triangles: median(triangles[triangles.len() - wall.len()..].to_vec()).unwrap_or(0),
+        error_bound_px: s.error_bound_px,
+        measured: None,
+        texels_median: median(timed.to_vec()).unwrap_or(0),
+        texels_max: timed.iter().copied().max().unwrap_or(0),
+        render_ms: median(
+            times
+                .iter()
+                .filter_map(|t| t[Slot::Render as usize])
+                .collect(),
+        ),
+        bake_ms: median(
+            times
+                .iter()
+                .filter_map(|t| t[Slot::Bake as usize])
+                .collect(),
+        ),
+        bake_max_ms: times
+            .iter()
+            .filter_map(|t| t[Slot::Bake as usize])
+            .reduce(f64::max),
+        wall_ms: median(wall).unwrap_or(0.0),
+        texels_mean: mean_texels(timed),
+        bake_ms_mean: mean_bake(&times),
+    });
+    Ok(rows)
+}
+
+/// The baseline: a uniform grid at the finest drawn level's spacing over the square the
+/// levels cover (what it takes to keep the near error everywhere without levels).
+fn uniform_triangles(r: &WorldRow) -> f64 {
+    let side = f64::from(r.patch_cells)
+        * f64::from(crate::clipmap::PATCHES as u32)
+        * 2f64.powi(r.levels.max(1) as i32 - 1);
+    2.0 * side * side
+}
+
+fn mean_texels(texels: &[u64]) -> f64 {
+    texels.iter().sum::<u64>() as f64 / texels.len().max(1) as f64
+}
+
+fn mean_bake(times: &[crate::gpu::timing::Timings]) -> Option<f64> {
+    (!times.is_empty()).then(|| {
+        times
+            .iter()
+            .map(|t| t[Slot::Bake as usize].unwrap_or(0.0))
+            .sum::<f64>()
+            / times.len() as f64
+    })
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:.4}"))
+}
+
+/// The rows as CSV, with the device and image size in a comment line.
+pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
+    let mut out = format!(
+        "# relief bench --world endless on {device}, {}x{}, {} timed frames after {} ms warm-up\n",
+        options.width, options.height, options.frames, options.warmup_ms
+    );
+    out.push_str("view,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms\n");
+    for r in rows {
+        out.push_str(&format!(
+            "{},{},{},{},{},{:.3},{},{},{:.3e},{},{},{:.0},{},{},{},{},{:.3}\n",
+            r.view,
+            r.pixel_error,
+            r.patch_cells,
+            r.levels,
+            r.triangles,
+            r.error_bound_px,
+            opt(r.measured.map(|m| m.max)),
+            opt(r.measured.map(|m| m.p99)),
+            uniform_triangles(r),
+            r.texels_median,
+            r.texels_max,
+            r.texels_mean,
+            opt(r.render_ms),
+            opt(r.bake_ms),
+            opt(r.bake_max_ms),
+            opt(r.bake_ms_mean),
+            r.wall_ms
+        ));
+    }
+    out
+}
