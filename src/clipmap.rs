@@ -12,9 +12,10 @@
 //! one is a single toroidal texture layer that the bake updates by strips; with origins snapped
 //! to multiples of two patches, every level's hole (the finer level) falls on patch boundaries,
 //! so rings are whole patches and no stitching strips are needed. Cracks are prevented as in
-//! CDLOD: near its outer edge a level's odd vertices slide onto their even neighbours and take
-//! the coarser level's heights, so at the edge the fine level's geometry is exactly the coarse
-//! level's (the same integer positions, the same texels).
+//! CDLOD: with distance from the eye, a level's odd vertices slide onto their even neighbours
+//! and take the coarser level's heights, so at its outer edge the fine level's geometry is
+//! exactly the coarse level's (the same integer positions, the same texels); see
+//! [`Clipmap::morph`].
 //!
 //! The quality knob is the screen-space error in pixels. A level's mesh deviates vertically
 //! from the continuous surface by at most `error` metres (measured from the CPU twin, see
@@ -22,7 +23,8 @@
 //! `K = height_px / (2 tan(fov_y / 2))`. Level `l` is never drawn closer than `1.5 patch`
 //! of its cells from the camera (the finer level covers that), and its morph band (where the
 //! coarser level's error applies) no closer than `2.5 patch` cells, so the patch size follows
-//! from the knob: [`Clipmap::patch_for`].
+//! from the knob: [`Clipmap::patch_for`]. The morph depends on the distance from the eye, not
+//! from the level's snapped square, so geometry changes continuously as the camera moves.
 
 use crate::landscape::Landscape;
 use crate::noise::Channel;
@@ -110,13 +112,25 @@ pub struct Clipmap {
     pub finest_log2: i32,
     /// The levels, finest first.
     pub levels: Vec<Level>,
-    /// Width of the morph band at a level's outer edge, in its cells.
-    pub morph: u32,
+    /// The morph band, in a level's cells of Chebyshev distance from the eye: vertices nearer
+    /// than the first keep their level's geometry, farther than the second they take the
+    /// coarser level's. Every level's outer edge is at least `3 patch` cells from the eye and
+    /// its hole's edge at most `2.5 patch`, so the band `[2.5, 3] patch` (less a margin for
+    /// rounding) makes the edge vertices exactly the coarser level's (no cracks), keeps the hole's
+    /// edge unmorphed, and moves continuously with the eye (no pop when a level snaps).
+    pub morph: [f64; 2],
     /// Whether the morph is on (off only to show the cracks it prevents, in tests).
     pub morphing: bool,
     /// The eye's height above the ground at the last [`Clipmap::update`], metres.
     pub altitude: f64,
+    /// How far the first active level is morphed towards the next as a whole (0..=1): it
+    /// reaches 1 as the eye climbs to the height where that level is dropped, so dropping it
+    /// (or taking it up again on the way down) changes nothing on screen.
+    pub fade: f64,
 }
+
+/// The fade of the first level starts at this fraction of the height where it is dropped.
+pub const FADE_FROM: f64 = 0.7;
 
 /// log2 of the finest level's spacing for `land`: half the finest octave's cell, then
 /// [`EXTRA_FINE`] levels finer.
@@ -239,9 +253,13 @@ impl Clipmap {
             patch,
             finest_log2,
             levels,
-            morph: (patch / 2).max(2),
+            morph: [
+                2.5 * f64::from(patch) + 0.125,
+                3.0 * f64::from(patch) - 0.125,
+            ],
             morphing: true,
             altitude: 0.0,
+            fade: 0.0,
         }
     }
 
@@ -273,6 +291,11 @@ impl Clipmap {
     pub fn update(&mut self, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
         self.altitude = (eye.position[1] - eye.ground).max(0.0);
         let first = self.first_level(eye, pixel_error);
+        // The height at which `first` would be dropped, if a coarser level exists.
+        self.fade = self.levels.get(first + 1).map_or(0.0, |next| {
+            let drop = eye.pixels_per_radian * next.error / pixel_error.max(1e-9);
+            ((self.altitude - FADE_FROM * drop) / ((1.0 - FADE_FROM) * drop)).clamp(0.0, 1.0)
+        });
         let side = self.side() as i32;
         let mut strips = Vec::new();
         for l in 0..self.levels.len() {
@@ -391,7 +414,13 @@ impl Clipmap {
         for (i, level) in active.iter().enumerate() {
             let s = level.spacing();
             let own = if i == 0 {
-                level.error / self.altitude.max(1e-3)
+                // Faded towards the next level, the first level has that level's error too.
+                let faded = if self.fade > 0.0 {
+                    active.get(1).map_or(0.0, |c| c.error)
+                } else {
+                    0.0
+                };
+                level.error.max(faded) / self.altitude.max(1e-3)
             } else {
                 level.error / (1.5 * b * s)
             };

@@ -145,6 +145,8 @@ fn world_uniforms_match_wgsl() {
         ("morphing", offset_of!(WorldUniforms, morphing)),
         ("morph", offset_of!(WorldUniforms, morph)),
         ("peak", offset_of!(WorldUniforms, peak)),
+        ("fade", offset_of!(WorldUniforms, fade)),
+        ("first", offset_of!(WorldUniforms, first)),
         ("levels", offset_of!(WorldUniforms, levels)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");
@@ -159,6 +161,7 @@ fn world_uniforms_match_wgsl() {
         ("layer", offset_of!(LevelUniforms, layer)),
         ("coarse", offset_of!(LevelUniforms, coarse)),
         ("has_coarse", offset_of!(LevelUniforms, has_coarse)),
+        ("eye_local", offset_of!(LevelUniforms, eye_local)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");
     }

@@ -282,3 +282,78 @@ fn the_screen_error_bound_holds_where_measured() {
         }
     }
 }
+
+/// A slow dolly at a constant height: at each move that makes a level snap to a new origin,
+/// bisects down to two camera positions a few millimetres apart on either side of the snap
+/// and returns, per snap, the picture's change across it and the change over the same
+/// distance just before it (motion alone).
+fn dolly(gpu: &Gpu, morphing: bool) -> Vec<(f64, f64)> {
+    let p = params();
+    let land = p.land;
+    let mut w = world(gpu, p);
+    w.set_morphing(morphing);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let y = land.height_at(0.0, 0.0) + 25.0;
+    let dir = DVec3::new(2.5, 0.0, 0.8);
+    let at = |t: f64| {
+        let eye = DVec3::new(0.0, y, 0.0) + dir * t;
+        WorldView::look_at(
+            eye,
+            eye + DVec3::new(1.0, -0.35, 0.3),
+            50f32.to_radians(),
+            SIZE,
+        )
+    };
+    let render = |w: &mut World, t: f64| {
+        let (img, _) = target.render_world(gpu, w, &at(t), None).unwrap();
+        (img, w.stats().texels_baked > 0)
+    };
+    let mut out = Vec::new();
+    render(&mut w, 0.0);
+    for i in 1..40 {
+        let (_, snapped) = render(&mut w, f64::from(i));
+        if !snapped {
+            continue;
+        }
+        let (mut a, mut b) = (f64::from(i - 1), f64::from(i));
+        for _ in 0..10 {
+            let m = 0.5 * (a + b);
+            render(&mut w, a);
+            if render(&mut w, m).1 {
+                b = m;
+            } else {
+                a = m;
+            }
+        }
+        let step = b - a;
+        let (before_before, _) = render(&mut w, a - step);
+        let (before, _) = render(&mut w, a);
+        let (after, _) = render(&mut w, b);
+        out.push((
+            mean_abs_diff(&before, &after),
+            mean_abs_diff(&before_before, &before),
+        ));
+        render(&mut w, f64::from(i));
+    }
+    out
+}
+
+#[test]
+fn a_slow_dolly_does_not_pop_where_levels_move_and_without_the_morph_it_does() {
+    let gpu = common::gpu();
+    let on = dolly(&gpu, true);
+    eprintln!("morph on: (across a snap, motion alone) {on:.4?}");
+    assert!(on.len() >= 4, "the dolly moved levels {} times", on.len());
+    for &(pop, motion) in &on {
+        assert!(
+            pop <= 3.0 * motion + 0.01,
+            "a pop: {pop} across a snap, {motion} from motion alone"
+        );
+    }
+    let off = dolly(&gpu, false);
+    eprintln!("morph off: {off:.4?}");
+    assert!(
+        off.iter().any(|&(pop, motion)| pop > 3.0 * motion + 0.01),
+        "the control saw no pop without the morph"
+    );
+}

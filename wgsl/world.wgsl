@@ -7,6 +7,8 @@
 // finest spacing (a power of two), less the eye's offset from that sample. At a level's outer
 // edge the morph is complete (alpha = 1): odd vertices sit on their even neighbours and take
 // the coarser level's texels, so both levels produce the same vertices, bit for bit.
+// The morph grows with the distance from the eye (not from the level's snapped square), so the
+// geometry changes continuously as the camera moves and a level's snap does not pop.
 
 struct Level {
     // Level origin, in finest samples, relative to the camera's reference sample.
@@ -21,7 +23,8 @@ struct Level {
     // Index of the coarser level, and whether there is one to morph towards.
     coarse: u32,
     has_coarse: u32,
-    _pad: vec2<u32>,
+    // The eye in this level's samples, from its first sample.
+    eye_local: vec2<f32>,
 }
 
 struct WorldUniforms {
@@ -33,10 +36,17 @@ struct WorldUniforms {
     side: u32,
     // 1 while morphing is on.
     morphing: u32,
-    // Width of the morph band in cells, world height of normalised height 1.
-    morph: f32,
+    // Morph band: from and to this Chebyshev distance from the eye, in a level's cells.
+    morph: vec2<f32>,
+    // World height of normalised height 1.
     peak: f32,
-    _pad: vec2<u32>,
+    // How far the first active level is morphed as a whole (it reaches 1 where the eye is high
+    // enough to drop it), and that level's index.
+    fade: f32,
+    first: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
     levels: array<Level, 24>,
 }
 
@@ -94,11 +104,15 @@ fn vs_main(
     let lv = w.levels[level];
     let row = w.patch_cells + 1u;
     let local = patch_instance.yz * w.patch_cells + vec2<u32>(vi % row, vi / row);
-    // Distance to the level's outer edge in cells, and the morph towards the coarser level.
-    let edge = min(min(local.x, local.y), min(w.cells - local.x, w.cells - local.y));
+    // The morph towards the coarser level grows with the (Chebyshev) distance from the eye:
+    // 0 at the hole's edge, exactly 1 at the level's outer edge, continuous as the eye moves.
     var alpha = 0.0;
     if lv.has_coarse != 0u && w.morphing != 0u {
-        alpha = clamp((w.morph - f32(edge)) / w.morph, 0.0, 1.0);
+        let d = abs(vec2<f32>(local) - lv.eye_local);
+        alpha = clamp((max(d.x, d.y) - w.morph.x) / (w.morph.y - w.morph.x), 0.0, 1.0);
+        if level == w.first {
+            alpha = max(alpha, w.fade);
+        }
     }
     let odd = vec2<f32>(local & vec2<u32>(1u));
     let p = vec2<f32>(local) - alpha * odd;

@@ -117,8 +117,8 @@ pub struct LevelUniforms {
     pub coarse: u32,
     /// 1 when there is a coarser level to morph towards.
     pub has_coarse: u32,
-    /// Padding.
-    pub _pad: [u32; 2],
+    /// The eye in this level's samples from its first sample.
+    pub eye_local: [f32; 2],
 }
 
 /// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
@@ -135,12 +135,16 @@ pub struct WorldUniforms {
     pub side: u32,
     /// 1 while morphing.
     pub morphing: u32,
-    /// Morph band in cells.
-    pub morph: f32,
+    /// Morph band: start and end, in a level's cells of distance from the eye.
+    pub morph: [f32; 2],
     /// World height of normalised height 1.
     pub peak: f32,
+    /// How far the first active level is morphed as a whole ([`Clipmap::fade`]).
+    pub fade: f32,
+    /// Index of the first active level.
+    pub first: u32,
     /// Padding.
-    pub _pad: [u32; 2],
+    pub _pad: [u32; 3],
     /// The levels.
     pub levels: [LevelUniforms; MAX_LEVELS],
 }
@@ -473,7 +477,10 @@ impl World {
                     l as u32
                 },
                 has_coarse: u32::from(coarse.is_some_and(|c| c.active)),
-                _pad: [0; 2],
+                eye_local: [
+                    (view.eye.x / level.spacing() - f64::from(level.origin[0])) as f32,
+                    (view.eye.z / level.spacing() - f64::from(level.origin[1])) as f32,
+                ],
             };
         }
         let world = WorldUniforms {
@@ -487,9 +494,11 @@ impl World {
             patch_cells: self.map.patch,
             side: self.map.side(),
             morphing: u32::from(self.map.morphing),
-            morph: self.map.morph as f32,
+            morph: self.map.morph.map(|m| m as f32),
             peak: land.peak_height as f32,
-            _pad: [0; 2],
+            fade: self.map.fade as f32,
+            first: self.map.levels.iter().position(|l| l.active).unwrap_or(0) as u32,
+            _pad: [0; 3],
             levels,
         };
         queue.write_buffer(&self.world_uniforms, 0, bytemuck::bytes_of(&world));
