@@ -121,6 +121,95 @@ impl OrbitCamera {
     }
 }
 
+/// A free camera for the endless world: an eye in f64 metres, a heading and a pitch. Keys move
+/// it along its heading at `speed` metres per second; a drag turns it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlyCamera {
+    /// Eye position, world metres.
+    pub eye: glam::DVec3,
+    /// Heading about the vertical axis, radians (0 looks along +x).
+    pub yaw: f64,
+    /// Pitch, radians (positive looks up), within +-[`FlyCamera::MAX_PITCH`].
+    pub pitch: f64,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+    /// Speed, metres per second.
+    pub speed: f64,
+}
+
+impl FlyCamera {
+    /// Largest |pitch|: just short of straight up or down.
+    pub const MAX_PITCH: f64 = 1.5;
+    /// Slowest and fastest speed, metres per second.
+    pub const SPEEDS: (f64, f64) = (0.5, 20_000.0);
+
+    /// A camera at `eye` looking towards `target`.
+    pub fn looking_at(eye: glam::DVec3, target: glam::DVec3, fov_y: f32) -> Self {
+        let d = (target - eye).normalize_or(glam::DVec3::X);
+        Self {
+            eye,
+            yaw: d.z.atan2(d.x),
+            pitch: d
+                .y
+                .clamp(-1.0, 1.0)
+                .asin()
+                .clamp(-Self::MAX_PITCH, Self::MAX_PITCH),
+            fov_y,
+            speed: 200.0,
+        }
+    }
+
+    /// Unit direction looked along.
+    pub fn forward(&self) -> glam::DVec3 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        glam::DVec3::new(cp * cy, sp, cp * sy)
+    }
+
+    /// The view for a target of `size` pixels.
+    pub fn view(&self, size: (u32, u32)) -> crate::WorldView {
+        crate::WorldView::look_at(self.eye, self.eye + self.forward(), self.fov_y, size)
+    }
+
+    /// Turns by a drag of (dx, dy) radians (right and down turn right and down).
+    pub fn turn(&mut self, dx: f64, dy: f64) {
+        if dx.is_finite() && dy.is_finite() {
+            self.yaw = (self.yaw + dx).rem_euclid(std::f64::consts::TAU);
+            self.pitch = (self.pitch - dy).clamp(-Self::MAX_PITCH, Self::MAX_PITCH);
+        }
+    }
+
+    /// Moves for `dt` seconds: `ahead` along the heading (level), `right` sideways, `up`
+    /// vertically, each in -1..=1, times the speed (and `boost`).
+    pub fn fly(&mut self, ahead: f64, right: f64, up: f64, boost: f64, dt: f64) {
+        if !(ahead.is_finite() && right.is_finite() && up.is_finite() && dt.is_finite()) {
+            return;
+        }
+        let (sy, cy) = self.yaw.sin_cos();
+        let level = glam::DVec3::new(cy, 0.0, sy);
+        let side = glam::DVec3::new(-sy, 0.0, cy);
+        let step = self.speed * boost.max(0.0) * dt.clamp(0.0, 0.25);
+        self.eye += (level * ahead + side * right + glam::DVec3::Y * up) * step;
+    }
+
+    /// Scales the speed by 1.25 per wheel notch, within [`FlyCamera::SPEEDS`].
+    pub fn change_speed(&mut self, steps: f64) {
+        if steps.is_finite() {
+            self.speed = (self.speed * 1.25f64.powf(steps)).clamp(Self::SPEEDS.0, Self::SPEEDS.1);
+        }
+    }
+
+    /// Lifts the eye to at least `clearance` above `ground` under it. Returns whether it moved.
+    pub fn keep_above(&mut self, ground: impl Fn(f64, f64) -> f64, clearance: f64) -> bool {
+        let floor = ground(self.eye.x, self.eye.z) + clearance;
+        if self.eye.y < floor || !self.eye.y.is_finite() {
+            self.eye.y = floor;
+            return true;
+        }
+        false
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,5 +267,35 @@ mod tests {
         cam.zoom(1000.0);
         assert_eq!(cam.distance, OrbitCamera::MIN_DISTANCE);
         assert!(cam.view(0.0).view_proj.is_finite());
+    }
+
+    #[test]
+    fn the_fly_camera_looks_where_asked_moves_along_its_heading_and_stays_above_ground() {
+        let eye = glam::DVec3::new(1e6, 500.0, -3.0);
+        let target = eye + glam::DVec3::new(3.0, -1.0, 4.0);
+        let mut cam = FlyCamera::looking_at(eye, target, 0.8);
+        let want = (target - eye).normalize();
+        assert!(
+            (cam.forward() - want).length() < 1e-12,
+            "{:?}",
+            cam.forward()
+        );
+        let before = cam.eye;
+        cam.fly(1.0, 0.0, 0.0, 1.0, 0.1);
+        let moved = cam.eye - before;
+        assert!(
+            (moved.length() - 20.0).abs() < 1e-9 && moved.y == 0.0,
+            "{moved:?}"
+        );
+        cam.turn(0.3, 100.0);
+        assert_eq!(cam.pitch, -FlyCamera::MAX_PITCH);
+        cam.change_speed(1000.0);
+        assert_eq!(cam.speed, FlyCamera::SPEEDS.1);
+        cam.fly(f64::NAN, 0.0, 0.0, 1.0, 0.1);
+        assert!(cam.eye.is_finite());
+        assert!(cam.keep_above(|_, _| 900.0, 2.0));
+        assert_eq!(cam.eye.y, 902.0);
+        assert!(!cam.keep_above(|_, _| 0.0, 2.0));
+        assert!(cam.view((640, 480)).relative_matrix(0.1, 1e5).is_finite());
     }
 }

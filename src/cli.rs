@@ -82,7 +82,8 @@ pub fn command() -> Command {
         )
         .subcommand(Command::new("window").about(
             "Open a window with the scene (the default): drag to orbit, wheel to zoom, Space \
-             pauses the scroll, R re-seeds, Escape quits",
+             pauses the scroll, R re-seeds, Escape quits. With --world endless: WASD or arrows \
+             fly, Q/E down and up, Shift faster, drag to look, wheel for speed",
         ))
         .subcommand(
             Command::new("render")
@@ -188,8 +189,8 @@ pub fn command() -> Command {
             .value_name("WORLD")
             .help(format!(
                 "tile (the seed blog's periodic tile, seen from outside) or endless (a landscape \
-                 in metres to the horizon; render and height only so far) [default: tile] \
-                 [allowed: {}]",
+                 in metres to the horizon, flown through in the window; not yet in bake, scene \
+                 files or the page) [default: tile] [allowed: {}]",
                 WORLDS.allowed()
             )),
     )
@@ -199,7 +200,7 @@ pub fn command() -> Command {
             .global(true)
             .value_name("X,Y,Z")
             .allow_hyphen_values(true)
-            .help("render: camera position (world units; metres in the endless world)"),
+            .help("render (and the endless world's window): camera position (world units; metres in the endless world)"),
     )
     .arg(
         Arg::new("look-at")
@@ -722,8 +723,16 @@ fn run(top: &ArgMatches) -> Result<()> {
     if !matches!(run, Run::Window) {
         refuse_flags(m, name, &window_only, "it applies to the window only")?;
     }
-    if !matches!(run, Run::Render { .. }) {
-        refuse_flags(m, name, &CAMERA_FLAGS, "it applies to relief render only")?;
+    let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
+    if endless_window {
+        refuse_flags(m, name, &["stats"], "it applies to relief render only")?;
+    } else if !matches!(run, Run::Render { .. }) {
+        refuse_flags(
+            m,
+            name,
+            &CAMERA_FLAGS,
+            "it applies to relief render (and the window in the endless world) only",
+        )?;
     }
     if let Run::Render { method, .. } = run {
         if method != crate::Method::Mesh {
@@ -777,14 +786,33 @@ fn run(top: &ArgMatches) -> Result<()> {
             "it applies to --world endless only (the tile is 2 units wide)",
         )?,
         WorldKind::Endless => {
-            if !matches!(
-                run,
-                Run::Render { .. } | Run::Height { .. } | Run::Bench { .. }
-            ) {
+            if matches!(run, Run::Bake { .. }) {
                 return Err(Error::Usage(format!(
-                    "--world endless is drawn by relief render, measured by relief height and \
-                     benchmarked by relief bench; relief {name} has the tile only so far"
+                    "--world endless is drawn by the window and relief render, measured by \
+                     relief height and benchmarked by relief bench; relief {name} has the tile \
+                     only so far"
                 )));
+            }
+            if matches!(run, Run::Window) {
+                refuse_flags(
+                    m,
+                    &format!("{name} --world endless"),
+                    &["speed", "paused"],
+                    "they scroll the tile; the fly camera moves with the keys",
+                )?;
+                let params = resolve_world(m)?;
+                let view = world_view(&camera(m)?, &params, (1280, 720));
+                let fly = crate::FlyCamera::looking_at(
+                    view.eye,
+                    view.eye + view.forward.as_dvec3(),
+                    view.fov_y,
+                );
+                let options = AppOptions {
+                    world: Some((params, fly)),
+                    timings: m.get_flag("timings"),
+                    ..Default::default()
+                };
+                return crate::app::run_native(options, script(m)?);
             }
             refuse_flags(
                 m,

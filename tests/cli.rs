@@ -1002,6 +1002,15 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--world endless", "bake"],
     );
     rejects(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
+    rejects(&["window", "--eye", "1,2,3"], &["--eye", "render"]);
+    rejects(
+        &["--world", "endless", "--speed", "1"],
+        &["--speed", "tile"],
+    );
+    rejects(
+        &["window", "--world", "endless", "--stats"],
+        &["--stats", "render"],
+    );
     rejects(
         &["height", "--world", "endless", "--pixel-error", "2", "0,0"],
         &["--pixel-error", "height"],

@@ -108,3 +108,72 @@ fn a_lost_device_is_reported_and_recovered_once() {
         "two frames on each device: {stdout}"
     );
 }
+
+/// Runs `relief ARGS` in a window on a fresh virtual display while `keys` (an xdotool
+/// command line, run after the window has drawn) presses keys in it.
+fn window_with_keys(args: &[&str], keys: &str) -> (i32, String, String) {
+    let relief = env!("CARGO_BIN_EXE_relief");
+    let script = format!(
+        "\"$0\" \"$@\" & pid=$!; \
+         sleep 2; \
+         w=$(xdotool search --sync --name '^relief$' | head -n 1); \
+         xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
+         wait $pid"
+    );
+    let out = Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            "sh",
+            "-c",
+            &script,
+            relief,
+        ])
+        .args(args)
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("the window tests need xvfb-run and xdotool; .ci/test installs them");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
+    let args = [
+        "--world",
+        "endless",
+        "--pixel-error",
+        "16",
+        "--timings",
+        "--exit-after",
+        "8",
+    ];
+    // Untouched: drawn once or twice, then idle.
+    let (code, stdout, err) = window(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a clean run prints nothing on stderr");
+    assert!(stdout.contains("idle after frame"), "{stdout}");
+    let still = frames_drawn(&stdout);
+    assert!(
+        still <= 3,
+        "{still} frames drawn with no key held: {stdout}"
+    );
+    // W held for two seconds: frames keep coming while it is held (the camera flies).
+    let (code, stdout, err) =
+        window_with_keys(&args, "xdotool keydown w; sleep 2; xdotool keyup w");
+    assert_eq!(code, 0, "{err}");
+    let flying = frames_drawn(&stdout);
+    assert!(
+        flying > still + 2,
+        "{flying} frames with W held, {still} without: {stdout}"
+    );
+    assert!(
+        stdout.contains("idle after frame"),
+        "at rest again after the key: {stdout}"
+    );
+}

@@ -21,14 +21,14 @@ pub use state::{Drawn, State};
 
 use crate::error::{Error, Result};
 use crate::gpu::timing::{Slot, Timings};
-use crate::OrbitCamera;
-use std::collections::HashMap;
+use crate::{FlyCamera, OrbitCamera};
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 use web_time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, TouchPhase, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
-use winit::keyboard::{Key, NamedKey};
+use winit::keyboard::{Key, KeyCode, NamedKey, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 /// Depth format of the window's depth buffer.
@@ -41,6 +41,27 @@ pub const IDLE_AFTER: Duration = Duration::from_millis(500);
 pub const TIMING_INTERVAL: Duration = Duration::from_millis(250);
 /// Height the orbit camera keeps above the terrain (world units; the tile is 2 wide).
 pub const CAMERA_CLEARANCE: f32 = 0.05;
+/// Height the fly camera keeps above the endless world's ground, metres.
+pub const FLY_CLEARANCE: f64 = 2.0;
+
+/// Keys that move the fly camera (by position on the keyboard: WASD, arrows, Q/E and Page
+/// Down/Up for down and up, Shift for faster).
+pub const FLY_KEYS: [KeyCode; 14] = [
+    KeyCode::KeyW,
+    KeyCode::KeyA,
+    KeyCode::KeyS,
+    KeyCode::KeyD,
+    KeyCode::KeyQ,
+    KeyCode::KeyE,
+    KeyCode::ArrowUp,
+    KeyCode::ArrowDown,
+    KeyCode::ArrowLeft,
+    KeyCode::ArrowRight,
+    KeyCode::PageUp,
+    KeyCode::PageDown,
+    KeyCode::ShiftLeft,
+    KeyCode::ShiftRight,
+];
 
 /// Events the app receives besides winit's.
 pub enum UserEvent {
@@ -168,6 +189,10 @@ pub struct App {
     options: AppOptions,
     script: Script,
     camera: OrbitCamera,
+    /// The fly camera, when the window shows the endless world.
+    fly: Option<FlyCamera>,
+    /// Movement keys held down (fly camera).
+    held: HashSet<KeyCode>,
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     touches: HashMap<u64, (f64, f64)>,
@@ -203,6 +228,8 @@ impl App {
             options,
             script,
             camera: OrbitCamera::default(),
+            fly: options.world.map(|(_, fly)| fly),
+            held: HashSet::new(),
             drag: None,
             cursor: (0.0, 0.0),
             touches: HashMap::new(),
@@ -269,7 +296,20 @@ impl App {
         Ok(())
     }
 
+    /// Whether frames must keep coming: the tile scrolling, or the fly camera moving.
+    fn animating(&self) -> bool {
+        match self.fly {
+            Some(_) => !self.held.is_empty(),
+            None => self.options.animating(),
+        }
+    }
+
     fn keep_camera_above(&mut self) {
+        if let (Some(fly), Some((world, _))) = (&mut self.fly, &self.options.world) {
+            let land = world.land;
+            fly.keep_above(|x, z| land.height_at(x, z), FLY_CLEARANCE);
+            return;
+        }
         let params = self.options.params;
         let half = crate::WORLD_SIZE as f32 / 2.0;
         self.camera.keep_above(
@@ -294,6 +334,7 @@ impl App {
             window,
             instance,
             self.options.params,
+            self.options.world.map(|(w, _)| w),
             self.options.timings,
             self.proxy.clone(),
         );
@@ -373,7 +414,22 @@ impl App {
         let now = Instant::now();
         let dt = now.duration_since(self.last_tick).as_secs_f64().min(0.25);
         self.last_tick = now;
-        if self.options.animating() {
+        if let Some(fly) = &mut self.fly {
+            let key = |k: &[KeyCode]| f64::from(u8::from(k.iter().any(|k| self.held.contains(k))));
+            let ahead =
+                key(&[KeyCode::KeyW, KeyCode::ArrowUp]) - key(&[KeyCode::KeyS, KeyCode::ArrowDown]);
+            let right = key(&[KeyCode::KeyD, KeyCode::ArrowRight])
+                - key(&[KeyCode::KeyA, KeyCode::ArrowLeft]);
+            let up =
+                key(&[KeyCode::KeyE, KeyCode::PageUp]) - key(&[KeyCode::KeyQ, KeyCode::PageDown]);
+            let boost = if key(&[KeyCode::ShiftLeft, KeyCode::ShiftRight]) > 0.0 {
+                4.0
+            } else {
+                1.0
+            };
+            fly.fly(ahead, right, up, boost, dt);
+            self.keep_camera_above();
+        } else if self.options.animating() {
             let mut options = self.options;
             options.advance(dt);
             let result = match &mut self.state {
@@ -399,7 +455,7 @@ impl App {
                 .last_timed
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
-        let drawn = s.draw(&view, timed);
+        let drawn = s.draw(&view, self.fly.as_ref(), timed);
         if drawn == Drawn::SurfaceLost {
             self.surface_losses += 1;
             // Lost again before a frame could be drawn on the new surface: start over with a
@@ -444,7 +500,11 @@ impl App {
             }
         }
         // A minimised window is not drawn until it is restored (a resize event).
-        if self.options.animating() && !s.minimised() {
+        let animating = match self.fly {
+            Some(_) => !self.held.is_empty(),
+            None => self.options.animating(),
+        };
+        if animating && !s.minimised() {
             s.window.request_redraw();
         }
         let (t0, f0) = self.fps_window;
@@ -454,7 +514,7 @@ impl App {
             self.fps_window = (now, self.stats.frames);
             let describe = s.describe.clone();
             self.report.stats(&describe, &self.stats, false);
-            if self.options.animating() {
+            if self.fly.is_none() && self.options.animating() {
                 // The scrolling offset reaches the URL twice a second.
                 self.report.options(&self.options);
             }
@@ -499,6 +559,25 @@ impl App {
             }
             _ => {}
         }
+    }
+
+    /// R in the endless world: the next seed.
+    fn reseed_world(&mut self) {
+        let Some((mut world, fly)) = self.options.world else {
+            return;
+        };
+        world.land.seed = world.land.seed.wrapping_add(1);
+        if let Some(s) = &mut self.state {
+            if let Some(w) = &mut s.world {
+                if let Err(e) = w.set_params(&s.device, world) {
+                    self.report.warn(&e.to_string());
+                    return;
+                }
+            }
+        }
+        self.options.world = Some((world, fly));
+        self.keep_camera_above();
+        self.changed();
     }
 
     fn camera_moved(&mut self) {
@@ -595,7 +674,7 @@ impl ApplicationHandler<UserEvent> for App {
             }
         }
         let mut wake = None;
-        if !self.options.animating() && !self.stats.idle && self.state.is_some() {
+        if !self.animating() && !self.stats.idle && self.state.is_some() {
             let idle_at = self.last_frame + IDLE_AFTER;
             if now >= idle_at {
                 self.stats.idle = true;
@@ -633,10 +712,35 @@ impl ApplicationHandler<UserEvent> for App {
                 self.changed();
             }
             WindowEvent::ScaleFactorChanged { .. } | WindowEvent::Occluded(false) => self.changed(),
+            WindowEvent::KeyboardInput { event, .. }
+                if self.fly.is_some()
+                    && matches!(event.physical_key, PhysicalKey::Code(c) if FLY_KEYS.contains(&c)) =>
+            {
+                if let PhysicalKey::Code(code) = event.physical_key {
+                    let was = self.animating();
+                    if event.state == ElementState::Pressed {
+                        self.held.insert(code);
+                    } else {
+                        self.held.remove(&code);
+                    }
+                    if !was && self.animating() {
+                        self.last_tick = Instant::now();
+                    }
+                    self.changed();
+                }
+            }
+            WindowEvent::Focused(false) => {
+                // Keys released while another window had the focus never arrive.
+                self.held.clear();
+            }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 match event.logical_key {
                     #[cfg(not(target_arch = "wasm32"))]
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
+                    Key::Named(NamedKey::Space) if self.fly.is_some() => {}
+                    Key::Character(c) if c.eq_ignore_ascii_case("r") && self.fly.is_some() => {
+                        self.reseed_world();
+                    }
                     Key::Named(NamedKey::Space) => {
                         let paused = if self.options.paused { "0" } else { "1" };
                         if let Err(e) = self.set("paused", paused) {
@@ -662,7 +766,14 @@ impl ApplicationHandler<UserEvent> for App {
             }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x, position.y);
-                if let (Some((x0, y0)), Some(s)) = (self.drag, &self.state) {
+                if let (Some((x0, y0)), Some(s), Some(fly)) =
+                    (self.drag, &self.state, &mut self.fly)
+                {
+                    let k = f64::from(fly.fov_y) / f64::from(s.config.height.max(1));
+                    fly.turn((position.x - x0) * k, (position.y - y0) * k);
+                    self.drag = Some(self.cursor);
+                    self.changed();
+                } else if let (Some((x0, y0)), Some(s)) = (self.drag, &self.state) {
                     let k = std::f64::consts::PI / f64::from(s.config.height.max(1));
                     self.camera.rotate(
                         ((position.x - x0) * k) as f32,
@@ -677,8 +788,13 @@ impl ApplicationHandler<UserEvent> for App {
                     MouseScrollDelta::LineDelta(_, y) => y,
                     MouseScrollDelta::PixelDelta(p) => (p.y / 60.0) as f32,
                 };
-                self.camera.zoom(steps);
-                self.camera_moved();
+                match &mut self.fly {
+                    Some(fly) => fly.change_speed(f64::from(steps)),
+                    None => {
+                        self.camera.zoom(steps);
+                        self.camera_moved();
+                    }
+                }
             }
             WindowEvent::Touch(t) => self.touch(t.id, t.phase, t.location.x, t.location.y),
             WindowEvent::RedrawRequested => self.redraw(),

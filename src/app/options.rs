@@ -24,6 +24,9 @@ pub struct AppOptions {
     pub paused: bool,
     /// Whether to measure and report GPU pass times.
     pub timings: bool,
+    /// The endless world and the fly camera to start with, instead of the tile (native window;
+    /// set by `relief --world endless`).
+    pub world: Option<(crate::WorldParams, crate::FlyCamera)>,
 }
 
 impl Default for AppOptions {
@@ -33,6 +36,7 @@ impl Default for AppOptions {
             speed: SCROLL_SPEED,
             paused: false,
             timings: false,
+            world: None,
         }
     }
 }

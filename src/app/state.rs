@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::gpu::timing::{GpuTimer, Slot};
 use crate::gpu::Targets;
 use crate::params::TerrainParams;
-use crate::Terrain;
+use crate::{FlyCamera, Terrain, World, WorldParams};
 use std::sync::Arc;
 use winit::event_loop::EventLoopProxy;
 use winit::window::Window;
@@ -62,6 +62,8 @@ pub struct State {
     depth: Option<wgpu::TextureView>,
     msaa: Option<wgpu::TextureView>,
     pub(crate) terrain: Terrain,
+    /// The endless world, when the window shows it instead of the tile.
+    pub(crate) world: Option<World>,
     pub(crate) timer: Option<GpuTimer>,
     // The instance and adapter the surface and device came from, kept for the window's life.
     _instance: wgpu::Instance,
@@ -77,6 +79,7 @@ impl State {
         window: Arc<Window>,
         instance: wgpu::Instance,
         params: TerrainParams,
+        world: Option<WorldParams>,
         timings: bool,
         proxy: EventLoopProxy<UserEvent>,
     ) -> Result<Self> {
@@ -161,6 +164,9 @@ impl State {
             ..params
         };
         let terrain = Terrain::new(&device, &queue, targets, start)?;
+        let world = world
+            .map(|p| World::new(&device, &queue, targets, p))
+            .transpose()?;
         let timer = if timings {
             GpuTimer::new(&device, &queue)
         } else {
@@ -175,6 +181,7 @@ impl State {
             depth: None,
             msaa: None,
             terrain,
+            world,
             timer,
             _instance: instance,
             _adapter: adapter,
@@ -239,9 +246,9 @@ impl State {
         self.config.width as f32 / self.config.height.max(1) as f32
     }
 
-    /// Draws one frame seen through `view`; with `timed`, writes GPU timestamps and resolves
-    /// them for [`GpuTimer::read_async`].
-    pub fn draw(&mut self, view: &View, timed: bool) -> Drawn {
+    /// Draws one frame seen through `view` (or, showing the endless world, through `fly`); with
+    /// `timed`, writes GPU timestamps and resolves them for [`GpuTimer::read_async`].
+    pub fn draw(&mut self, view: &View, fly: Option<&FlyCamera>, timed: bool) -> Drawn {
         let Some(depth) = &self.depth else {
             return Drawn::Skipped; // minimised
         };
@@ -276,8 +283,24 @@ impl State {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("relief:window:frame"),
             });
-        self.terrain.encode_bake_timed(&mut encoder, timer);
-        self.terrain.prepare(&self.queue, view);
+        let size = (self.config.width, self.config.height);
+        let world = match (&mut self.world, fly) {
+            (Some(world), Some(fly)) => {
+                let view = fly.view(size);
+                if let Err(e) =
+                    world.encode_bake_timed(&self.device, &self.queue, &mut encoder, &view, timer)
+                {
+                    log::warn!("{e}");
+                }
+                world.prepare(&self.queue, &view);
+                Some(&*world)
+            }
+            _ => {
+                self.terrain.encode_bake_timed(&mut encoder, timer);
+                self.terrain.prepare(&self.queue, view);
+                None
+            }
+        };
         {
             let (target, resolve_target) = match &self.msaa {
                 Some(msaa) => (msaa, Some(&target_view)),
@@ -309,7 +332,10 @@ impl State {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            self.terrain.render(&mut pass);
+            match world {
+                Some(world) => world.render(&mut pass),
+                None => self.terrain.render(&mut pass),
+            }
         }
         if let Some(t) = timer {
             t.resolve(&mut encoder);
