@@ -129,6 +129,12 @@ pub struct Clipmap {
     pub fade: f64,
 }
 
+/// How far from the origin, in metres along x or z, an eye may be for `land`: level sample
+/// coordinates are 32-bit integers of the finest spacing, with a margin for the levels around it.
+pub fn max_eye(land: &Landscape) -> f64 {
+    2f64.powi(30 + finest_log2(land))
+}
+
 /// The fade of the first level starts at this fraction of the height where it is dropped.
 pub const FADE_FROM: f64 = 0.7;
 
@@ -278,8 +284,11 @@ impl Clipmap {
     fn first_level(&self, eye: &Eye, pixel_error: f64) -> usize {
         let altitude = (eye.position[1] - eye.ground).max(0.0);
         let mut first = 0;
+        // Dropped only where, faded into the next level (from FADE_FROM of this height), the
+        // next level's error at the eye's height is within the knob.
         while first + 1 < self.levels.len()
-            && eye.pixels_per_radian * self.levels[first + 1].error <= pixel_error * altitude
+            && eye.pixels_per_radian * self.levels[first + 1].error
+                <= FADE_FROM * pixel_error * altitude
         {
             first += 1;
         }
@@ -293,7 +302,7 @@ impl Clipmap {
         let first = self.first_level(eye, pixel_error);
         // The height at which `first` would be dropped, if a coarser level exists.
         self.fade = self.levels.get(first + 1).map_or(0.0, |next| {
-            let drop = eye.pixels_per_radian * next.error / pixel_error.max(1e-9);
+            let drop = eye.pixels_per_radian * next.error / (FADE_FROM * pixel_error.max(1e-9));
             ((self.altitude - FADE_FROM * drop) / ((1.0 - FADE_FROM) * drop)).clamp(0.0, 1.0)
         });
         let side = self.side() as i32;
@@ -309,10 +318,8 @@ impl Clipmap {
                 continue;
             }
             level.origin = new;
-            let fresh = !was
-                || old[0] == i32::MIN
-                || (new[0] - old[0]).abs() >= side
-                || (new[1] - old[1]).abs() >= side;
+            let far = |a: i32, b: i32| (i64::from(a) - i64::from(b)).abs() >= i64::from(side);
+            let fresh = !was || old[0] == i32::MIN || far(new[0], old[0]) || far(new[1], old[1]);
             if fresh {
                 strips.push(Strip {
                     level: l,

@@ -267,3 +267,183 @@ fn a_thousand_random_changes_leave_no_trace() {
     let errors = uncaptured.lock().unwrap();
     assert!(errors.is_empty(), "uncaptured wgpu errors: {errors:?}");
 }
+
+#[test]
+fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
+    use relief::{World, WorldParams, WorldView};
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
+        "the stress test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
+    );
+    let (device, queue) =
+        pollster::block_on(adapter.request_device(&Default::default())).expect("device");
+    let uncaptured = Arc::new(Mutex::new(Vec::<String>::new()));
+    let sink = uncaptured.clone();
+    device.on_uncaptured_error(Arc::new(move |e| sink.lock().unwrap().push(e.to_string())));
+    let targets = relief::Targets {
+        color_format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        depth_format: Some(wgpu::TextureFormat::Depth32Float),
+        sample_count: 1,
+    };
+    let make = |format, label| {
+        device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: 64,
+                    height: 48,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&Default::default())
+    };
+    let color = make(targets.color_format, "stress:color");
+    let depth = make(wgpu::TextureFormat::Depth32Float, "stress:depth");
+    let mut start = WorldParams::default();
+    start.land.octaves = 8;
+    start.land.feature_log2 = 9;
+    start.land.peak_height = 300.0;
+    start.pixel_error = 32.0;
+    let mut world = World::new(&device, &queue, targets, start).unwrap();
+    let settle = || {
+        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    };
+    // One frame: Ok(true) drawn, Ok(false) the view was refused (with InvalidParam).
+    let frame = |world: &mut World, view: &WorldView| -> bool {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let drawn = match world.encode_bake(&device, &queue, &mut encoder, view) {
+            Ok(_) => {
+                world.prepare(&queue, view);
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("stress:world-pass"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &color,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: Default::default(),
+                    })],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &depth,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Discard,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                world.render(&mut pass);
+                true
+            }
+            Err(e) => {
+                assert!(matches!(e, Error::InvalidParam { .. }), "{e}");
+                false
+            }
+        };
+        queue.submit([encoder.finish()]);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            panic!("wgpu validation error: {e}");
+        }
+        drawn
+    };
+    let mut rng = Rng(0x5eed_1234_abcd_0002);
+    let wild = [
+        0.0,
+        3.5,
+        -250.0,
+        1e4,
+        -1e6,
+        1e7,
+        1e12,
+        f64::NAN,
+        f64::INFINITY,
+    ];
+    let run = |steps: usize, world: &mut World, rng: &mut Rng| {
+        let (mut drawn, mut refused_views, mut changes) = (0, 0, 0);
+        let mut eye = glam::DVec3::new(0.0, 400.0, 0.0);
+        for step in 0..steps {
+            match rng.below(4) {
+                // Teleport anywhere, sane or not.
+                0 => {
+                    let pick = |rng: &mut Rng| wild[rng.below(wild.len() as u64) as usize];
+                    eye = glam::DVec3::new(pick(rng), pick(rng).abs().min(1e5), pick(rng));
+                }
+                // Walk a little.
+                1 => {
+                    eye += glam::DVec3::new(
+                        rng.below(40) as f64 - 20.0,
+                        0.0,
+                        rng.below(40) as f64 - 20.0,
+                    )
+                }
+                // A new knob or seed (valid or not).
+                2 => {
+                    let before = *world.params();
+                    let mut next = before;
+                    next.pixel_error = [0.1, 4.0, 16.0, 64.0, 65.0][rng.below(5) as usize];
+                    next.land.seed = rng.below(1000) as u32;
+                    match world.set_params(&device, next) {
+                        Ok(()) => changes += 1,
+                        Err(e) => {
+                            assert!(matches!(e, Error::InvalidParam { .. }), "step {step}: {e}");
+                            assert_eq!(world.params(), &before, "a refused change left a trace");
+                        }
+                    }
+                }
+                // A strange lens or target.
+                _ => {}
+            }
+            let ground = world.height_at(eye.x, eye.z);
+            let eye_now = if ground.is_finite() && eye.y < ground {
+                glam::DVec3::new(eye.x, ground + 5.0, eye.z)
+            } else {
+                eye
+            };
+            let fov = [0.8f32, 0.01, 3.1, f32::NAN][rng.below(4) as usize];
+            let size = [(64, 48), (1, 1), (4096, 8)][rng.below(3) as usize];
+            let dir = glam::DVec3::new(1.0, -0.3 + rng.below(10) as f64 * 0.1, 0.2);
+            let view = WorldView::look_at(eye_now, eye_now + dir, fov, size);
+            if frame(world, &view) {
+                drawn += 1;
+            } else {
+                refused_views += 1;
+            }
+            if step % 16 == 0 {
+                settle();
+            }
+        }
+        settle();
+        (drawn, refused_views, changes)
+    };
+    let sane = WorldView::look_at(
+        glam::DVec3::new(0.0, 400.0, 0.0),
+        glam::DVec3::new(100.0, 300.0, 0.0),
+        0.8,
+        (64, 48),
+    );
+    run(40, &mut world, &mut rng);
+    world.set_params(&device, start).unwrap();
+    assert!(frame(&mut world, &sane));
+    settle();
+    let counts0 = counts(&device);
+    let (drawn, refused, changes) = run(300, &mut world, &mut rng);
+    eprintln!("300 steps of the endless world: {drawn} frames drawn, {refused} views refused, {changes} changes");
+    assert!(drawn > 100 && refused > 10 && changes > 20);
+    world.set_params(&device, start).unwrap();
+    assert!(frame(&mut world, &sane));
+    settle();
+    let counts1 = counts(&device);
+    assert_eq!(counts1, counts0, "GPU resources leaked");
+    let errors = uncaptured.lock().unwrap();
+    assert!(errors.is_empty(), "uncaptured wgpu errors: {errors:?}");
+}

@@ -307,6 +307,10 @@ impl App {
     fn keep_camera_above(&mut self) {
         if let (Some(fly), Some((world, _))) = (&mut self.fly, &self.options.world) {
             let land = world.land;
+            // The world is drawn within this reach of the origin.
+            let reach = crate::clipmap::max_eye(&land);
+            fly.eye.x = fly.eye.x.clamp(-reach, reach);
+            fly.eye.z = fly.eye.z.clamp(-reach, reach);
             fly.keep_above(|x, z| land.height_at(x, z), FLY_CLEARANCE);
             return;
         }

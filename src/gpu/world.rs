@@ -378,6 +378,16 @@ impl World {
                 "a finite eye and field of view",
             ));
         }
+        let reach = crate::clipmap::max_eye(&self.params.land);
+        if view.eye.x.abs() > reach || view.eye.z.abs() > reach || view.eye.y.abs() > 1e9 {
+            return Err(Error::invalid(
+                "eye",
+                format!("{:.0},{:.0},{:.0}", view.eye.x, view.eye.y, view.eye.z),
+                format!(
+                    "x and z within ±{reach:.0} m (2^30 of this world's finest samples), y within ±1e9 m"
+                ),
+            ));
+        }
         let patch = Clipmap::patch_for(&self.errors, self.params.pixel_error, k);
         if patch != self.map.patch {
             self.relayout(device, k)?;
