@@ -210,6 +210,92 @@ impl FlyCamera {
     }
 }
 
+/// A fly-through of the endless world along a smooth path, as in the seed template: forward
+/// along +x, weaving sideways, gliding a set height over the highest ground just around and
+/// ahead, looking a little down along the path. A position on it is a time in seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathCamera {
+    /// Speed along x, metres per second.
+    pub speed: f64,
+    /// Height above the highest ground nearby, metres.
+    pub height: f64,
+    /// Amplitude of the sideways weave, metres.
+    pub weave: f64,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+}
+
+impl Default for PathCamera {
+    fn default() -> Self {
+        Self {
+            speed: 120.0,
+            height: 150.0,
+            weave: 900.0,
+            fov_y: 50f32.to_radians(),
+        }
+    }
+}
+
+impl PathCamera {
+    /// Largest time accepted, seconds (a day: 10,000 km at the default speed).
+    pub const MAX_TIME: f64 = 86_400.0;
+
+    /// The ground track at time `t`: (x, z).
+    fn track(&self, t: f64) -> (f64, f64) {
+        let x = self.speed * t;
+        (
+            x,
+            self.weave * (x / 2100.0).sin() + 0.4 * self.weave * (x / 770.0).cos(),
+        )
+    }
+
+    /// The eye's height at time `t`: `height` over the highest ground along the path from 2 s
+    /// behind to 4 s ahead (so the eye rises before a ridge), sampled every half second and
+    /// interpolated between sample windows so it changes continuously with `t`, and never under
+    /// `height` over the ground right below.
+    fn altitude(&self, ground: &impl Fn(f64, f64) -> f64, t: f64) -> f64 {
+        let window = |b: f64| {
+            (-4..=8)
+                .map(|k| {
+                    let (x, z) = self.track(b + f64::from(k) * 0.5);
+                    ground(x, z)
+                })
+                .fold(f64::MIN, f64::max)
+        };
+        let base = (t * 2.0).floor() / 2.0;
+        let frac = (t - base) * 2.0;
+        let (w0, w1) = (window(base), window(base + 0.5));
+        let (x, z) = self.track(t);
+        (w0 + (w1 - w0) * frac).max(ground(x, z)) + self.height
+    }
+
+    /// Eye and look-at point at time `t` (clamped to 0..=[`PathCamera::MAX_TIME`]).
+    pub fn at(&self, ground: impl Fn(f64, f64) -> f64, t: f64) -> (glam::DVec3, glam::DVec3) {
+        let t = if t.is_finite() {
+            t.clamp(0.0, Self::MAX_TIME)
+        } else {
+            0.0
+        };
+        let (x, z) = self.track(t);
+        let eye = glam::DVec3::new(x, self.altitude(&ground, t), z);
+        let ahead = t + 3.0;
+        let (ax, az) = self.track(ahead);
+        let target = glam::DVec3::new(ax, self.altitude(&ground, ahead) - 0.6 * self.height, az);
+        (eye, target)
+    }
+
+    /// The view at time `t` for a target of `size` pixels.
+    pub fn view(
+        &self,
+        ground: impl Fn(f64, f64) -> f64,
+        t: f64,
+        size: (u32, u32),
+    ) -> crate::WorldView {
+        let (eye, target) = self.at(ground, t);
+        crate::WorldView::look_at(eye, target, self.fov_y, size)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -297,5 +383,31 @@ mod tests {
         assert_eq!(cam.eye.y, 902.0);
         assert!(!cam.keep_above(|_, _| 0.0, 2.0));
         assert!(cam.view((640, 480)).relative_matrix(0.1, 1e5).is_finite());
+    }
+
+    #[test]
+    fn the_path_glides_over_the_ground_smoothly_and_looks_ahead() {
+        let ground = |x: f64, z: f64| 300.0 * (x / 500.0).sin() * (z / 700.0).cos() + 300.0;
+        let path = PathCamera::default();
+        let mut last: Option<(glam::DVec3, glam::DVec3)> = None;
+        for i in 0..2000 {
+            let t = f64::from(i) * 0.05;
+            let (eye, target) = path.at(ground, t);
+            assert!(
+                eye.y >= ground(eye.x, eye.z) + path.height - 1e-9,
+                "t {t}: {eye:?}"
+            );
+            assert!(target.x > eye.x, "looks ahead");
+            if let Some((e0, _)) = last {
+                // 0.05 s at 120 m/s: 6 m along; the height must not jump either.
+                assert!(
+                    (eye - e0).length() < 40.0,
+                    "t {t}: jumped from {e0:?} to {eye:?}"
+                );
+            }
+            last = Some((eye, target));
+        }
+        let (e, _) = path.at(ground, f64::NAN);
+        assert!(e.is_finite());
     }
 }

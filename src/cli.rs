@@ -222,6 +222,29 @@ pub fn command() -> Command {
             )),
     )
     .arg(
+        Arg::new("camera")
+            .long("camera")
+            .global(true)
+            .value_name("CAMERA")
+            .help(format!(
+                "render (and the endless world's window): orbit (the tile's), fly (the endless \
+                 world's default: --eye, --look-at) or path (the endless world's fly-through, \
+                 at --time) [allowed: {}]",
+                CAMERAS.allowed()
+            )),
+    )
+    .arg(
+        Arg::new("time")
+            .long("time")
+            .global(true)
+            .value_name("SECONDS")
+            .allow_hyphen_values(true)
+            .help(format!(
+                "render: position along --camera path, in seconds [default: 0] [allowed: {}]",
+                TIME.allowed()
+            )),
+    )
+    .arg(
         Arg::new("stats")
             .long("stats")
             .global(true)
@@ -273,6 +296,15 @@ const FOV: Kind = Kind::Float {
     max: 179.0,
 };
 
+/// `--camera`'s names.
+const CAMERAS: Kind = Kind::Choice(&["orbit", "fly", "path"]);
+
+/// `--time`'s range, seconds.
+const TIME: Kind = Kind::Float {
+    min: 0.0,
+    max: 86_400.0,
+};
+
 /// Largest |coordinate| of `--eye` and `--look-at`.
 const MAX_COORD: f64 = 1e9;
 
@@ -287,7 +319,7 @@ pub const TILE_ONLY: [&str; 6] = [
 ];
 
 /// Flags of `relief render`'s camera and statistics.
-const CAMERA_FLAGS: [&str; 4] = ["eye", "look-at", "fov", "stats"];
+const CAMERA_FLAGS: [&str; 6] = ["eye", "look-at", "fov", "camera", "time", "stats"];
 
 /// `--exit-after`'s range.
 const EXIT_AFTER: Kind = Kind::Float {
@@ -464,6 +496,8 @@ struct Camera {
     eye: Option<[f64; 3]>,
     look_at: Option<[f64; 3]>,
     fov_deg: Option<f32>,
+    /// `--camera path` (with its `--time`).
+    path: Option<f64>,
 }
 
 /// `X,Y,Z`: three finite numbers within ±[`MAX_COORD`].
@@ -507,10 +541,62 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
             }
         },
     };
+    let kind = match string(m, "camera") {
+        None => None,
+        Some(text) => match CAMERAS.parse(&text) {
+            Some(Value::Choice(name)) => Some(name),
+            _ => {
+                return Err(Error::invalid(
+                    "--camera",
+                    table::shorten(&text),
+                    CAMERAS.allowed(),
+                ))
+            }
+        },
+    };
+    let time = match string(m, "time") {
+        None => None,
+        Some(text) => match TIME.parse(&text) {
+            Some(Value::Float(t)) => Some(f64::from(t)),
+            _ => {
+                return Err(Error::invalid(
+                    "--time",
+                    table::shorten(&text),
+                    format!("{} seconds", TIME.allowed()),
+                ))
+            }
+        },
+    };
+    let endless = world_kind(m)? == WorldKind::Endless;
+    match (kind, endless) {
+        (Some("orbit"), true) | (Some("fly" | "path"), false) => {
+            return Err(Error::Usage(format!(
+                "--camera {} does not apply to --world {}: the tile has orbit, the endless \
+                 world fly and path",
+                kind.unwrap_or_default(),
+                if endless { "endless" } else { "tile" }
+            )))
+        }
+        _ => {}
+    }
+    let path = kind == Some("path");
+    if path {
+        refuse_flags(
+            m,
+            "render --camera path",
+            &["eye", "look-at"],
+            "the path places the camera (choose where along it with --time)",
+        )?;
+    } else if time.is_some() {
+        return Err(Error::Usage(
+            "--time applies to --camera path only (a position along the fly-through)".into(),
+        ));
+    }
     let camera = Camera {
         eye: triple(m, "eye")?,
         look_at: triple(m, "look-at")?,
         fov_deg,
+        path: path.then(|| time.unwrap_or(0.0)),
     };
     if let (Some(e), Some(t)) = (camera.eye, camera.look_at) {
         let d = [t[0] - e[0], t[1] - e[1], t[2] - e[2]];
@@ -807,8 +893,18 @@ fn run(top: &ArgMatches) -> Result<()> {
                     view.eye + view.forward.as_dvec3(),
                     view.fov_y,
                 );
+                let cam = camera(m)?;
+                if cam.path.is_some() {
+                    refuse_flags(
+                        m,
+                        "window --camera path",
+                        &["time"],
+                        "the window starts the path at 0 s and follows it",
+                    )?;
+                }
                 let options = AppOptions {
                     world: Some((params, fly)),
+                    path: cam.path.is_some(),
                     timings: m.get_flag("timings"),
                     ..Default::default()
                 };
@@ -906,6 +1002,15 @@ fn tile_view(camera: &Camera, (width, height): (u32, u32)) -> crate::View {
 /// and a little down over ridges that run out to the horizon (chosen by eye).
 fn world_view(camera: &Camera, params: &WorldParams, size: (u32, u32)) -> WorldView {
     let land = &params.land;
+    if let Some(t) = camera.path {
+        let path = crate::PathCamera {
+            fov_y: camera
+                .fov_deg
+                .map_or(crate::PathCamera::default().fov_y, f32::to_radians),
+            ..Default::default()
+        };
+        return path.view(|x, z| land.height_at(x, z), t, size);
+    }
     let eye = camera.eye.map_or_else(
         || glam::DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0),
         glam::DVec3::from,

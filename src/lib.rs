@@ -84,7 +84,7 @@ pub mod scene;
 pub mod table;
 pub mod world;
 
-pub use camera::{FlyCamera, OrbitCamera, View};
+pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};
 pub use error::{Error, Result};
 pub use gpu::world::{World, WorldStats, WorldView};
 pub use gpu::{height_at, Targets, Terrain, Textures};

@@ -879,6 +879,13 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
     assert_ne!(turned, base);
     let (wide, _) = render_endless(&dir, "fov", &["--fov", "80"]);
     assert_ne!(wide, base);
+    // The fly-through path: a time is a place along it.
+    let (p0, _) = render_endless(&dir, "path0", &["--camera", "path"]);
+    let (p1, _) = render_endless(&dir, "path1", &["--camera", "path", "--time", "30"]);
+    assert_ne!(p0, base);
+    assert_ne!(p0, p1);
+    let (again, _) = render_endless(&dir, "path0b", &["--camera", "path", "--time", "0"]);
+    assert_eq!(again, p0, "the path at 0 s is --camera path without --time");
     // Looking straight up: sky only, nothing drawn.
     let (_, up) = render_endless(&dir, "up", &["--eye", "0,3000,0", "--look-at", "0,9000,1"]);
     assert_eq!(stat(&up, "triangles"), 0.0, "{up:?}");
@@ -1003,6 +1010,24 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
     );
     rejects(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
     rejects(&["window", "--eye", "1,2,3"], &["--eye", "render"]);
+    render(
+        &["--world", "endless", "--camera", "zoom"],
+        &["--camera", "zoom", "path"],
+    );
+    render(&["--camera", "fly"], &["--camera fly", "tile", "orbit"]);
+    render(
+        &["--world", "endless", "--camera", "orbit"],
+        &["--camera orbit", "endless"],
+    );
+    render(
+        &["--world", "endless", "--camera", "path", "--eye", "0,9,0"],
+        &["--eye", "path"],
+    );
+    render(
+        &["--world", "endless", "--camera", "path", "--time", "-1"],
+        &["--time", "-1", "seconds"],
+    );
+    render(&["--world", "endless", "--time", "5"], &["--time", "path"]);
     rejects(
         &["--world", "endless", "--speed", "1"],
         &["--speed", "tile"],

@@ -176,4 +176,19 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
         stdout.contains("idle after frame"),
         "at rest again after the key: {stdout}"
     );
+    // On the fly-through path the camera moves by itself: frames keep coming.
+    let (code, stdout, err) = window(&[
+        "--world",
+        "endless",
+        "--pixel-error",
+        "16",
+        "--timings",
+        "--exit-after",
+        "4",
+        "--camera",
+        "path",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(frames_drawn(&stdout) > still + 2, "{stdout}");
+    assert!(!stdout.contains("idle"), "{stdout}");
 }

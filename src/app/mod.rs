@@ -21,7 +21,7 @@ pub use state::{Drawn, State};
 
 use crate::error::{Error, Result};
 use crate::gpu::timing::{Slot, Timings};
-use crate::{FlyCamera, OrbitCamera};
+use crate::{FlyCamera, OrbitCamera, PathCamera};
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 use web_time::{Duration, Instant};
@@ -193,6 +193,8 @@ pub struct App {
     fly: Option<FlyCamera>,
     /// Movement keys held down (fly camera).
     held: HashSet<KeyCode>,
+    /// On the fly-through path, and the time along it (endless world, P toggles).
+    path: Option<(PathCamera, f64)>,
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     touches: HashMap<u64, (f64, f64)>,
@@ -230,6 +232,7 @@ impl App {
             camera: OrbitCamera::default(),
             fly: options.world.map(|(_, fly)| fly),
             held: HashSet::new(),
+            path: (options.world.is_some() && options.path).then(|| (PathCamera::default(), 0.0)),
             drag: None,
             cursor: (0.0, 0.0),
             touches: HashMap::new(),
@@ -299,7 +302,7 @@ impl App {
     /// Whether frames must keep coming: the tile scrolling, or the fly camera moving.
     fn animating(&self) -> bool {
         match self.fly {
-            Some(_) => !self.held.is_empty(),
+            Some(_) => !self.held.is_empty() || self.path.is_some(),
             None => self.options.animating(),
         }
     }
@@ -418,7 +421,18 @@ impl App {
         let now = Instant::now();
         let dt = now.duration_since(self.last_tick).as_secs_f64().min(0.25);
         self.last_tick = now;
-        if let Some(fly) = &mut self.fly {
+        if let (Some(fly), Some((path, t)), Some((world, _))) =
+            (&mut self.fly, &mut self.path, &self.options.world)
+        {
+            // Following the path: it sets the camera; the keys wait until P lets go of it.
+            *t = (*t + dt).min(PathCamera::MAX_TIME);
+            let land = world.land;
+            let (eye, target) = path.at(|x, z| land.height_at(x, z), *t);
+            *fly = FlyCamera {
+                speed: fly.speed,
+                ..FlyCamera::looking_at(eye, target, fly.fov_y)
+            };
+        } else if let Some(fly) = &mut self.fly {
             let key = |k: &[KeyCode]| f64::from(u8::from(k.iter().any(|k| self.held.contains(k))));
             let ahead =
                 key(&[KeyCode::KeyW, KeyCode::ArrowUp]) - key(&[KeyCode::KeyS, KeyCode::ArrowDown]);
@@ -505,7 +519,7 @@ impl App {
         }
         // A minimised window is not drawn until it is restored (a resize event).
         let animating = match self.fly {
-            Some(_) => !self.held.is_empty(),
+            Some(_) => !self.held.is_empty() || self.path.is_some(),
             None => self.options.animating(),
         };
         if animating && !s.minimised() {
@@ -742,6 +756,15 @@ impl ApplicationHandler<UserEvent> for App {
                     #[cfg(not(target_arch = "wasm32"))]
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
                     Key::Named(NamedKey::Space) if self.fly.is_some() => {}
+                    Key::Character(c) if c.eq_ignore_ascii_case("p") && self.fly.is_some() => {
+                        // Onto the path from its start, or off it where the camera is.
+                        self.path = match self.path {
+                            Some(_) => None,
+                            None => Some((PathCamera::default(), 0.0)),
+                        };
+                        self.last_tick = Instant::now();
+                        self.changed();
+                    }
                     Key::Character(c) if c.eq_ignore_ascii_case("r") && self.fly.is_some() => {
                         self.reseed_world();
                     }

@@ -27,6 +27,9 @@ pub struct AppOptions {
     /// The endless world and the fly camera to start with, instead of the tile (native window;
     /// set by `relief --world endless`).
     pub world: Option<(crate::WorldParams, crate::FlyCamera)>,
+    /// In the endless world, start on the fly-through path ([`crate::PathCamera`]) rather than
+    /// flying freely (P switches between them).
+    pub path: bool,
 }
 
 impl Default for AppOptions {
@@ -37,6 +40,7 @@ impl Default for AppOptions {
             paused: false,
             timings: false,
             world: None,
+            path: false,
         }
     }
 }
