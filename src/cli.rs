@@ -189,8 +189,8 @@ pub fn command() -> Command {
             .value_name("WORLD")
             .help(format!(
                 "tile (the seed blog's periodic tile, seen from outside) or endless (a landscape \
-                 in metres to the horizon, flown through in the window; not yet in bake, scene \
-                 files or the page) [default: tile] [allowed: {}]",
+                 in metres to the horizon, flown through in the window, baked by region; not yet \
+                 in scene files or the page) [default: tile] [allowed: {}]",
                 WORLDS.allowed()
             )),
     )
@@ -220,6 +220,18 @@ pub fn command() -> Command {
                 "render: vertical field of view in degrees [default: 45] [allowed: {}]",
                 FOV.allowed()
             )),
+    )
+    .arg(
+        Arg::new("region")
+            .long("region")
+            .global(true)
+            .value_name("X0,Z0,X1,Z1")
+            .allow_hyphen_values(true)
+            .help(
+                "bake --world endless: the square of the world to bake, in metres; its side \
+                 over --size must be a power of two (metres per sample) and its corner a \
+                 multiple of it [default: 0,0,4096,4096]",
+            ),
     )
     .arg(
         Arg::new("camera")
@@ -865,20 +877,21 @@ fn run(top: &ArgMatches) -> Result<()> {
         .filter(|k| crate::params::param(k).is_none())
         .collect();
     match world {
-        WorldKind::Tile => refuse_flags(
-            m,
-            name,
-            &world_only,
-            "it applies to --world endless only (the tile is 2 units wide)",
-        )?,
+        WorldKind::Tile => {
+            refuse_flags(
+                m,
+                name,
+                &world_only,
+                "it applies to --world endless only (the tile is 2 units wide)",
+            )?;
+            refuse_flags(
+                m,
+                name,
+                &["region"],
+                "it applies to bake --world endless only",
+            )?;
+        }
         WorldKind::Endless => {
-            if matches!(run, Run::Bake { .. }) {
-                return Err(Error::Usage(format!(
-                    "--world endless is drawn by the window and relief render, measured by \
-                     relief height and benchmarked by relief bench; relief {name} has the tile \
-                     only so far"
-                )));
-            }
             if matches!(run, Run::Window) {
                 refuse_flags(
                     m,
@@ -910,10 +923,16 @@ fn run(top: &ArgMatches) -> Result<()> {
                 };
                 return crate::app::run_native(options, script(m)?);
             }
+            // A region bake's --size is its samples per side.
+            let tile_only: Vec<&str> = TILE_ONLY
+                .iter()
+                .copied()
+                .filter(|k| !(matches!(run, Run::Bake { .. }) && *k == "size"))
+                .collect();
             refuse_flags(
                 m,
                 &format!("{name} --world endless"),
-                &TILE_ONLY,
+                &tile_only,
                 "it applies to the tile world only",
             )?;
             refuse_flags(
@@ -929,6 +948,18 @@ fn run(top: &ArgMatches) -> Result<()> {
                          is drawn with --method mesh"
                     )));
                 }
+            }
+            if !matches!(run, Run::Bake { .. }) {
+                refuse_flags(
+                    m,
+                    name,
+                    &["region"],
+                    "it applies to bake --world endless only",
+                )?;
+            }
+            if let Run::Bake { out_dir } = &run {
+                let region = region(m)?;
+                return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
             }
             return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
         }
@@ -1021,6 +1052,201 @@ fn world_view(camera: &Camera, params: &WorldParams, size: (u32, u32)) -> WorldV
     );
     let fov = camera.fov_deg.unwrap_or(45.0).to_radians();
     WorldView::look_at(eye, target, fov, size)
+}
+
+/// A region of the endless world to bake: its first sample (in its spacing), samples per
+/// side, and log2 of the spacing in metres.
+struct Region {
+    origin: [i32; 2],
+    size: u32,
+    spacing_log2: i32,
+    text: String,
+}
+
+fn region(m: &ArgMatches) -> Result<Region> {
+    let size = match string(m, "size") {
+        None => 1024,
+        Some(text) => match crate::params::param("size").map(|r| r.parse(&text)) {
+            Some(Ok(Value::Int(n))) => n,
+            _ => {
+                return Err(Error::invalid(
+                    "--size",
+                    table::shorten(&text),
+                    format!("1..={}", crate::params::MAX_SIZE),
+                ))
+            }
+        },
+    };
+    let text = string(m, "region").unwrap_or_else(|| "0,0,4096,4096".into());
+    let bad = |why: &str| {
+        Error::invalid(
+            "--region",
+            table::shorten(&text),
+            format!(
+                "X0,Z0,X1,Z1 in metres: {why} (e.g. 0,0,4096,4096 with --size 1024 samples \
+                 every 4 m)"
+            ),
+        )
+    };
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| bad("four numbers"))?;
+    let [x0, z0, x1, z1] = v[..] else {
+        return Err(bad("four numbers"));
+    };
+    if !v.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORD) {
+        return Err(bad("finite numbers within ±1e9"));
+    }
+    if !(x1 > x0 && z1 > z0) || (x1 - x0) != (z1 - z0) {
+        return Err(bad("a square with X1 > X0 and Z1 - Z0 = X1 - X0"));
+    }
+    let spacing = (x1 - x0) / f64::from(size);
+    let log2 = spacing.log2().round() as i32;
+    if !(-10..=20).contains(&log2) || 2f64.powi(log2) != spacing {
+        return Err(bad(&format!(
+            "side / --size = {} m per sample must be a power of two from 2^-10 to 2^20",
+            crate::table::number(spacing)
+        )));
+    }
+    let (i, j) = (x0 / spacing, z0 / spacing);
+    if i.fract() != 0.0 || j.fract() != 0.0 {
+        return Err(bad(&format!(
+            "the corner must be a multiple of the {} m spacing",
+            crate::table::number(spacing)
+        )));
+    }
+    let limit = f64::from(i32::MAX) - f64::from(size);
+    if i.abs() > limit || j.abs() > limit {
+        return Err(bad("a corner within 2^31 samples of the origin"));
+    }
+    Ok(Region {
+        origin: [i as i32, j as i32],
+        size,
+        spacing_log2: log2,
+        text,
+    })
+}
+
+/// `relief bake --world endless`: a region's heights, normals and colour as PNGs, and the
+/// parameters with the region in scene.toml.
+fn bake_endless(params: &WorldParams, region: &Region, dir: &Path, timings: bool) -> Result<()> {
+    check_out_dir(dir)?;
+    let gpu = Gpu::new()?;
+    let timer = timer_if(timings, &gpu);
+    let land = params.land;
+    let size = region.size;
+    let texels = size as usize * size as usize;
+    let shading = Shading::default();
+    let (mut heights, mut normal, mut color) = (
+        Vec::with_capacity(texels),
+        Vec::with_capacity(texels * 3),
+        Vec::with_capacity(texels * 3),
+    );
+    let peak = land.peak_height as f32;
+    let ms = headless::bake_region(
+        &gpu,
+        &land,
+        region.origin,
+        size,
+        region.spacing_log2,
+        timer.as_ref(),
+        |_, band| {
+            for t in band {
+                heights.push(t[0] * peak);
+                let n = glam::Vec3::new(-t[1] * peak, 1.0, -t[2] * peak).normalize();
+                normal.extend(
+                    n.to_array()
+                        .map(|c| ((c * 0.5 + 0.5) * 255.0).round().clamp(0.0, 255.0) as u8),
+                );
+                color.extend(albedo_srgb8(&shading, t[3]));
+            }
+        },
+    )?;
+    if timings {
+        match ms {
+            Some(ms) => println!(
+                "timings on {}: bake {ms:.3} ms ({:.1} G octave-samples/s, counting height and colour)",
+                gpu.describe(),
+                2.0 * texels as f64 * f64::from(land.octaves_for_level(region.spacing_log2))
+                    / (ms * 1e6)
+            ),
+            None => println!("timings: {} has no timestamp queries", gpu.describe()),
+        }
+    }
+    let (lo, hi) = heights
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        });
+    let span = hi - lo;
+    let height: Vec<u8> = heights
+        .iter()
+        .flat_map(|&h| {
+            let v = if span > 0.0 {
+                ((h - lo) / span * 65535.0).round() as u16
+            } else {
+                0
+            };
+            v.to_ne_bytes()
+        })
+        .collect();
+    drop(heights);
+    let mut scene = String::from(
+        "# relief endless-world bake: the world's parameters and the region baked.\n\
+         # (Scene files of the endless world are written, not yet read back by --scene.)\n\
+         world = \"endless\"\n",
+    );
+    for row in &WORLD_PARAMS {
+        scene.push_str(&format!(
+            "{} = {}\n",
+            row.key,
+            crate::scene::toml_value((row.get)(params))
+        ));
+    }
+    let spacing = 2f64.powi(region.spacing_log2);
+    scene.push_str(&format!(
+        "\n# The square baked (metres), its samples per side and spacing, the octaves the spacing \
+         keeps, and the heights in metres that 0 and 65535 in height.png stand for.\n[bake]\n\
+         region = [{}]\nsize = {size}\nspacing = {spacing:?}\noctaves_kept = {}\n\
+         height_min = {:?}\nheight_max = {:?}\n",
+        region
+            .text
+            .split(',')
+            .map(str::trim)
+            .collect::<Vec<_>>()
+            .join(", "),
+        land.octaves_for_level(region.spacing_log2),
+        f64::from(lo),
+        f64::from(hi),
+    ));
+    let files: [(&str, FileWriter); 4] = [
+        (
+            "height.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::L16, &height)),
+        ),
+        (
+            "normal.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &normal)),
+        ),
+        (
+            "color.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &color)),
+        ),
+        (
+            "scene.toml",
+            Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
+        ),
+    ];
+    write_all(dir, &files)?;
+    println!(
+        "baked {size}x{size} samples every {} m of region {} into {}: heights {lo:.3}..{hi:.3} m map to 0..65535",
+        crate::table::number(spacing),
+        region.text,
+        dir.display()
+    );
+    Ok(())
 }
 
 fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {

@@ -168,7 +168,8 @@ fn toml_shown(v: &toml::Value) -> String {
 }
 
 /// A value as TOML text: floats always with a point or exponent, pairs as arrays.
-fn toml_value(v: Value) -> String {
+/// A table value as TOML.
+pub fn toml_value(v: Value) -> String {
     match v {
         Value::Int(i) => i.to_string(),
         Value::Float(f) => format!("{f:?}"),

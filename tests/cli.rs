@@ -1076,3 +1076,105 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     }
     assert!(rows[7].starts_with("flight,"), "{csv}");
 }
+
+#[test]
+fn bake_world_endless_writes_a_region_that_recovers_the_twin() {
+    let dir = scratch("bake-region");
+    let out = dir.join("out");
+    let (code, stdout, err) = relief(&[
+        "bake",
+        "--world",
+        "endless",
+        "--region",
+        "-256,512,256,1024",
+        "--size",
+        "64",
+        "--seed",
+        "5",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    assert!(stdout.contains("every 8 m"), "{stdout}");
+    assert_eq!(
+        files_in(&out),
+        ["color.png", "height.png", "normal.png", "scene.toml"]
+    );
+    let scene: toml::Table = std::fs::read_to_string(out.join("scene.toml"))
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(scene["world"].as_str(), Some("endless"));
+    assert_eq!(scene["seed"].as_integer(), Some(5));
+    let bake = scene["bake"].as_table().unwrap();
+    assert_eq!(bake["spacing"].as_float(), Some(8.0));
+    let (lo, hi) = (
+        bake["height_min"].as_float().unwrap(),
+        bake["height_max"].as_float().unwrap(),
+    );
+    let land = relief::landscape::Landscape {
+        seed: 5,
+        ..relief::WorldParams::default().land
+    };
+    let h = image::open(out.join("height.png")).unwrap().into_luma16();
+    for (i, j) in [(0u32, 0u32), (63, 0), (10, 40), (63, 63)] {
+        let v = f64::from(h.get_pixel(i, j).0[0]) / 65535.0 * (hi - lo) + lo;
+        // Sample (i, j) is world (-256 + 8i, 512 + 8j): sample coordinates -32 + i, 64 + j.
+        let twin = land.peak_height
+            * land
+                .level_sample(
+                    relief::noise::Channel::Height,
+                    3,
+                    -32 + i64::from(i),
+                    64 + i64::from(j),
+                )
+                .value;
+        // 16-bit quantisation of the range, plus f32 on the GPU.
+        assert!(
+            (v - twin).abs() <= (hi - lo) / 65535.0 + 1e-3,
+            "sample ({i}, {j}): height.png says {v}, the twin {twin}"
+        );
+    }
+    let bad = |extra: &[&str], needles: &[&str]| {
+        let mut args = vec![
+            "bake",
+            "--world",
+            "endless",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        rejects(&args, needles);
+    };
+    bad(
+        &["--region", "0,0,100,100", "--size", "64"],
+        &["--region", "power of two"],
+    );
+    bad(
+        &["--region", "3,0,131,128", "--size", "64"],
+        &["--region", "multiple"],
+    );
+    bad(&["--region", "0,0,64"], &["--region", "four numbers"]);
+    bad(
+        &["--region", "0,0,64,32", "--size", "32"],
+        &["--region", "square"],
+    );
+    bad(&["--region", "nan,0,64,64"], &["--region", "finite"]);
+    rejects(
+        &[
+            "render",
+            "--out",
+            "x.png",
+            "--world",
+            "endless",
+            "--region",
+            "0,0,64,64",
+        ],
+        &["--region", "bake"],
+    );
+    rejects(
+        &["bake", "--out-dir", "x", "--region", "0,0,64,64"],
+        &["--region", "endless"],
+    );
+}

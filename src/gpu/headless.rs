@@ -651,6 +651,91 @@ impl Offscreen {
 
 pub use super::downsample_srgb;
 
+/// Bakes `size` x `size` samples of `land`, spaced `2^level_log2` metres, from world sample
+/// `origin` (in that spacing) on, in bands of rows; `sink(first_row, texels)` receives each
+/// band's (height, dh/dx, dh/dz, colour) texels, rows tightly packed. The grid keeps the octaves
+/// whose cells span at least two samples (as a clipmap level does). Returns the GPU time of the
+/// bake passes summed, when `timer` is given.
+pub fn bake_region(
+    gpu: &Gpu,
+    land: &crate::landscape::Landscape,
+    origin: [i32; 2],
+    size: u32,
+    level_log2: i32,
+    timer: Option<&GpuTimer>,
+    mut sink: impl FnMut(u32, &[[f32; 4]]),
+) -> Result<Option<f64>> {
+    use super::landscape::{LandscapeBake, Rect};
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    if !(1..=max).contains(&size) {
+        return Err(Error::invalid(
+            "size",
+            size,
+            format!("1..={max} on this device"),
+        ));
+    }
+    let row_bytes = u64::from(size) * 16;
+    let band = (MAX_READBACK_BYTES / row_bytes).clamp(1, u64::from(size)) as u32;
+    let pass = LandscapeBake::new(&gpu.device);
+    let texture = super::scoped(&gpu.device, || {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("relief:bake-region:band"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: band,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: LandscapeBake::FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        })
+    })?;
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let target = pass.bind(&gpu.device, &view, size.max(band));
+    let mut total: Option<f64> = None;
+    let mut row = 0;
+    while row < size {
+        let rows = band.min(size - row);
+        let rect = Rect {
+            layer: 0,
+            level_log2,
+            origin: [origin[0], origin[1] + row as i32],
+            extent: [size, rows],
+        };
+        super::scoped(&gpu.device, || {
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            pass.encode_at_origin(
+                &gpu.queue,
+                &mut encoder,
+                &target,
+                land,
+                &rect,
+                timer.map(|t| t.compute_writes(Slot::Bake)),
+            );
+            if let Some(t) = timer {
+                t.resolve(&mut encoder);
+            }
+            gpu.queue.submit([encoder.finish()]);
+        })?;
+        if let Some(t) = timer {
+            if let Some(ms) = t.read(&gpu.device)?[Slot::Bake as usize] {
+                total = Some(total.unwrap_or(0.0) + ms);
+            }
+        }
+        let bytes = read_texture(&gpu.device, &gpu.queue, &texture)?;
+        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+        sink(row, &texels[..(rows * size) as usize]);
+        row += rows;
+    }
+    Ok(total)
+}
+
 /// The screen-space geometric error of a drawn frame of the endless world, measured against the
 /// continuous surface: each pixel's depth is turned back into the point drawn there, and its
 /// vertical distance δ from the surface (the twin's `height_at`) at distance d counts as

@@ -182,6 +182,36 @@ impl LandscapeBake {
         LevelTarget { bind_group, wrap }
     }
 
+    /// Records the bake of one rectangle of samples into the texture's texels from (0, 0) on
+    /// (not toroidally: the target's `wrap` must be at least the rectangle's width and height),
+    /// for region bakes read back in bands.
+    pub fn encode_at_origin(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &LevelTarget,
+        land: &Landscape,
+        rect: &Rect,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let u = LandscapeUniforms {
+            dest_origin: [0, 0],
+            ..LandscapeUniforms::new(land, rect, target.wrap)
+        };
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:landscape-bake:region"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &target.bind_group, &[0]);
+        pass.dispatch_workgroups(
+            rect.extent[0].div_ceil(super::WORKGROUP),
+            rect.extent[1].div_ceil(super::WORKGROUP),
+            1,
+        );
+    }
+
     /// Writes the uniforms of up to [`MAX_RECTS`] rectangles and records one compute pass
     /// baking them all (any more are left for the caller to record in another encoder).
     /// Returns how many were recorded.
