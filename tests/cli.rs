@@ -1005,8 +1005,10 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
             dir.to_str().unwrap(),
             "--world",
             "endless",
+            "--normals",
+            "analytic",
         ],
-        &["--world endless", "bake"],
+        &["--normals", "tile"],
     );
     rejects(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
     rejects(&["window", "--eye", "1,2,3"], &["--eye", "render"]);
