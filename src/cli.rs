@@ -540,8 +540,20 @@ fn triple(m: &ArgMatches, id: &str) -> Result<Option<[f64; 3]>> {
 }
 
 fn camera(m: &ArgMatches) -> Result<Camera> {
+    // The scene file's [camera] first; each flag overrides its part.
+    let scene_path = string(m, "scene").map(PathBuf::from);
+    let scene = match &scene_path {
+        Some(p) => crate::scene::SceneCamera::read(p)?,
+        None => Default::default(),
+    };
+    let from_scene = |key: &str, value: String, allowed: String| Error::SceneFile {
+        path: scene_path.clone().unwrap_or_default(),
+        message: format!(
+            "invalid [camera] {key}: {} (allowed: {allowed})",
+            table::shorten(&value)
+        ),
+    };
     let fov_deg = match string(m, "fov") {
-        None => None,
         Some(text) => match FOV.parse(&text) {
             Some(Value::Float(v)) => Some(v),
             _ => {
@@ -552,10 +564,22 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
                 ))
             }
         },
+        None => match scene.fov {
+            Some(v) => match FOV.parse(&format!("{v:?}")) {
+                Some(Value::Float(v)) => Some(v),
+                _ => {
+                    return Err(from_scene(
+                        "fov",
+                        format!("{v:?}"),
+                        format!("{} degrees", FOV.allowed()),
+                    ))
+                }
+            },
+            None => None,
+        },
     };
-    let kind = match string(m, "camera") {
-        None => None,
-        Some(text) => match CAMERAS.parse(&text) {
+    let kind = match (string(m, "camera"), &scene.camera) {
+        (Some(text), _) => match CAMERAS.parse(&text) {
             Some(Value::Choice(name)) => Some(name),
             _ => {
                 return Err(Error::invalid(
@@ -565,9 +589,13 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
                 ))
             }
         },
+        (None, Some(text)) => match CAMERAS.parse(text) {
+            Some(Value::Choice(name)) => Some(name),
+            _ => return Err(from_scene("camera", text.clone(), CAMERAS.allowed())),
+        },
+        (None, None) => None,
     };
     let time = match string(m, "time") {
-        None => None,
         Some(text) => match TIME.parse(&text) {
             Some(Value::Float(t)) => Some(f64::from(t)),
             _ => {
@@ -577,6 +605,17 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
                     format!("{} seconds", TIME.allowed()),
                 ))
             }
+        },
+        None => match scene.time {
+            Some(t) if (0.0..=f64::from(86_400.0f32)).contains(&t) => Some(t),
+            Some(t) => {
+                return Err(from_scene(
+                    "time",
+                    format!("{t:?}"),
+                    format!("{} seconds", TIME.allowed()),
+                ))
+            }
+            None => None,
         },
     };
     let endless = world_kind(m)? == WorldKind::Endless;
@@ -591,6 +630,22 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
         }
         _ => {}
     }
+    let point = |flag: &str, key: &str, scene: Option<[f64; 3]>| -> Result<Option<[f64; 3]>> {
+        match triple(m, flag)? {
+            Some(p) => Ok(Some(p)),
+            None => match scene {
+                Some(p) if p.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORD) => Ok(Some(p)),
+                Some(p) => Err(from_scene(
+                    key,
+                    format!("{p:?}"),
+                    format!("[x, y, z], finite, each within ±{MAX_COORD:e}"),
+                )),
+                None => Ok(None),
+            },
+        }
+    };
+    let eye = point("eye", "eye", scene.eye)?;
+    let look_at = point("look-at", "look_at", scene.look_at)?;
     let path = kind == Some("path");
     if path {
         refuse_flags(
@@ -599,14 +654,21 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
             &["eye", "look-at"],
             "the path places the camera (choose where along it with --time)",
         )?;
+        if eye.is_some() || look_at.is_some() {
+            return Err(Error::Usage(
+                "the scene file's [camera] eye and look_at do not apply to the path camera \
+                 (the path places the camera)"
+                    .into(),
+            ));
+        }
     } else if time.is_some() {
         return Err(Error::Usage(
             "--time applies to --camera path only (a position along the fly-through)".into(),
         ));
     }
     let camera = Camera {
-        eye: triple(m, "eye")?,
-        look_at: triple(m, "look-at")?,
+        eye,
+        look_at,
         fov_deg,
         path: path.then(|| time.unwrap_or(0.0)),
     };
@@ -616,24 +678,39 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
         if len <= 1e-6 * (1.0 + e.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
             return Err(Error::Usage(format!(
                 "--look-at {} is the --eye position: the camera must look somewhere else",
-                table::shorten(&string(m, "look-at").unwrap_or_default())
+                table::shorten(&string(m, "look-at").unwrap_or_else(|| format!("{t:?}")))
             )));
         }
     }
     Ok(camera)
 }
 
+/// `--world`, else the scene file's `world`, else the tile.
 fn world_kind(m: &ArgMatches) -> Result<WorldKind> {
-    match string(m, "world") {
-        None => Ok(WorldKind::Tile),
-        Some(text) => WorldKind::from_name(&text)
+    match (string(m, "world"), string(m, "scene")) {
+        (Some(text), _) => WorldKind::from_name(&text)
             .ok_or_else(|| Error::invalid("--world", table::shorten(&text), WORLDS.allowed())),
+        (None, Some(path)) => crate::scene::scene_world(Path::new(&path)),
+        (None, None) => Ok(WorldKind::Tile),
     }
 }
 
-/// The endless world: defaults, then the flags (scene files describe the tile only).
+/// The endless world: defaults, then the scene file, then the flags.
 fn resolve_world(m: &ArgMatches) -> Result<WorldParams> {
     let mut p = WorldParams::default();
+    if let Some(path) = string(m, "scene") {
+        let path = PathBuf::from(path);
+        for (row, text) in crate::scene::read_world_entries(&path)?
+            .iter()
+            .filter(|(row, _)| !given(m, row.key))
+        {
+            let value = row.parse(text).map_err(|e| Error::SceneFile {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+            (row.set)(&mut p, value);
+        }
+    }
     for row in WORLD_PARAMS.iter().filter(|r| given(m, r.key)) {
         let text = string(m, row.key).unwrap_or_default();
         (row.set)(&mut p, flag_value(row, &text)?);
@@ -935,12 +1012,7 @@ fn run(top: &ArgMatches) -> Result<()> {
                 &tile_only,
                 "it applies to the tile world only",
             )?;
-            refuse_flags(
-                m,
-                &format!("{name} --world endless"),
-                &["scene"],
-                "scene files describe the tile world only so far",
-            )?;
+
             if let Run::Render { method, .. } = run {
                 if method != crate::Method::Mesh {
                     return Err(Error::Usage(format!(
@@ -1195,7 +1267,7 @@ fn bake_endless(params: &WorldParams, region: &Region, dir: &Path, timings: bool
     drop(heights);
     let mut scene = String::from(
         "# relief endless-world bake: the world's parameters and the region baked.\n\
-         # (Scene files of the endless world are written, not yet read back by --scene.)\n\
+         # `relief render --scene FILE` draws this world (the [bake] record changes nothing).\n\
          world = \"endless\"\n",
     );
     for row in &WORLD_PARAMS {

@@ -1,10 +1,13 @@
 //! Scene files (TOML): every key of [`crate::params::PARAMS`], all optional, plus the `[bake]`
 //! record `relief bake` writes. Reading and writing both go through the parameter table, so a
-//! new parameter is a new key here without any code in this file.
+//! new parameter is a new key here without any code in this file. A file with
+//! `world = "endless"` holds the endless world's keys ([`crate::world::WORLD_PARAMS`]) instead;
+//! either may carry a `[camera]` table ([`SceneCamera`]).
 
 use crate::error::{Error, Result};
 use crate::params::{param, params, SceneParam, TerrainParams};
 use crate::table::{self, Kind, Value};
+use crate::world::{WorldKind, WorldParam};
 use std::path::Path;
 
 /// What `relief bake` records beside its images: how to turn 16-bit heights back into heights.
@@ -59,6 +62,18 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
         // Only checked for shape: a scene's bake record does not change what is baked.
         BakeInfo::from_toml(&bake)?;
     }
+    match table.remove("world") {
+        None => {}
+        Some(toml::Value::String(w)) if w == "tile" => {}
+        Some(other) => {
+            return Err(fail(format!(
+                "world = {} here, but the tile's keys are being read (give --world to match)",
+                toml_shown(&other)
+            )))
+        }
+    }
+    // Read by `SceneCamera::from_table`.
+    table.remove("camera");
     let mut out = Vec::with_capacity(table.len());
     for (key, value) in &table {
         let row = param(key).filter(|r| r.key == key).ok_or_else(|| {
@@ -69,6 +84,178 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
             )
         })?;
         let text = toml_text(row.kind, value).ok_or_else(|| row.invalid(&toml_shown(value)))?;
+        out.push((row, text));
+    }
+    Ok(out)
+}
+
+/// A scene file's TOML, checked for size and syntax; errors name the file.
+fn load(path: &Path) -> Result<toml::Table> {
+    let fail = |message: String| Error::SceneFile {
+        path: path.to_owned(),
+        message,
+    };
+    let len = std::fs::metadata(path)
+        .map_err(|e| fail(e.to_string()))?
+        .len();
+    if len > MAX_SCENE_BYTES {
+        return Err(fail(format!(
+            "{len} bytes; a scene file is at most {MAX_SCENE_BYTES}"
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    text.parse()
+        .map_err(|e: toml::de::Error| fail(table::shorten_to(&one_line(&e.to_string()), 160)))
+}
+
+/// The world a scene file describes: its `world` key (`"tile"` or `"endless"`), tile without one.
+pub fn scene_world(path: &Path) -> Result<WorldKind> {
+    let table = load(path)?;
+    match table.get("world") {
+        None => Ok(WorldKind::Tile),
+        Some(toml::Value::String(w)) if WorldKind::from_name(w).is_some() => {
+            Ok(WorldKind::from_name(w).unwrap_or_default())
+        }
+        Some(other) => Err(Error::SceneFile {
+            path: path.to_owned(),
+            message: format!(
+                "invalid world: {} (allowed: tile or endless)",
+                toml_shown(other)
+            ),
+        }),
+    }
+}
+
+/// The `[camera]` table of a scene file, each part optional (flags override each).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneCamera {
+    /// `camera`: orbit, fly or path.
+    pub camera: Option<String>,
+    /// `eye = [x, y, z]`.
+    pub eye: Option<[f64; 3]>,
+    /// `look_at = [x, y, z]`.
+    pub look_at: Option<[f64; 3]>,
+    /// `fov`, vertical, degrees.
+    pub fov: Option<f64>,
+    /// `time` along the path, seconds.
+    pub time: Option<f64>,
+}
+
+impl SceneCamera {
+    /// The keys of a `[camera]` table.
+    pub const KEYS: [&'static str; 5] = ["camera", "eye", "look_at", "fov", "time"];
+
+    /// Reads the `[camera]` table of the scene file at `path` (empty without one). Types are
+    /// checked here, ranges where the camera is made.
+    pub fn read(path: &Path) -> Result<Self> {
+        let table = load(path)?;
+        Self::from_table(table.get("camera")).map_err(|message| Error::SceneFile {
+            path: path.to_owned(),
+            message,
+        })
+    }
+
+    fn from_table(value: Option<&toml::Value>) -> std::result::Result<Self, String> {
+        let Some(value) = value else {
+            return Ok(Self::default());
+        };
+        let t = value
+            .as_table()
+            .ok_or_else(|| "camera: not a table ([camera])".to_owned())?;
+        if let Some(k) = t.keys().find(|k| !Self::KEYS.contains(&k.as_str())) {
+            return Err(format!(
+                "invalid key: [camera] {} (allowed: {})",
+                table::shorten(k),
+                Self::KEYS.join(", ")
+            ));
+        }
+        let num = |v: &toml::Value| v.as_float().or(v.as_integer().map(|i| i as f64));
+        let number = |k: &str| -> std::result::Result<Option<f64>, String> {
+            t.get(k)
+                .map(|v| {
+                    num(v).ok_or_else(|| {
+                        format!("invalid [camera] {k}: {} (a number)", toml_shown(v))
+                    })
+                })
+                .transpose()
+        };
+        let point = |k: &str| -> std::result::Result<Option<[f64; 3]>, String> {
+            t.get(k)
+                .map(|v| {
+                    let bad = || {
+                        format!(
+                            "invalid [camera] {k}: {} (allowed: [x, y, z], three numbers)",
+                            toml_shown(v)
+                        )
+                    };
+                    let a = v.as_array().filter(|a| a.len() == 3).ok_or_else(bad)?;
+                    let mut out = [0.0; 3];
+                    for (o, x) in out.iter_mut().zip(a) {
+                        *o = num(x).ok_or_else(bad)?;
+                    }
+                    Ok(out)
+                })
+                .transpose()
+        };
+        let camera = t
+            .get("camera")
+            .map(|v| {
+                v.as_str().map(str::to_owned).ok_or_else(|| {
+                    format!(
+                        "invalid [camera] camera: {} (allowed: orbit, fly or path)",
+                        toml_shown(v)
+                    )
+                })
+            })
+            .transpose()?;
+        Ok(Self {
+            camera,
+            eye: point("eye")?,
+            look_at: point("look_at")?,
+            fov: number("fov")?,
+            time: number("time")?,
+        })
+    }
+}
+
+/// The endless world's entries of a scene file (`world = "endless"`): its keys with their
+/// values as text, checked for key and type ([`crate::world::WORLD_PARAMS`]); `[bake]` and
+/// `[camera]` are left to their readers.
+pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, String)>> {
+    let fail = |message: String| Error::SceneFile {
+        path: path.to_owned(),
+        message,
+    };
+    let mut table = load(path)?;
+    match table.remove("world") {
+        Some(toml::Value::String(w)) if w == "endless" => {}
+        other => {
+            return Err(fail(format!(
+                "world = {} here, but the endless world's keys are being read",
+                other.as_ref().map_or("(none)".to_owned(), toml_shown)
+            )))
+        }
+    }
+    // The record of a region bake; it does not change the world.
+    table.remove("bake");
+    table.remove("camera");
+    let mut out = Vec::with_capacity(table.len());
+    for (key, value) in &table {
+        let row = crate::world::world_param(key)
+            .filter(|r| r.key == key)
+            .ok_or_else(|| {
+                fail(format!(
+                    "invalid key: {} (allowed: world, {}, [camera], [bake])",
+                    table::shorten(key),
+                    crate::world::WORLD_PARAMS
+                        .iter()
+                        .map(|r| r.key)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })?;
+        let text = toml_text(row.kind, value)
+            .ok_or_else(|| fail(row.invalid(&toml_shown(value)).to_string()))?;
         out.push((row, text));
     }
     Ok(out)
@@ -168,7 +355,6 @@ fn toml_shown(v: &toml::Value) -> String {
 }
 
 /// A value as TOML text: floats always with a point or exponent, pairs as arrays.
-/// A table value as TOML.
 pub fn toml_value(v: Value) -> String {
     match v {
         Value::Int(i) => i.to_string(),

@@ -972,7 +972,7 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
     );
     render(
         &["--world", "endless", "--scene", "a.toml"],
-        &["--scene", "tile"],
+        &["a.toml", "No such file"],
     );
     render(
         &["--world", "endless", "--method", "reference"],
@@ -1178,5 +1178,163 @@ fn bake_world_endless_writes_a_region_that_recovers_the_twin() {
     rejects(
         &["bake", "--out-dir", "x", "--region", "0,0,64,64"],
         &["--region", "endless"],
+    );
+}
+
+#[test]
+fn endless_scene_files_and_camera_tables_round_trip() {
+    let dir = scratch("endless-scene");
+    let bake = dir.join("bake");
+    let (code, _, err) = relief(&[
+        "bake",
+        "--world",
+        "endless",
+        "--seed",
+        "12",
+        "--peak-height",
+        "1500",
+        "--region",
+        "0,0,512,512",
+        "--size",
+        "64",
+        "--out-dir",
+        bake.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let scene = bake.join("scene.toml");
+    // The bake's scene file draws the same world as the flags that made it.
+    let (from_scene, _) = render_endless(&dir, "scene", &["--scene", scene.to_str().unwrap()]);
+    let (from_flags, _) = render_endless(&dir, "flags", &["--seed", "12", "--peak-height", "1500"]);
+    assert_eq!(from_scene, from_flags);
+    // Without --world: the scene file's world decides.
+    let out = dir.join("auto.png");
+    let (code, stdout, err) = relief(&[
+        "render",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "96",
+        "--height",
+        "64",
+        "--pixel-error",
+        "16",
+        "--stats",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("levels_total"), "{stdout}");
+    assert_eq!(
+        image::open(&out).unwrap().into_rgb8().into_raw(),
+        from_scene
+    );
+    // A [camera] table places the camera as the flags would; a flag overrides its part.
+    let with_camera = dir.join("camera.toml");
+    std::fs::write(
+        &with_camera,
+        "world = \"endless\"\nseed = 12\npeak_height = 1500\n\n[camera]\neye = [300, 2200, -100]\nlook_at = [2000, 900, 400]\nfov = 60\n",
+    )
+    .unwrap();
+    let (a, _) = render_endless(
+        &dir,
+        "cam-scene",
+        &["--scene", with_camera.to_str().unwrap()],
+    );
+    let (b, _) = render_endless(
+        &dir,
+        "cam-flags",
+        &[
+            "--seed",
+            "12",
+            "--peak-height",
+            "1500",
+            "--eye",
+            "300,2200,-100",
+            "--look-at",
+            "2000,900,400",
+            "--fov",
+            "60",
+        ],
+    );
+    assert_eq!(a, b);
+    let (c, _) = render_endless(
+        &dir,
+        "cam-override",
+        &["--scene", with_camera.to_str().unwrap(), "--fov", "40"],
+    );
+    assert_ne!(a, c);
+    // Bad scene files: one line naming the file and what is wrong, nothing written.
+    let bad = |name: &str, text: &str, needles: &[&str]| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = dir.join(format!("{name}.png"));
+        rejects(
+            &[
+                "render",
+                "--scene",
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            needles,
+        );
+        assert!(!out.exists());
+    };
+    bad(
+        "moon.toml",
+        "world = \"moon\"\n",
+        &["moon.toml", "world", "endless"],
+    );
+    bad(
+        "size.toml",
+        "world = \"endless\"\nsize = 64\n",
+        &["size.toml", "size", "feature_size"],
+    );
+    bad(
+        "fov.toml",
+        "world = \"endless\"\n[camera]\nfov = 0\n",
+        &["fov.toml", "fov", "degrees"],
+    );
+    bad(
+        "eye.toml",
+        "world = \"endless\"\n[camera]\neye = [1, 2]\n",
+        &["eye.toml", "eye", "[x, y, z]"],
+    );
+    bad(
+        "key.toml",
+        "world = \"endless\"\n[camera]\nzoom = 2\n",
+        &["key.toml", "zoom", "look_at"],
+    );
+    bad(
+        "path.toml",
+        "world = \"endless\"\n[camera]\ncamera = \"path\"\neye = [0, 900, 0]\n",
+        &["eye", "path"],
+    );
+    // The tile reads a [camera] table too.
+    let tile = dir.join("tile.toml");
+    std::fs::write(&tile, "seed = 3\n[camera]\neye = [0, 2, 2.5]\n").unwrap();
+    let render_tile = |name: &str, extra: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--size",
+            "64",
+            "--grid",
+            "32",
+        ];
+        args.extend_from_slice(extra);
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{err}");
+        image::open(&out).unwrap().into_rgb8().into_raw()
+    };
+    assert_eq!(
+        render_tile("tile-scene", &["--scene", tile.to_str().unwrap()]),
+        render_tile("tile-flags", &["--seed", "3", "--eye", "0,2,2.5"])
     );
 }
