@@ -85,8 +85,12 @@ fn counts(device: &wgpu::Device) -> [isize; 5] {
     ]
 }
 
+/// The tests here measure the process's resident memory: they run one at a time.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
 #[test]
 fn a_thousand_random_changes_leave_no_trace() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let instance =
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
@@ -270,6 +274,7 @@ fn a_thousand_random_changes_leave_no_trace() {
 
 #[test]
 fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     use relief::{World, WorldParams, WorldView};
     let instance =
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
