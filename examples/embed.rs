@@ -3,10 +3,13 @@
 //! makes its own device, target textures and readback, as any wgpu app does. Headless here (an
 //! offscreen target) so it runs anywhere; a windowed host does the same with its surface
 //! texture. The pillar stands on the terrain: its foot is placed with `Terrain::height_at`.
+//! With `endless`, the host draws the endless world ([`relief::World`]) instead: its pillar is
+//! 200 m tall on the landscape, placed with `World::height_at`, and drawn camera-relative with
+//! the world's own matrix (`World::relative_matrix`), as a host must do far from the origin.
 //!
-//!     cargo run --example embed -- embed.png
+//!     cargo run --example embed -- embed.png [endless]
 
-use relief::{wgpu, OrbitCamera, Terrain, TerrainParams};
+use relief::{wgpu, OrbitCamera, Terrain, TerrainParams, World, WorldParams, WorldView};
 
 /// The host's GPU: its own device and queue (relief only borrows them).
 pub struct Host {
@@ -38,7 +41,8 @@ pub struct Pillar {
 }
 
 const PILLAR_WGSL: &str = r#"
-struct Uniforms { view_proj: mat4x4<f32>, ground: vec4<f32> }
+// ground: foot height, half-width, bottom and top offsets; centre: x and z of its axis.
+struct Uniforms { view_proj: mat4x4<f32>, ground: vec4<f32>, centre: vec4<f32> }
 @group(0) @binding(0) var<uniform> u: Uniforms;
 
 struct Out { @builtin(position) clip: vec4<f32>, @location(0) shade: f32 }
@@ -46,9 +50,9 @@ struct Out { @builtin(position) clip: vec4<f32>, @location(0) shade: f32 }
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> Out {
     // 6 faces x 2 triangles of a box from (-w, y0, -w) to (w, y1, w).
-    let w = 0.06;
-    let y0 = -0.2;
-    let y1 = 0.6;
+    let w = u.ground.y;
+    let y0 = u.ground.z;
+    let y1 = u.ground.w;
     let face = i / 6u;
     let corner = array<vec2<f32>, 6>(vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0),
                                      vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0))[i % 6u];
@@ -61,7 +65,7 @@ fn vs(@builtin(vertex_index) i: u32) -> Out {
         case 4u: { p = vec3(corner.x, corner.y, 1.0); }
         default: { p = vec3(corner.x, corner.y, -1.0); }
     }
-    let world = vec3(p.x * w, u.ground.x + mix(y0, y1, p.y * 0.5 + 0.5), p.z * w);
+    let world = vec3(u.centre.x + p.x * w, u.ground.x + mix(y0, y1, p.y * 0.5 + 0.5), u.centre.y + p.z * w);
     var out: Out;
     out.clip = u.view_proj * vec4(world, 1.0);
     out.shade = 0.6 + 0.4 * f32(face % 3u) / 2.0;
@@ -83,7 +87,7 @@ impl Pillar {
         });
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("host:pillar:uniforms"),
-            size: 80,
+            size: 96,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -140,6 +144,8 @@ pub struct Draw {
     pub host: bool,
     /// Draw relief's terrain.
     pub terrain: bool,
+    /// The endless world rather than the tile.
+    pub endless: bool,
 }
 
 /// The host's MSAA sample count and formats; relief is built for exactly these.
@@ -182,11 +188,51 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         grid: 128,
         ..Default::default()
     };
-    let mut terrain = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
     let pillar = Pillar::new(device, &TARGETS);
-    let view = OrbitCamera::default().view(width as f32 / height as f32);
-    // The host's own geometry sits on the terrain: relief answers where the ground is.
-    let ground = terrain.height_at(0.0, 0.0);
+    // relief's side: the tile with an orbit camera, or the endless world with a view from
+    // 150 m above its ground looking at the pillar's spot, 900 m ahead.
+    let mut terrain = None;
+    let mut world = None;
+    let (view_proj, pillar_uniforms) = if draw.endless {
+        let params = WorldParams {
+            pixel_error: 8.0,
+            ..Default::default()
+        };
+        let mut w = World::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);
+        let spot = glam::DVec3::new(900.0, w.height_at(900.0, 0.0), 0.0);
+        let view = WorldView::look_at(eye, spot + glam::DVec3::Y * 60.0, 0.8, (width, height));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        w.encode_bake(device, queue, &mut encoder, &view)
+            .map_err(|e| e.to_string())?;
+        queue.submit([encoder.finish()]);
+        w.prepare(queue, &view);
+        // Camera-relative, as relief draws: the pillar's place less the eye.
+        let rel = spot - eye;
+        let uniforms = [
+            rel.y as f32,
+            15.0,
+            -40.0,
+            200.0,
+            rel.x as f32,
+            rel.z as f32,
+            0.0,
+            0.0,
+        ];
+        let m = w.relative_matrix();
+        world = Some(w);
+        (m, uniforms)
+    } else {
+        let t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        let view = OrbitCamera::default().view(width as f32 / height as f32);
+        // The host's own geometry sits on the terrain: relief answers where the ground is.
+        let ground = t.height_at(0.0, 0.0);
+        terrain = Some((t, view));
+        (
+            view.view_proj,
+            [ground, 0.06, -0.2, 0.6, 0.0, 0.0, 0.0, 0.0],
+        )
+    };
 
     let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
     let size = (width, height);
@@ -217,21 +263,18 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
 
     // The host's frame: its encoder, its pass, its depth buffer; relief records into them.
     let mut encoder = device.create_command_encoder(&Default::default());
-    terrain.encode_bake(&mut encoder);
-    terrain.prepare(queue, &view);
+    if let Some((t, view)) = &mut terrain {
+        t.encode_bake(&mut encoder);
+        t.prepare(queue, view);
+    }
     queue.write_buffer(
         &pillar.uniforms,
         0,
-        bytemuck::cast_slice(
-            &[
-                view.view_proj.to_cols_array().as_slice(),
-                &[ground, 0.0, 0.0, 0.0],
-            ]
-            .concat(),
-        ),
+        bytemuck::cast_slice(&[view_proj.to_cols_array().as_slice(), &pillar_uniforms].concat()),
     );
     {
-        let clear = relief::gpu::clear_color(terrain.shading().sky_color, TARGETS.color_format);
+        let clear =
+            relief::gpu::clear_color(relief::Shading::default().sky_color, TARGETS.color_format);
         let msaa_view = msaa.create_view(&Default::default());
         let resolved_view = resolved.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
@@ -264,7 +307,12 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             pass.draw(0..36, 0..1);
         }
         if draw.terrain {
-            terrain.render(&mut pass);
+            if let Some((t, _)) = &terrain {
+                t.render(&mut pass);
+            }
+            if let Some(w) = &world {
+                w.render(&mut pass);
+            }
         }
     }
     // The host reads its image back its own way.
@@ -317,6 +365,7 @@ fn main() -> Result<(), String> {
     let out = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "embed.png".into());
+    let endless = std::env::args().nth(2).as_deref() == Some("endless");
     let host = Host::new()?;
     let (w, h) = (640, 480);
     let pixels = render_frame(
@@ -326,6 +375,7 @@ fn main() -> Result<(), String> {
         Draw {
             host: true,
             terrain: true,
+            endless,
         },
     )?;
     image::save_buffer(&out, &pixels, w, h, image::ColorType::Rgba8).map_err(|e| e.to_string())?;

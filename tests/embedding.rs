@@ -11,6 +11,15 @@ fn is_red(p: &[u8]) -> bool {
 
 #[test]
 fn host_geometry_and_terrain_are_depth_tested_together() {
+    depth_tested_together(false);
+}
+
+#[test]
+fn host_geometry_and_the_endless_world_are_depth_tested_together() {
+    depth_tested_together(true);
+}
+
+fn depth_tested_together(endless: bool) {
     let gpu = Host::new().expect(
         "the embedding test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
     );
@@ -22,6 +31,7 @@ fn host_geometry_and_terrain_are_depth_tested_together() {
         Draw {
             host: true,
             terrain: false,
+            endless,
         },
     )
     .unwrap();
@@ -32,6 +42,7 @@ fn host_geometry_and_terrain_are_depth_tested_together() {
         Draw {
             host: false,
             terrain: true,
+            endless,
         },
     )
     .unwrap();
@@ -42,6 +53,7 @@ fn host_geometry_and_terrain_are_depth_tested_together() {
         Draw {
             host: true,
             terrain: true,
+            endless,
         },
     )
     .unwrap();
