@@ -94,6 +94,39 @@ pub struct WorldRow {
     pub bake_ms_mean: Option<f64>,
 }
 
+impl WorldRow {
+    /// A row from a measured run: the world's last stats, the texels each frame baked (the
+    /// timed frames are the last ones), and the timed frames' GPU and wall times.
+    fn measured(
+        view: &str,
+        knob: f64,
+        s: &crate::WorldStats,
+        texels: &[u64],
+        times: &[crate::gpu::timing::Timings],
+        wall: &[f64],
+    ) -> Self {
+        let timed = &texels[texels.len().saturating_sub(wall.len())..];
+        let slot = |slot: Slot| times.iter().filter_map(move |t| t[slot as usize]);
+        Self {
+            view: view.to_owned(),
+            pixel_error: knob,
+            patch_cells: s.patch_cells,
+            levels: s.levels,
+            triangles: s.triangles,
+            error_bound_px: s.error_bound_px,
+            measured: None,
+            texels_median: median(timed.to_vec()).unwrap_or(0),
+            texels_max: timed.iter().copied().max().unwrap_or(0),
+            render_ms: median(slot(Slot::Render).collect()),
+            bake_ms: median(slot(Slot::Bake).collect()),
+            bake_max_ms: slot(Slot::Bake).reduce(f64::max),
+            wall_ms: median(wall.to_vec()).unwrap_or(0.0),
+            texels_mean: mean_texels(timed),
+            bake_ms_mean: mean_bake(times),
+        }
+    }
+}
+
 fn median<T: Copy + PartialOrd>(mut v: Vec<T>) -> Option<T> {
     if v.is_empty() {
         return None;
@@ -151,39 +184,11 @@ pub fn run(
                 texels.push(frame(&mut world, &v.view, encoder, timer));
             })?;
             let s = world.stats();
-            let timed = &texels[texels.len() - wall.len()..];
             let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
             let measured = world_screen_error(gpu, &mut single, &v.view, 2)?;
-            rows.push(WorldRow {
-                view: v.name.to_owned(),
-                pixel_error: knob,
-                patch_cells: s.patch_cells,
-                levels: s.levels,
-                triangles: s.triangles,
-                error_bound_px: s.error_bound_px,
-                measured: Some(measured),
-                texels_median: median(timed.to_vec()).unwrap_or(0),
-                texels_max: timed.iter().copied().max().unwrap_or(0),
-                render_ms: median(
-                    times
-                        .iter()
-                        .filter_map(|t| t[Slot::Render as usize])
-                        .collect(),
-                ),
-                bake_ms: median(
-                    times
-                        .iter()
-                        .filter_map(|t| t[Slot::Bake as usize])
-                        .collect(),
-                ),
-                bake_max_ms: times
-                    .iter()
-                    .filter_map(|t| t[Slot::Bake as usize])
-                    .reduce(f64::max),
-                wall_ms: median(wall).unwrap_or(0.0),
-                texels_mean: mean_texels(timed),
-                bake_ms_mean: mean_bake(&times),
-            });
+            let mut row = WorldRow::measured(v.name, knob, &s, &texels, &times, &wall);
+            row.measured = Some(measured);
+            rows.push(row);
         }
     }
     // A flight at 300 km/h, 40 m above the ground, at 60 frames a second: every frame moves
@@ -229,37 +234,9 @@ pub fn run(
         triangles.push(world.stats().triangles);
     })?;
     let s = world.stats();
-    let timed = &texels[texels.len() - wall.len()..];
-    rows.push(WorldRow {
-        view: "flight".to_owned(),
-        pixel_error: p.pixel_error,
-        patch_cells: s.patch_cells,
-        levels: s.levels,
-        triangles: median(triangles[triangles.len() - wall.len()..].to_vec()).unwrap_or(0),
-        error_bound_px: s.error_bound_px,
-        measured: None,
-        texels_median: median(timed.to_vec()).unwrap_or(0),
-        texels_max: timed.iter().copied().max().unwrap_or(0),
-        render_ms: median(
-            times
-                .iter()
-                .filter_map(|t| t[Slot::Render as usize])
-                .collect(),
-        ),
-        bake_ms: median(
-            times
-                .iter()
-                .filter_map(|t| t[Slot::Bake as usize])
-                .collect(),
-        ),
-        bake_max_ms: times
-            .iter()
-            .filter_map(|t| t[Slot::Bake as usize])
-            .reduce(f64::max),
-        wall_ms: median(wall).unwrap_or(0.0),
-        texels_mean: mean_texels(timed),
-        bake_ms_mean: mean_bake(&times),
-    });
+    let mut row = WorldRow::measured("flight", p.pixel_error, &s, &texels, &times, &wall);
+    row.triangles = median(triangles[triangles.len() - wall.len()..].to_vec()).unwrap_or(0);
+    rows.push(row);
     Ok(rows)
 }
 

@@ -1247,23 +1247,7 @@ fn bake_endless(params: &WorldParams, region: &Region, dir: &Path, timings: bool
             None => println!("timings: {} has no timestamp queries", gpu.describe()),
         }
     }
-    let (lo, hi) = heights
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
-            (lo.min(h), hi.max(h))
-        });
-    let span = hi - lo;
-    let height: Vec<u8> = heights
-        .iter()
-        .flat_map(|&h| {
-            let v = if span > 0.0 {
-                ((h - lo) / span * 65535.0).round() as u16
-            } else {
-                0
-            };
-            v.to_ne_bytes()
-        })
-        .collect();
+    let (height, lo, hi) = heights_16(&heights);
     drop(heights);
     let mut scene = String::from(
         "# relief endless-world bake: the world's parameters and the region baked.\n\
@@ -1293,25 +1277,7 @@ fn bake_endless(params: &WorldParams, region: &Region, dir: &Path, timings: bool
         f64::from(lo),
         f64::from(hi),
     ));
-    let files: [(&str, FileWriter); 4] = [
-        (
-            "height.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::L16, &height)),
-        ),
-        (
-            "normal.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &normal)),
-        ),
-        (
-            "color.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &color)),
-        ),
-        (
-            "scene.toml",
-            Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
-        ),
-    ];
-    write_all(dir, &files)?;
+    write_bake(dir, size, &height, &normal, &color, &scene)?;
     println!(
         "baked {size}x{size} samples every {} m of region {} into {}: heights {lo:.3}..{hi:.3} m map to 0..65535",
         crate::table::number(spacing),
@@ -1510,6 +1476,59 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
+/// Heights as 16-bit PNG samples spanning their range, with the range. A flat bake has no range
+/// to spread over 0..65535: every sample is 0, and the scene file's min = max says so.
+fn heights_16(heights: &[f32]) -> (Vec<u8>, f32, f32) {
+    let (lo, hi) = heights
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        });
+    let span = hi - lo;
+    let bytes = heights
+        .iter()
+        .flat_map(|&h| {
+            let v = if span > 0.0 {
+                ((h - lo) / span * 65535.0).round() as u16
+            } else {
+                0
+            };
+            v.to_ne_bytes()
+        })
+        .collect();
+    (bytes, lo, hi)
+}
+
+/// Writes a bake's four files into `dir`, all or none.
+fn write_bake(
+    dir: &Path,
+    size: u32,
+    height: &[u8],
+    normal: &[u8],
+    color: &[u8],
+    scene: &str,
+) -> Result<()> {
+    let files: [(&str, FileWriter); 4] = [
+        (
+            "height.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::L16, height)),
+        ),
+        (
+            "normal.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, normal)),
+        ),
+        (
+            "color.png",
+            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, color)),
+        ),
+        (
+            "scene.toml",
+            Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
+        ),
+    ];
+    write_all(dir, &files)
+}
+
 fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     check_out_dir(dir)?;
     let gpu = Gpu::new()?;
@@ -1559,50 +1578,15 @@ fn bake(params: &TerrainParams, dir: &Path, timings: bool) -> Result<()> {
     )?;
     drop(terrain);
 
-    let (lo, hi) = heights
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
-            (lo.min(h), hi.max(h))
-        });
-    // A flat bake has no range to spread over 0..65535: every texel is written as 0, and the
-    // scene file's height_min = height_max says so.
+    let (height, lo, hi) = heights_16(&heights);
     let span = hi - lo;
-    let height: Vec<u8> = heights
-        .iter()
-        .flat_map(|&h| {
-            let v = if span > 0.0 {
-                ((h - lo) / span * 65535.0).round() as u16
-            } else {
-                0
-            };
-            v.to_ne_bytes()
-        })
-        .collect();
     drop(heights);
     let scene = params.to_scene_string(Some(BakeInfo {
         height_min: f64::from(lo),
         height_max: f64::from(hi),
     }));
 
-    let files: [(&str, FileWriter); 4] = [
-        (
-            "height.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::L16, &height)),
-        ),
-        (
-            "normal.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &normal)),
-        ),
-        (
-            "color.png",
-            Box::new(|p| encode_png(p, size, size, image::ColorType::Rgb8, &color)),
-        ),
-        (
-            "scene.toml",
-            Box::new(|p| std::fs::write(p, scene.as_bytes()).map_err(|e| Error::io(p, e))),
-        ),
-    ];
-    write_all(dir, &files)?;
+    write_bake(dir, size, &height, &normal, &color, &scene)?;
     if span > 0.0 {
         println!(
             "baked {size}x{size} into {}: heights {lo:.6}..{hi:.6} map to 0..65535",

@@ -34,15 +34,7 @@ pub fn read_entries(path: &Path) -> Result<Entries> {
         path: path.to_owned(),
         message,
     };
-    let len = std::fs::metadata(path)
-        .map_err(|e| fail(e.to_string()))?
-        .len();
-    if len > MAX_SCENE_BYTES {
-        return Err(fail(format!(
-            "{len} bytes; a scene file is at most {MAX_SCENE_BYTES}"
-        )));
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    let text = read_text(path)?;
     parse_entries(&text).map_err(|e| match e {
         Error::SceneFile { message, .. } => fail(message),
         other => fail(other.to_string()),
@@ -89,8 +81,8 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
     Ok(out)
 }
 
-/// A scene file's TOML, checked for size and syntax; errors name the file.
-fn load(path: &Path) -> Result<toml::Table> {
+/// A scene file's text, at most [`MAX_SCENE_BYTES`]; errors name the file.
+fn read_text(path: &Path) -> Result<String> {
     let fail = |message: String| Error::SceneFile {
         path: path.to_owned(),
         message,
@@ -103,9 +95,17 @@ fn load(path: &Path) -> Result<toml::Table> {
             "{len} bytes; a scene file is at most {MAX_SCENE_BYTES}"
         )));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
-    text.parse()
-        .map_err(|e: toml::de::Error| fail(table::shorten_to(&one_line(&e.to_string()), 160)))
+    std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))
+}
+
+/// A scene file's TOML, checked for size and syntax; errors name the file.
+fn load(path: &Path) -> Result<toml::Table> {
+    read_text(path)?
+        .parse()
+        .map_err(|e: toml::de::Error| Error::SceneFile {
+            path: path.to_owned(),
+            message: table::shorten_to(&one_line(&e.to_string()), 160),
+        })
 }
 
 /// The world a scene file describes: its `world` key (`"tile"` or `"endless"`), tile without one.

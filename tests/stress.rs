@@ -85,12 +85,18 @@ fn counts(device: &wgpu::Device) -> [isize; 5] {
     ]
 }
 
-/// The tests here measure the process's resident memory: they run one at a time.
-static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+/// The GPU the stress tests run on: a device whose uncaptured errors are collected, the
+/// targets, and a small colour and depth attachment for them.
+struct Setup {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    uncaptured: Arc<Mutex<Vec<String>>>,
+    targets: relief::Targets,
+    color: wgpu::TextureView,
+    depth: wgpu::TextureView,
+}
 
-#[test]
-fn a_thousand_random_changes_leave_no_trace() {
-    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+fn setup() -> Setup {
     let instance =
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
@@ -127,6 +133,30 @@ fn a_thousand_random_changes_leave_no_trace() {
     };
     let color = make(targets.color_format, "stress:color");
     let depth = make(wgpu::TextureFormat::Depth32Float, "stress:depth");
+    Setup {
+        device,
+        queue,
+        uncaptured,
+        targets,
+        color,
+        depth,
+    }
+}
+
+/// The tests here measure the process's resident memory: they run one at a time.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+#[test]
+fn a_thousand_random_changes_leave_no_trace() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let Setup {
+        device,
+        queue,
+        uncaptured,
+        targets,
+        color,
+        depth,
+    } = setup();
     let start = TerrainParams {
         size: 64,
         grid: 32,
@@ -276,41 +306,14 @@ fn a_thousand_random_changes_leave_no_trace() {
 fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     use relief::{World, WorldParams, WorldView};
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
-        "the stress test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
-    );
-    let (device, queue) =
-        pollster::block_on(adapter.request_device(&Default::default())).expect("device");
-    let uncaptured = Arc::new(Mutex::new(Vec::<String>::new()));
-    let sink = uncaptured.clone();
-    device.on_uncaptured_error(Arc::new(move |e| sink.lock().unwrap().push(e.to_string())));
-    let targets = relief::Targets {
-        color_format: wgpu::TextureFormat::Rgba8UnormSrgb,
-        depth_format: Some(wgpu::TextureFormat::Depth32Float),
-        sample_count: 1,
-    };
-    let make = |format, label| {
-        device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: 64,
-                    height: 48,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
-            .create_view(&Default::default())
-    };
-    let color = make(targets.color_format, "stress:color");
-    let depth = make(wgpu::TextureFormat::Depth32Float, "stress:depth");
+    let Setup {
+        device,
+        queue,
+        uncaptured,
+        targets,
+        color,
+        depth,
+    } = setup();
     let mut start = WorldParams::default();
     start.land.octaves = 8;
     start.land.feature_log2 = 9;
