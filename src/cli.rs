@@ -1114,14 +1114,11 @@ fn world_view(camera: &Camera, params: &WorldParams, size: (u32, u32)) -> WorldV
         };
         return path.view(|x, z| land.height_at(x, z), t, size);
     }
-    let eye = camera.eye.map_or_else(
-        || glam::DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0),
-        glam::DVec3::from,
-    );
-    let target = camera.look_at.map_or_else(
-        || eye + glam::DVec3::new(7000.0, -1000.0, 3000.0),
-        glam::DVec3::from,
-    );
+    let (default_eye, default_target) = crate::gpu::world::default_camera(land);
+    let eye = camera.eye.map_or(default_eye, glam::DVec3::from);
+    let target = camera
+        .look_at
+        .map_or_else(|| eye + (default_target - default_eye), glam::DVec3::from);
     let fov = camera.fov_deg.unwrap_or(45.0).to_radians();
     WorldView::look_at(eye, target, fov, size)
 }

@@ -81,8 +81,17 @@ async function main() {
     return;
   }
 
-  buildControls(JSON.parse(relief.params_table()));
-  showValues(parseQuery(relief.default_query()));
+  // The endless world (world=endless in the URL) has its own parameters and a fly camera.
+  const endless = new URLSearchParams(location.search).get("world") === "endless";
+  buildControls(JSON.parse(endless ? relief.world_params_table() : relief.params_table()));
+  showValues(parseQuery(endless ? relief.default_world_query() : relief.default_query()));
+  $("#switch-world").textContent = endless ? "the tile" : "endless world";
+  $("#switch-world").title = endless
+    ? "back to the seed blog's tile, seen from outside"
+    : "a landscape to the horizon: WASD or arrows fly, Q/E down and up, drag to look, wheel for speed, P follows a path";
+  $("#relief").setAttribute("aria-label", endless
+    ? "landscape view: WASD or arrows fly, Q and E go down and up, drag to look, wheel for speed, P follows a path"
+    : "terrain view: drag to orbit, wheel or pinch to zoom");
   $("#controls").hidden = false;
 
   // relief reports the options in force; the URL and the controls follow them (a refused
@@ -106,6 +115,9 @@ async function main() {
     };
     input.addEventListener(input.type === "range" ? "input" : "change", send);
   }
+  $("#switch-world").addEventListener("click", () => {
+    location.search = endless ? "" : "?world=endless";
+  });
   $("#reseed").addEventListener("click", () => {
     const seed = (Math.random() * 4294967295) >>> 0;
     relief.set_param("seed", String(seed));

@@ -289,7 +289,14 @@ impl App {
         let mut options = self.options;
         options.set(key, value)?;
         if let Some(s) = &mut self.state {
-            s.terrain.set_params(&s.device, &s.queue, options.params)?;
+            match (&mut s.world, options.world) {
+                (Some(world), Some((params, _))) => world.set_params(&s.device, params)?,
+                _ => {
+                    s.terrain
+                        .set_params(&s.device, &s.queue, options.params)
+                        .map(|_| ())?;
+                }
+            }
         }
         self.options = options;
         self.keep_camera_above();
@@ -532,7 +539,14 @@ impl App {
             self.fps_window = (now, self.stats.frames);
             let describe = s.describe.clone();
             self.report.stats(&describe, &self.stats, false);
-            if self.fly.is_none() && self.options.animating() {
+            if let (Some(fly), Some((_, camera))) = (&self.fly, &mut self.options.world) {
+                // The moving camera reaches the URL twice a second.
+                if *camera != *fly || self.options.path != self.path.is_some() {
+                    *camera = *fly;
+                    self.options.path = self.path.is_some();
+                    self.report.options(&self.options);
+                }
+            } else if self.options.animating() {
                 // The scrolling offset reaches the URL twice a second.
                 self.report.options(&self.options);
             }

@@ -104,6 +104,25 @@ impl AppOptions {
     pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
         let key = key.trim().replace('-', "_");
         let mut next = *self;
+        if let Some((world, _)) = &mut next.world {
+            let row = crate::world::world_param(&key)
+                .filter(|r| r.key == key)
+                .ok_or_else(|| {
+                    Error::invalid(
+                        "key",
+                        crate::table::shorten(&key),
+                        crate::world::WORLD_PARAMS
+                            .iter()
+                            .map(|r| r.key)
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                    )
+                })?;
+            row.set_text(world, value)?;
+            world.validate()?;
+            *self = next;
+            return Ok(());
+        }
         if let Some(row) = OPTIONS.iter().find(|p| p.key == key) {
             row.set_text(&mut next, value)?;
         } else if crate::params::param(&key).is_some() {
@@ -132,6 +151,26 @@ impl AppOptions {
                 let (k, v) = pair.split_once('=').unwrap_or((pair, ""));
                 (percent_decode(k), percent_decode(v))
             })
+            .collect();
+        let world = pairs
+            .iter()
+            .rev()
+            .find(|(k, _)| k.trim() == "world")
+            .map(|(_, v)| v.trim().to_owned());
+        match world.as_deref() {
+            Some("endless") => return self.apply_world_query(&pairs),
+            None | Some("tile") => {}
+            Some(other) => ignored.push(Ignored {
+                key: "world".into(),
+                reason: format!(
+                    "invalid world: {} (allowed: tile or endless)",
+                    crate::table::shorten(other)
+                ),
+            }),
+        }
+        let pairs: Vec<(String, String)> = pairs
+            .into_iter()
+            .filter(|(k, _)| k.trim() != "world")
             .collect();
         // Window keys and single scene keys first, then the scene as a whole: octaves and
         // frequency are checked together, in either order in the URL.
@@ -184,7 +223,119 @@ impl AppOptions {
     }
 
     /// The query string that reproduces these options (every key, in table order).
+    /// [`AppOptions::apply_query`] for `world=endless`: the endless world's keys and its
+    /// camera (`camera=fly|path`, `eye=X,Y,Z`, `look_at=X,Y,Z`, `fov=DEG`).
+    fn apply_world_query(&mut self, pairs: &[(String, String)]) -> Vec<Ignored> {
+        use crate::world::{world_param, WorldParams};
+        let mut ignored = Vec::new();
+        let mut skip = |key: &str, reason: String| {
+            ignored.push(Ignored {
+                key: crate::table::shorten(key),
+                reason,
+            })
+        };
+        let mut world = WorldParams::default();
+        let (mut eye, mut look_at, mut fov, mut path) = (None, None, 45f32, false);
+        let point = |v: &str| -> Option<glam::DVec3> {
+            let p: Vec<f64> = v
+                .split(',')
+                .map(|t| t.trim().parse().ok())
+                .collect::<Option<_>>()?;
+            (p.len() == 3 && p.iter().all(|c| c.is_finite() && c.abs() <= 1e9))
+                .then(|| glam::DVec3::new(p[0], p[1], p[2]))
+        };
+        for (k, v) in pairs {
+            let key = k.trim().replace('-', "_");
+            match key.as_str() {
+                "world" => {}
+                "camera" => match v.trim() {
+                    "fly" => path = false,
+                    "path" => path = true,
+                    other => skip(
+                        &key,
+                        format!(
+                            "invalid camera: {} (allowed: fly or path)",
+                            crate::table::shorten(other)
+                        ),
+                    ),
+                },
+                "eye" | "look_at" => match point(v) {
+                    Some(p) if key == "eye" => eye = Some(p),
+                    Some(p) => look_at = Some(p),
+                    None => skip(
+                        &key,
+                        format!(
+                            "invalid {key}: {} (allowed: X,Y,Z, finite, within ±1e9)",
+                            crate::table::shorten(v)
+                        ),
+                    ),
+                },
+                "fov" => match v.trim().parse::<f32>() {
+                    Ok(d) if (1.0..=179.0).contains(&d) => fov = d,
+                    _ => skip(
+                        &key,
+                        format!(
+                            "invalid fov: {} (allowed: 1..=179)",
+                            crate::table::shorten(v)
+                        ),
+                    ),
+                },
+                _ => match world_param(&key).filter(|r| r.key == key) {
+                    Some(row) => {
+                        let mut next = world;
+                        match row.set_text(&mut next, v).and_then(|()| next.validate()) {
+                            Ok(()) => world = next,
+                            Err(e) => skip(&key, e.to_string()),
+                        }
+                    }
+                    None => skip(
+                        &key,
+                        format!(
+                            "invalid key: {} (the endless world's keys: world, {}, camera, eye, \
+                             look_at, fov)",
+                            crate::table::shorten(&key),
+                            crate::world::WORLD_PARAMS
+                                .iter()
+                                .map(|r| r.key)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ),
+                },
+            }
+        }
+        let (default_eye, default_target) = crate::gpu::world::default_camera(&world.land);
+        let eye = eye.unwrap_or(default_eye);
+        let mut target = look_at.unwrap_or(eye + (default_target - default_eye));
+        if (target - eye).length() < 1e-3 {
+            skip("look_at", "invalid look_at: the eye's own position".into());
+            target = eye + (default_target - default_eye);
+        }
+        let fly = crate::FlyCamera::looking_at(eye, target, fov.to_radians());
+        self.world = Some((world, fly));
+        self.path = path;
+        ignored
+    }
+
     pub fn to_query(&self) -> String {
+        if let Some((world, fly)) = &self.world {
+            let round = |v: f64| (v * 10.0).round() / 10.0;
+            let p = |v: glam::DVec3| format!("{}%2C{}%2C{}", round(v.x), round(v.y), round(v.z));
+            let keys = crate::world::WORLD_PARAMS
+                .iter()
+                .map(|r| format!("{}={}", r.key, url_value((r.get)(world))));
+            let camera = [
+                format!("camera={}", if self.path { "path" } else { "fly" }),
+                format!("eye={}", p(fly.eye)),
+                format!("look_at={}", p(fly.eye + fly.forward() * 1000.0)),
+                format!("fov={}", round(f64::from(fly.fov_y.to_degrees()))),
+            ];
+            return std::iter::once("world=endless".to_owned())
+                .chain(keys)
+                .chain(camera)
+                .collect::<Vec<_>>()
+                .join("&");
+        }
         let scene = params().map(|p| (p.key, (p.get)(&self.params)));
         let window = OPTIONS.iter().map(|p| (p.key, (p.get)(self)));
         scene
@@ -242,6 +393,42 @@ fn percent_decode(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_endless_world_in_the_url() {
+        let mut o = AppOptions::default();
+        let ignored = o.apply_query(
+            "world=endless&seed=3&peak_height=900&eye=10,2000,-5&look_at=900,1500,40&fov=60&camera=path&size=64&gain=7",
+        );
+        let keys: Vec<&str> = ignored.iter().map(|i| i.key.as_str()).collect();
+        assert_eq!(keys, ["size", "gain"], "{ignored:?}");
+        let (world, fly) = o.world.expect("endless");
+        assert_eq!((world.land.seed, world.land.peak_height), (3, 900.0));
+        assert!(o.path);
+        assert_eq!(fly.eye, glam::DVec3::new(10.0, 2000.0, -5.0));
+        assert!((fly.fov_y.to_degrees() - 60.0).abs() < 1e-4);
+        // The URL it leaves gives the same world and camera (to a tenth of a metre).
+        let query = o.to_query();
+        assert!(query.starts_with("world=endless&"), "{query}");
+        let mut again = AppOptions::default();
+        assert!(again.apply_query(&query).is_empty(), "{query}");
+        let (w2, f2) = again.world.unwrap();
+        assert_eq!(w2, world);
+        assert!(again.path);
+        assert!(
+            (f2.eye - fly.eye).length() < 0.1 && (f2.forward() - fly.forward()).length() < 1e-3
+        );
+        // Controls set the world's keys; the tile's are refused there.
+        o.set("seed", "9").unwrap();
+        assert_eq!(o.world.unwrap().0.land.seed, 9);
+        assert!(o.set("size", "64").is_err());
+        assert!(o.set("feature_size", "1000").is_err());
+        // A bad world name is reported and the tile applies.
+        let mut t = AppOptions::default();
+        let ignored = t.apply_query("world=moon&seed=4");
+        assert_eq!(ignored.len(), 1);
+        assert!(t.world.is_none() && t.params.seed == 4);
+    }
 
     #[test]
     fn query_round_trip() {

@@ -104,6 +104,22 @@ pub fn params_table() -> String {
     format!("[{}]", rows.join(","))
 }
 
+/// The endless world's controls (`world=endless` in the URL), as [`params_table`] gives the
+/// tile's.
+#[wasm_bindgen]
+pub fn world_params_table() -> String {
+    let rows: Vec<String> = crate::world::WORLD_PARAMS.iter().map(row_json).collect();
+    format!("[{}]", rows.join(","))
+}
+
+/// The endless world's default options as a query string.
+#[wasm_bindgen]
+pub fn default_world_query() -> String {
+    let mut o = AppOptions::default();
+    o.apply_query("world=endless");
+    o.to_query()
+}
+
 fn json_str(s: &str) -> String {
     let mut out = String::from("\"");
     for c in s.chars() {

@@ -31,6 +31,14 @@ pub struct WorldView {
     pub crop: Mat4,
 }
 
+/// The endless world's default camera (chosen by eye): 1200 m above the ground at
+/// (2000, -3000), looking east-north-east and a little down over ridges running out to the
+/// horizon. Returns the eye and the point looked at.
+pub fn default_camera(land: &crate::landscape::Landscape) -> (DVec3, DVec3) {
+    let eye = DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0);
+    (eye, eye + DVec3::new(7000.0, -1000.0, 3000.0))
+}
+
 impl WorldView {
     /// A view from `eye` towards `target` with a vertical field of view of `fov_y` radians.
     pub fn look_at(eye: DVec3, target: DVec3, fov_y: f32, size: (u32, u32)) -> Self {

@@ -10,7 +10,8 @@
 //      parameter table reaches the page through its URL;
 //   5. without --enable-unsafe-webgpu the page shows the no-WebGPU message, panel hidden;
 //   6. with WebGPU that cannot present (no SwiftShader flags), the device is lost on the first
-//      frame: the page says so, tries a new device once, then says it stopped.
+//      frame: the page says so, tries a new device once, then says it stopped;
+//   7. the endless world (world=endless): its own controls, its camera in the URL, W flies.
 // Usage: node web/test/page.mjs (from the repository root, after web/build.sh).
 
 import { chromium } from "playwright-core";
@@ -24,6 +25,8 @@ fs.mkdirSync(out, { recursive: true });
 const W = 256, H = 192;
 // The scene shared with the native render in run.sh.
 const SCENE = "seed=7&size=256&grid=128&paused=1";
+// The endless world's view shared with the native render in run.sh.
+const ENDLESS = "world=endless&seed=3&pixel_error=16";
 
 const types = { ".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript",
   ".css": "text/css", ".wasm": "application/wasm", ".png": "image/png" };
@@ -134,6 +137,45 @@ await withBrowser(webgpu, async (browser) => {
   } catch (e) {
     console.log(`note: no full-page screenshot (${String(e).split("\n")[0]})`);
   }
+});
+
+await withBrowser(webgpu, async (browser) => {
+  // The endless world: its own controls, the camera in the URL, and flying with the keys.
+  const errors = [];
+  const page = await openPage(browser, `${base}/index.html?${ENDLESS}`, errors);
+  await page.waitForFunction(() => document.body.dataset.frames || document.body.dataset.error,
+    null, { timeout: 120000 });
+  const early = await page.evaluate(() => document.body.dataset.error || "");
+  check(early === "", `the endless world started (error: ${early || "none"})`);
+  await waitFrames(page, 2);
+  const before = await shot(page, "page-endless.png");
+  const q0 = await page.evaluate(() => document.body.dataset.query || "");
+  check(q0.startsWith("world=endless") && /eye=[-0-9.]+%2C/.test(q0) && q0.includes("seed=3"),
+    `the endless world's URL holds its keys and camera (${q0.slice(0, 100)}...)`);
+  const controls = await page.evaluate(() => ["peak_height", "pixel_error", "terrain", "size", "grid"]
+    .map((k) => !!document.querySelector(`[data-key="${k}"]`)));
+  check(controls.join() === "true,true,true,false,false",
+    `the endless world's controls, not the tile's (${controls.join()})`);
+  const f0 = Number(await page.evaluate(() => document.body.dataset.frames));
+  await page.locator("#relief").focus();
+  await page.keyboard.down("w");
+  await page.waitForTimeout(1500);
+  await page.keyboard.up("w");
+  const moved = await page.waitForFunction((q) => (document.body.dataset.query || "") !== q, q0,
+    { timeout: 30000 }).then(() => true, () => false);
+  await waitFrames(page, 1);
+  const f1 = Number(await page.evaluate(() => document.body.dataset.frames));
+  const after = await shot(page, "page-endless-flown.png");
+  const q1 = await page.evaluate(() => document.body.dataset.query || "");
+  const eye = (q) => (q.match(/eye=([^&]*)/) || [])[1];
+  check(moved && f1 > f0 + 2 && !after.equals(before) && eye(q1) !== eye(q0),
+    `holding W flies: ${f1 - f0} frames, eye ${eye(q0)} -> ${eye(q1)}`);
+  await page.fill('input[data-key="seed"]', "4");
+  await page.dispatchEvent('input[data-key="seed"]', "change");
+  const reseeded = await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=4"),
+    null, { timeout: 30000 }).then(() => true, () => false);
+  check(reseeded, "a control of the endless world changes it");
+  check(errors.length === 0, `no console errors in the endless world (${errors.join(" | ") || "none"})`);
 });
 
 await withBrowser(webgpu, async (browser) => {
