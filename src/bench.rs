@@ -601,9 +601,7 @@ pub fn pareto(rows: &[Row]) -> Vec<usize> {
 /// Writes the chart (error against GPU time, log axes, a series per method, the Pareto front,
 /// the default labelled) as `stem.png` and `stem.svg`.
 pub fn chart(rows: &[Row], title: &str, stem: &Path) -> Result<()> {
-    let font = load_font()?;
-    plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font)
-        .map_err(|_| Error::Device("could not register the chart font".into()))?;
+    register_font()?;
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     draw_chart(
@@ -628,6 +626,13 @@ pub const FONT_PATHS: [&str; 3] = [
     "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
     "/usr/share/fonts/truetype/noto/NotoSans-Regular.ttf",
 ];
+
+/// Makes the chart font (see [`FONT_PATHS`]) plotters' "sans-serif".
+pub(crate) fn register_font() -> Result<()> {
+    let font = load_font()?;
+    plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font)
+        .map_err(|_| Error::Device("could not register the chart font".into()))
+}
 
 fn load_font() -> Result<&'static [u8]> {
     let from_env = std::env::var("RELIEF_FONT").ok();

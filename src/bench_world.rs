@@ -3,7 +3,7 @@
 //! flight along a path: triangles, texels baked per frame, the screen-error bound and GPU
 //! times (warm-up, then the median), written as `landscape.csv`.
 
-use crate::bench::{measure, Options};
+use crate::bench::{log_ticks, measure, tick_label, Options, CHART_SIZE};
 use crate::error::Result;
 use crate::gpu::headless::{world_screen_error, Gpu, Offscreen, ScreenError, RENDER_SAMPLES};
 use crate::gpu::timing::{GpuTimer, Slot};
@@ -297,4 +297,136 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         ));
     }
     out
+}
+
+/// Charts the views' rows (not the flight): measured screen error and GPU render time against
+/// triangles, one line per view through the knobs, as `stem`.png and `stem`.svg.
+pub fn chart(rows: &[WorldRow], title: &str, stem: &std::path::Path) -> Result<()> {
+    crate::bench::register_font()?;
+    let svg = stem.with_extension("svg");
+    let png = stem.with_extension("png");
+    draw(
+        plotters::backend::SVGBackend::new(&svg, CHART_SIZE),
+        rows,
+        title,
+    )
+    .map_err(|e| crate::Error::io(&svg, std::io::Error::other(e)))?;
+    draw(
+        plotters::backend::BitMapBackend::new(&png, CHART_SIZE),
+        rows,
+        title,
+    )
+    .map_err(|e| crate::Error::io(&png, std::io::Error::other(e)))?;
+    Ok(())
+}
+
+fn draw<DB: plotters::prelude::DrawingBackend>(
+    backend: DB,
+    rows: &[WorldRow],
+    title: &str,
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let root = root
+        .titled(title, ("sans-serif", 20))
+        .map_err(|e| e.to_string())?;
+    let (left, right) = root.split_horizontally(CHART_SIZE.0 / 2);
+    let views: Vec<&str> = {
+        let mut v: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.measured.is_some()) {
+            if !v.contains(&r.view.as_str()) {
+                v.push(&r.view);
+            }
+        }
+        v
+    };
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+    ];
+    let span = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
+        (lo.max(1e-4) / 1.4, hi.max(1e-4) * 1.4)
+    };
+    let tri = span(
+        &mut rows
+            .iter()
+            .filter(|r| r.measured.is_some())
+            .map(|r| r.triangles as f64),
+    );
+    type Pick = fn(&WorldRow) -> Option<f64>;
+    let panels: [(&DrawingArea<DB, plotters::coord::Shift>, &str, Pick); 2] = [
+        (&left, "measured max screen error, px (log)", |r| {
+            r.measured.map(|m| m.max)
+        }),
+        (&right, "GPU render time, ms (log)", |r| r.render_ms),
+    ];
+    for (area, desc, pick) in panels {
+        let ys = span(
+            &mut rows
+                .iter()
+                .filter(|r| r.measured.is_some())
+                .filter_map(pick),
+        );
+        let mut chart = ChartBuilder::on(area)
+            .margin(16)
+            .x_label_area_size(44)
+            .y_label_area_size(56)
+            .build_cartesian_2d(
+                (tri.0..tri.1)
+                    .log_scale()
+                    .with_key_points(log_ticks(tri.0, tri.1, 4)),
+                (ys.0..ys.1)
+                    .log_scale()
+                    .with_key_points(log_ticks(ys.0, ys.1, 4)),
+            )
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_label_formatter(&|v| tick_label(*v / 1e6) + "M")
+            .y_label_formatter(&|v| tick_label(*v))
+            .x_desc("triangles drawn (log)")
+            .y_desc(desc)
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 14))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (i, view) in views.iter().enumerate() {
+            let color = colors[i % colors.len()];
+            let pts: Vec<(f64, f64, f64)> = rows
+                .iter()
+                .filter(|r| r.view == *view && r.measured.is_some())
+                .filter_map(|r| pick(r).map(|y| (r.triangles as f64, y.max(1e-4), r.pixel_error)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(
+                    pts.iter().map(|p| (p.0, p.1)),
+                    color.stroke_width(1),
+                ))
+                .map_err(|e| e.to_string())?
+                .label(*view)
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
+            chart
+                .draw_series(pts.iter().map(|p| {
+                    EmptyElement::at((p.0, p.1))
+                        + Circle::new((0, 0), 4, color.filled())
+                        + Text::new(format!("{} px", p.2), (6, -14), ("sans-serif", 12))
+                }))
+                .map_err(|e| e.to_string())?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }
+    root.present().map_err(|e| e.to_string())
 }

@@ -189,8 +189,8 @@ pub fn command() -> Command {
             .value_name("WORLD")
             .help(format!(
                 "tile (the seed blog's periodic tile, seen from outside) or endless (a landscape \
-                 in metres to the horizon, flown through in the window, baked by region; not yet \
-                 in scene files or the page) [default: tile] [allowed: {}]",
+                 in metres to the horizon: render, bake --region, height, bench, the window, the \
+                 page and scene files) [default: tile] [allowed: {}]",
                 WORLDS.allowed()
             )),
     )
@@ -1363,9 +1363,14 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
     let created = create_dirs(dir)?;
     let path = dir.join("landscape.csv");
     let tmp = temp_name(&path);
+    let title = format!(
+        "relief: the endless world's LOD on {} (knob in px beside each point)",
+        gpu.describe()
+    );
     let result = std::fs::write(&tmp, csv)
         .map_err(|e| Error::io(&tmp, e))
-        .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e)));
+        .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e)))
+        .and_then(|()| crate::bench_world::chart(&rows, &title, &dir.join("landscape")));
     if result.is_err() {
         if let Some(c) = created {
             let _ = std::fs::remove_dir_all(c);

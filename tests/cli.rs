@@ -1064,6 +1064,10 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         stdout.split_once('\n').unwrap().1,
         "printed and written differ"
     );
+    assert_eq!(
+        files_in(&out),
+        ["landscape.csv", "landscape.png", "landscape.svg"]
+    );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
     // Three views at two knobs, and the flight.
