@@ -92,6 +92,7 @@ async function main() {
   $("#relief").setAttribute("aria-label", endless
     ? "landscape view: WASD or arrows fly, Q and E go down and up, drag to look, wheel for speed, P follows a path"
     : "terrain view: drag to orbit, wheel or pinch to zoom");
+  $("#hint").hidden = !endless;
   $("#controls").hidden = false;
 
   // relief reports the options in force; the URL and the controls follow them (a refused

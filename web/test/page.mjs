@@ -176,6 +176,18 @@ await withBrowser(webgpu, async (browser) => {
     null, { timeout: 30000 }).then(() => true, () => false);
   check(reseeded, "a control of the endless world changes it");
   check(errors.length === 0, `no console errors in the endless world (${errors.join(" | ") || "none"})`);
+
+  // The picture for the README (not a check): the whole page in the endless world.
+  try {
+    const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
+    await full.goto(`${base}/index.html?world=endless&pixel_error=6`);
+    await waitFrames(full, 2);
+    await full.waitForFunction(() => /fps|idle/.test(document.querySelector("#readout").textContent), null,
+      { timeout: 60000 });
+    await full.screenshot({ path: path.join(out, "page-endless-full.png") });
+  } catch (e) {
+    console.log(`note: no full-page screenshot of the endless world (${String(e).split("\n")[0]})`);
+  }
 });
 
 await withBrowser(webgpu, async (browser) => {
