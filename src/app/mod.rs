@@ -232,7 +232,8 @@ impl App {
             camera: OrbitCamera::default(),
             fly: options.world.map(|(_, fly)| fly),
             held: HashSet::new(),
-            path: (options.world.is_some() && options.path).then(|| (PathCamera::default(), 0.0)),
+            path: (options.world.is_some() && options.path)
+                .then(|| (PathCamera::default(), options.path_time)),
             drag: None,
             cursor: (0.0, 0.0),
             touches: HashMap::new(),
@@ -544,6 +545,7 @@ impl App {
                 if *camera != *fly || self.options.path != self.path.is_some() {
                     *camera = *fly;
                     self.options.path = self.path.is_some();
+                    self.options.path_time = self.path.map_or(0.0, |(_, t)| t);
                     self.report.options(&self.options);
                 }
             } else if self.options.animating() {

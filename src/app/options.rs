@@ -30,6 +30,8 @@ pub struct AppOptions {
     /// In the endless world, start on the fly-through path ([`crate::PathCamera`]) rather than
     /// flying freely (P switches between them).
     pub path: bool,
+    /// Seconds along the path (`time` in the URL).
+    pub path_time: f64,
 }
 
 impl Default for AppOptions {
@@ -41,6 +43,7 @@ impl Default for AppOptions {
             timings: false,
             world: None,
             path: false,
+            path_time: 0.0,
         }
     }
 }
@@ -270,6 +273,19 @@ impl AppOptions {
                         ),
                     ),
                 },
+                "time" => match v.trim().parse::<f64>() {
+                    Ok(t) if (0.0..=crate::PathCamera::MAX_TIME).contains(&t) => {
+                        self.path_time = t;
+                    }
+                    _ => skip(
+                        &key,
+                        format!(
+                            "invalid time: {} (allowed: 0..={} seconds)",
+                            crate::table::shorten(v),
+                            crate::PathCamera::MAX_TIME
+                        ),
+                    ),
+                },
                 "fov" => match v.trim().parse::<f32>() {
                     Ok(d) if (1.0..=179.0).contains(&d) => fov = d,
                     _ => skip(
@@ -292,7 +308,7 @@ impl AppOptions {
                         &key,
                         format!(
                             "invalid key: {} (the endless world's keys: world, {}, camera, eye, \
-                             look_at, fov)",
+                             look_at, fov, time)",
                             crate::table::shorten(&key),
                             crate::world::WORLD_PARAMS
                                 .iter()
@@ -324,12 +340,15 @@ impl AppOptions {
             let keys = crate::world::WORLD_PARAMS
                 .iter()
                 .map(|r| format!("{}={}", r.key, url_value((r.get)(world))));
-            let camera = [
+            let mut camera = vec![
                 format!("camera={}", if self.path { "path" } else { "fly" }),
                 format!("eye={}", p(fly.eye)),
                 format!("look_at={}", p(fly.eye + fly.forward() * 1000.0)),
                 format!("fov={}", round(f64::from(fly.fov_y.to_degrees()))),
             ];
+            if self.path {
+                camera.push(format!("time={}", round(self.path_time)));
+            }
             return std::iter::once("world=endless".to_owned())
                 .chain(keys)
                 .chain(camera)
@@ -417,6 +436,22 @@ mod tests {
         assert!(again.path);
         assert!(
             (f2.eye - fly.eye).length() < 0.1 && (f2.forward() - fly.forward()).length() < 1e-3
+        );
+        let mut timed = AppOptions::default();
+        assert!(timed
+            .apply_query("world=endless&camera=path&time=12.5")
+            .is_empty());
+        assert_eq!(timed.path_time, 12.5);
+        assert!(
+            timed.to_query().ends_with("time=12.5"),
+            "{}",
+            timed.to_query()
+        );
+        assert_eq!(
+            AppOptions::default()
+                .apply_query("world=endless&time=-1")
+                .len(),
+            1
         );
         // Controls set the world's keys; the tile's are refused there.
         o.set("seed", "9").unwrap();

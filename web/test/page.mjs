@@ -175,6 +175,15 @@ await withBrowser(webgpu, async (browser) => {
   const reseeded = await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=4"),
     null, { timeout: 30000 }).then(() => true, () => false);
   check(reseeded, "a control of the endless world changes it");
+  // On the path, the URL holds the camera mode and the time along it, and the time runs.
+  const onPath = await openPage(browser, `${base}/index.html?${ENDLESS}&camera=path&time=5`, errors);
+  await waitFrames(onPath, 3);
+  const runs = await onPath.waitForFunction(() => {
+    const m = (document.body.dataset.query || "").match(/camera=path&.*time=([0-9.]+)/);
+    return m && Number(m[1]) > 5;
+  }, null, { timeout: 60000 }).then(() => true, () => false);
+  const qp = await onPath.evaluate(() => document.body.dataset.query || "");
+  check(runs, `the path's camera and time reach the URL and the time runs (${qp.slice(qp.indexOf("camera="))})`);
   check(errors.length === 0, `no console errors in the endless world (${errors.join(" | ") || "none"})`);
 
   // The picture for the README (not a check): the whole page in the endless world.
