@@ -1,7 +1,8 @@
 //! The interactive window, shared by the native program and the web page: a winit app that
 //! hosts [`Terrain`](crate::Terrain) exactly as any embedding app would. Drag (or one finger)
 //! orbits, the wheel (or a pinch) zooms, Space pauses the scroll, R re-seeds, Escape quits
-//! (native).
+//! (native). In the endless world ([`crate::World`]) a fly camera moves instead: WASD or the
+//! arrows, Q/E down and up, Shift faster, drag to look, wheel for speed, P for the path.
 //!
 //! It draws only when something changed (input, the scroll animation, a parameter, a resize):
 //! a paused, untouched window or tab costs next to nothing, and its readout says it is idle.

@@ -1,6 +1,7 @@
 //! The web page's entry points (wasm32 only): `start` runs the shared app on the page's
 //! canvas; `set_param` is how the page's controls reach it; `params_table` tells the page which
-//! controls to build (from the same tables as the CLI's flags). The app reports back through
+//! controls to build (from the same tables as the CLI's flags), `world_params_table` the same
+//! for the endless world (`world=endless` in the URL). The app reports back through
 //! the DOM: `#readout` (frame rate, GPU times, idle), `#notice` (what the URL could not set,
 //! recoveries), `#error` (and `#fatal`, a banner, when relief stopped), and `data-frames` / `data-query` / `data-error` on `<body>` plus a
 //! `relief-options` event when the parameters change.
