@@ -871,6 +871,46 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         } else {
             assert_ne!(img, base, "{flag} {value} left the picture unchanged");
         }
+        // The same value as a scene-file key draws the same picture as the flag.
+        let scene = dir.join(format!("{}.toml", row.key));
+        let knob = if row.key == "pixel_error" {
+            String::new()
+        } else {
+            "pixel_error = 16\n".to_owned()
+        };
+        std::fs::write(
+            &scene,
+            format!(
+                "world = \"endless\"\n{knob}{} = {}\n",
+                row.key,
+                relief::scene::toml_value(row.parse(value).unwrap())
+            ),
+        )
+        .unwrap();
+        let out = dir.join(format!("{}-scene.png", row.key));
+        let (code, stdout, err) = relief(&[
+            "render",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "96",
+            "--height",
+            "64",
+            "--stats",
+        ]);
+        assert_eq!(code, 0, "{}: {err}", row.key);
+        assert_eq!(
+            image::open(&out).unwrap().into_rgb8().into_raw(),
+            img,
+            "{} = {value} in a scene file draws another picture than {flag} {value}",
+            row.key
+        );
+        assert!(
+            stdout.contains(&format!("triangles {}", stat(&s, "triangles"))),
+            "{stdout}"
+        );
     }
     // The camera flags move the camera.
     let (moved, _) = render_endless(&dir, "eye", &["--eye", "500,2400,-800"]);
@@ -1267,6 +1307,20 @@ fn endless_scene_files_and_camera_tables_round_trip() {
         &["--scene", with_camera.to_str().unwrap(), "--fov", "40"],
     );
     assert_ne!(a, c);
+    // The path and its time from [camera], as --camera path --time would place it.
+    let on_path = dir.join("path.toml");
+    std::fs::write(
+        &on_path,
+        "world = \"endless\"\nseed = 12\n[camera]\ncamera = \"path\"\ntime = 30\n",
+    )
+    .unwrap();
+    let (p_scene, _) = render_endless(&dir, "path-scene", &["--scene", on_path.to_str().unwrap()]);
+    let (p_flags, _) = render_endless(
+        &dir,
+        "path-flags",
+        &["--seed", "12", "--camera", "path", "--time", "30"],
+    );
+    assert_eq!(p_scene, p_flags);
     // Bad scene files: one line naming the file and what is wrong, nothing written.
     let bad = |name: &str, text: &str, needles: &[&str]| {
         let path = dir.join(name);

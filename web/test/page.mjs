@@ -175,6 +175,22 @@ await withBrowser(webgpu, async (browser) => {
   const reseeded = await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=4"),
     null, { timeout: 30000 }).then(() => true, () => false);
   check(reseeded, "a control of the endless world changes it");
+  // Every row of the endless world's table reaches it through the URL, and has its control.
+  const wrows = await page.evaluate(async () =>
+    JSON.parse((await import("./web/pkg/relief.js")).world_params_table()));
+  const walt = (r) => r.control === "select" ? r.choices[0] === "eroded" ? r.choices[1] : r.choices[0]
+    : r.key === "feature_size" ? "2048" : String(r.min + r.step);
+  const wurl = `${base}/index.html?world=endless&` + wrows.map((r) => `${r.key}=${walt(r)}`).join("&");
+  const wall = await openPage(browser, wurl, errors);
+  await waitFrames(wall, 1);
+  const wq = await wall.evaluate(() => document.body.dataset.query || "");
+  const wmissing = wrows.filter((r) => !wq.split("&").includes(`${r.key}=${walt(r)}`)).map((r) => r.key);
+  const wcontrols = wrows.filter((r) => r.control !== "none");
+  const wpresent = await wall.evaluate((keys) => keys.filter((k) => document.querySelector(`[data-key="${k}"]`)).length,
+    wcontrols.map((r) => r.key));
+  check(wmissing.length === 0 && wpresent === wcontrols.length,
+    `all ${wrows.length} endless-world rows set through the URL (missing: ${wmissing.join(",") || "none"}), ${wpresent} controls`);
+
   // On the path, the URL holds the camera mode and the time along it, and the time runs.
   const onPath = await openPage(browser, `${base}/index.html?${ENDLESS}&camera=path&time=5`, errors);
   await waitFrames(onPath, 3);
