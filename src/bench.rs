@@ -601,22 +601,26 @@ pub fn pareto(rows: &[Row]) -> Vec<usize> {
 /// Writes the chart (error against GPU time, log axes, a series per method, the Pareto front,
 /// the default labelled) as `stem.png` and `stem.svg`.
 pub fn chart(rows: &[Row], title: &str, stem: &Path) -> Result<()> {
+    write_chart(
+        stem,
+        |b| draw_chart(b, rows, title),
+        |b| draw_chart(b, rows, title),
+    )
+}
+
+/// Writes a chart as `stem`.svg and `stem`.png at [`CHART_SIZE`], with the chart font: `svg`
+/// and `png` draw the same chart on each backend.
+pub(crate) fn write_chart(
+    stem: &Path,
+    svg: impl FnOnce(plotters::backend::SVGBackend) -> std::result::Result<(), String>,
+    png: impl FnOnce(plotters::backend::BitMapBackend) -> std::result::Result<(), String>,
+) -> Result<()> {
     register_font()?;
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
-    draw_chart(
-        plotters::backend::SVGBackend::new(&svg, CHART_SIZE),
-        rows,
-        title,
-    )
-    .map_err(|e| Error::io(&svg, std::io::Error::other(e)))?;
-    draw_chart(
-        plotters::backend::BitMapBackend::new(&png, CHART_SIZE),
-        rows,
-        title,
-    )
-    .map_err(|e| Error::io(&png, std::io::Error::other(e)))?;
-    Ok(())
+    let (svg_path, png_path) = (stem.with_extension("svg"), stem.with_extension("png"));
+    svg(plotters::backend::SVGBackend::new(&svg_path, CHART_SIZE))
+        .map_err(|e| Error::io(&svg_path, std::io::Error::other(e)))?;
+    png(plotters::backend::BitMapBackend::new(&png_path, CHART_SIZE))
+        .map_err(|e| Error::io(&png_path, std::io::Error::other(e)))
 }
 
 /// Fonts the chart may use, first found wins (Debian's fonts-dejavu-core, or Liberation);
@@ -628,7 +632,7 @@ pub const FONT_PATHS: [&str; 3] = [
 ];
 
 /// Makes the chart font (see [`FONT_PATHS`]) plotters' "sans-serif".
-pub(crate) fn register_font() -> Result<()> {
+fn register_font() -> Result<()> {
     let font = load_font()?;
     plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font)
         .map_err(|_| Error::Device("could not register the chart font".into()))

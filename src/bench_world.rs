@@ -302,22 +302,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
 /// Charts the views' rows (not the flight): measured screen error and GPU render time against
 /// triangles, one line per view through the knobs, as `stem`.png and `stem`.svg.
 pub fn chart(rows: &[WorldRow], title: &str, stem: &std::path::Path) -> Result<()> {
-    crate::bench::register_font()?;
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
-    draw(
-        plotters::backend::SVGBackend::new(&svg, CHART_SIZE),
-        rows,
-        title,
-    )
-    .map_err(|e| crate::Error::io(&svg, std::io::Error::other(e)))?;
-    draw(
-        plotters::backend::BitMapBackend::new(&png, CHART_SIZE),
-        rows,
-        title,
-    )
-    .map_err(|e| crate::Error::io(&png, std::io::Error::other(e)))?;
-    Ok(())
+    crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
 }
 
 fn draw<DB: plotters::prelude::DrawingBackend>(

@@ -546,77 +546,37 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
         Some(p) => crate::scene::SceneCamera::read(p)?,
         None => Default::default(),
     };
-    let from_scene = |key: &str, value: String, allowed: String| Error::SceneFile {
-        path: scene_path.clone().unwrap_or_default(),
-        message: format!(
-            "invalid [camera] {key}: {} (allowed: {allowed})",
-            table::shorten(&value)
-        ),
+    // One part of the camera: the flag's text, else the scene's, read as `kind`; an error
+    // names where the bad value came from.
+    let part = |flag: &str, key: &str, scene: Option<String>, kind: Kind, unit: &str| {
+        let allowed = format!("{}{unit}", kind.allowed());
+        match (string(m, flag), scene) {
+            (Some(text), _) => kind
+                .parse(&text)
+                .map(Some)
+                .ok_or_else(|| Error::invalid(format!("--{flag}"), table::shorten(&text), allowed)),
+            (None, Some(text)) => kind.parse(&text).map(Some).ok_or_else(|| Error::SceneFile {
+                path: scene_path.clone().unwrap_or_default(),
+                message: format!(
+                    "invalid [camera] {key}: {} (allowed: {allowed})",
+                    table::shorten(&text)
+                ),
+            }),
+            (None, None) => Ok(None),
+        }
     };
-    let fov_deg = match string(m, "fov") {
-        Some(text) => match FOV.parse(&text) {
-            Some(Value::Float(v)) => Some(v),
-            _ => {
-                return Err(Error::invalid(
-                    "--fov",
-                    table::shorten(&text),
-                    format!("{} degrees", FOV.allowed()),
-                ))
-            }
-        },
-        None => match scene.fov {
-            Some(v) => match FOV.parse(&format!("{v:?}")) {
-                Some(Value::Float(v)) => Some(v),
-                _ => {
-                    return Err(from_scene(
-                        "fov",
-                        format!("{v:?}"),
-                        format!("{} degrees", FOV.allowed()),
-                    ))
-                }
-            },
-            None => None,
-        },
+    let number = |v: Option<f64>| v.map(|v| format!("{v:?}"));
+    let fov_deg = match part("fov", "fov", number(scene.fov), FOV, " degrees")? {
+        Some(Value::Float(v)) => Some(v),
+        _ => None,
     };
-    let kind = match (string(m, "camera"), &scene.camera) {
-        (Some(text), _) => match CAMERAS.parse(&text) {
-            Some(Value::Choice(name)) => Some(name),
-            _ => {
-                return Err(Error::invalid(
-                    "--camera",
-                    table::shorten(&text),
-                    CAMERAS.allowed(),
-                ))
-            }
-        },
-        (None, Some(text)) => match CAMERAS.parse(text) {
-            Some(Value::Choice(name)) => Some(name),
-            _ => return Err(from_scene("camera", text.clone(), CAMERAS.allowed())),
-        },
-        (None, None) => None,
+    let kind = match part("camera", "camera", scene.camera.clone(), CAMERAS, "")? {
+        Some(Value::Choice(name)) => Some(name),
+        _ => None,
     };
-    let time = match string(m, "time") {
-        Some(text) => match TIME.parse(&text) {
-            Some(Value::Float(t)) => Some(f64::from(t)),
-            _ => {
-                return Err(Error::invalid(
-                    "--time",
-                    table::shorten(&text),
-                    format!("{} seconds", TIME.allowed()),
-                ))
-            }
-        },
-        None => match scene.time {
-            Some(t) if (0.0..=f64::from(86_400.0f32)).contains(&t) => Some(t),
-            Some(t) => {
-                return Err(from_scene(
-                    "time",
-                    format!("{t:?}"),
-                    format!("{} seconds", TIME.allowed()),
-                ))
-            }
-            None => None,
-        },
+    let time = match part("time", "time", number(scene.time), TIME, " seconds")? {
+        Some(Value::Float(t)) => Some(f64::from(t)),
+        _ => None,
     };
     let endless = world_kind(m)? == WorldKind::Endless;
     match (kind, endless) {
@@ -635,11 +595,14 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
             Some(p) => Ok(Some(p)),
             None => match scene {
                 Some(p) if p.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORD) => Ok(Some(p)),
-                Some(p) => Err(from_scene(
-                    key,
-                    format!("{p:?}"),
-                    format!("[x, y, z], finite, each within ±{MAX_COORD:e}"),
-                )),
+                Some(p) => Err(Error::SceneFile {
+                    path: scene_path.clone().unwrap_or_default(),
+                    message: format!(
+                        "invalid [camera] {key}: {} (allowed: [x, y, z], finite, each within \
+                         ±{MAX_COORD:e})",
+                        table::shorten(&format!("{p:?}"))
+                    ),
+                }),
                 None => Ok(None),
             },
         }

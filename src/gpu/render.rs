@@ -106,50 +106,16 @@ impl MeshPass {
                 },
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("relief:render:pipeline-layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("relief:render:pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleStrip,
-                // Terrain can be seen from below when the camera dips under it; draw both sides.
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
-                format,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: targets.sample_count,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: targets.color_format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        // Terrain can be seen from below when the camera dips under it: both faces are drawn.
+        let pipeline = super::terrain_pipeline(
+            device,
+            "relief:render",
+            &layout,
+            &module,
+            targets,
+            wgpu::PrimitiveTopology::TriangleStrip,
+            &[],
+        );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("relief:render:normal-sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,

@@ -228,7 +228,19 @@ impl World {
                     },
                 ],
             });
-            let pipeline = render_pipeline(device, &layout, &module, &targets);
+            let pipeline = super::terrain_pipeline(
+                device,
+                "relief:world",
+                &layout,
+                &module,
+                &targets,
+                wgpu::PrimitiveTopology::TriangleList,
+                &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Patch>() as u64,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+                })],
+            );
             let render_uniforms =
                 super::uniform_buffer::<RenderUniforms>(device, "relief:world:render-uniforms");
             let world_uniforms =
@@ -668,61 +680,6 @@ fn patch_indices(device: &wgpu::Device, patch: u32) -> (wgpu::Buffer, u32) {
         },
     );
     (buffer, indices.len() as u32)
-}
-
-fn render_pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    module: &wgpu::ShaderModule,
-    targets: &Targets,
-) -> wgpu::RenderPipeline {
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("relief:world:pipeline-layout"),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("relief:world:pipeline"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<Patch>() as u64,
-                step_mode: wgpu::VertexStepMode::Instance,
-                attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
-            })],
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
-            format,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: wgpu::MultisampleState {
-            count: targets.sample_count,
-            ..Default::default()
-        },
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: targets.color_format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
 }
 
 /// The six planes (a x + b y + c z + d >= 0 inside) of a wgpu clip-space frustum (depth 0..1).
