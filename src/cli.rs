@@ -976,14 +976,6 @@ fn run(top: &ArgMatches) -> Result<()> {
                 "it applies to the tile world only",
             )?;
 
-            if let Run::Render { method, .. } = run {
-                if method != crate::Method::Mesh {
-                    return Err(Error::Usage(format!(
-                        "--method {method} draws the tile world only so far; --world endless \
-                         is drawn with --method mesh"
-                    )));
-                }
-            }
             if !matches!(run, Run::Bake { .. }) {
                 refuse_flags(
                     m,
@@ -1261,12 +1253,38 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             height,
             camera,
             stats,
-            ..
+            method,
         } => {
             check_png_path(&out)?;
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             let view = world_view(&camera, &params, (width, height));
+            if method != crate::Method::Mesh {
+                let image = headless::render_world_rays(
+                    &gpu,
+                    &params,
+                    &Shading::default(),
+                    &view,
+                    method,
+                    timer.as_ref(),
+                )?;
+                if timings {
+                    print_timings(&gpu, image.timings);
+                }
+                if stats {
+                    // Rays draw the continuous surface: no mesh, nothing baked.
+                    println!("triangles 0\ntexels_baked 0\nlevels 0");
+                    println!("unresolved_rays {}", image.unresolved);
+                }
+                if image.unresolved > 0 {
+                    eprintln!(
+                        "relief: {} rays ran out of steps ({} each) and are drawn as sky",
+                        image.unresolved,
+                        crate::gpu::world_rays::MAX_STEPS
+                    );
+                }
+                return write_png(&out, width, height, image::ColorType::Rgba8, &image.rgba);
+            }
             let mut world = World::new(
                 &gpu.device,
                 &gpu.queue,

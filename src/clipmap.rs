@@ -279,6 +279,18 @@ impl Clipmap {
         [snap(x), snap(z)]
     }
 
+    /// The square the levels cover for an eye at world (x, z), in metres: `[x0, z0, x1, z1]`
+    /// of the coarsest level, whose square holds all the finer ones. The ray casters are
+    /// bounded by it, so they draw the region the mesh draws.
+    pub fn drawn_region(&self, x: f64, z: f64) -> [f64; 4] {
+        let last = self.levels.len() - 1;
+        let s = self.levels[last].spacing();
+        let [i, j] = self.origin_for(last, x, z);
+        let side = f64::from(self.cells()) * s;
+        let (x0, z0) = (f64::from(i) * s, f64::from(j) * s);
+        [x0, z0, x0 + side, z0 + side]
+    }
+
     /// The first level drawn: finer ones are skipped while even at the eye's height above the
     /// ground their coarser neighbour's error stays under the knob.
     fn first_level(&self, eye: &Eye, pixel_error: f64) -> usize {

@@ -155,6 +155,21 @@ impl Landscape {
         (0..self.octaves).map(|o| self.gain.powi(o as i32)).sum()
     }
 
+    /// The factor from a sum of octaves to normalised height: `0.5 / (sum of the amplitudes *
+    /// NOISE_MAX_ABS)`, so the sum maps into [0, 1].
+    pub fn scale(&self) -> f64 {
+        0.5 / (self.norm() * NOISE_MAX_ABS)
+    }
+
+    /// Bound in metres on how much the octaves after the first `octaves` can add to the height
+    /// anywhere (each, damped or not, is at most its amplitude times `NOISE_MAX_ABS`).
+    pub fn remainder_bound(&self, octaves: u32) -> f64 {
+        let rest: f64 = (octaves..self.octaves)
+            .map(|o| self.gain.powi(o as i32))
+            .sum();
+        self.peak_height * self.scale() * NOISE_MAX_ABS * rest
+    }
+
     /// The channel at world (x, z) in metres from its first `octaves` octaves (normalised by all
     /// of them), with its gradient per metre.
     pub fn sample(&self, channel: Channel, x: f64, z: f64, octaves: u32) -> Sample {
@@ -189,7 +204,7 @@ impl Landscape {
             }
             amplitude *= self.gain;
         }
-        let scale = 0.5 / (self.norm() * NOISE_MAX_ABS);
+        let scale = self.scale();
         Sample {
             value: 0.5 + scale * sum,
             gradient: [scale * grad[0], scale * grad[1]],
@@ -216,7 +231,7 @@ impl Landscape {
     /// Bound on |grad height| in metres per metre of the first `octaves` octaves: what a
     /// conservative ray march needs to never step through the surface.
     pub fn lipschitz(&self, octaves: u32) -> f64 {
-        let scale = self.peak_height * 0.5 / (self.norm() * NOISE_MAX_ABS);
+        let scale = self.peak_height * self.scale();
         let mut bound = 0.0;
         let mut curvature = 0.0; // sum over k <= o of NOISE_MAX_SECOND * freq_k
         let mut amplitude = 1.0;
@@ -345,6 +360,29 @@ mod tests {
                 worst > bound / 20.0,
                 "{t:?}: bound {bound} far above slope {worst}"
             );
+        }
+    }
+
+    #[test]
+    fn what_the_remaining_octaves_add_stays_under_its_bound() {
+        for t in [TerrainFn::Fbm, TerrainFn::Eroded] {
+            let l = land(t);
+            for k in 0..=l.octaves {
+                let bound = l.remainder_bound(k);
+                let mut worst: f64 = 0.0;
+                for i in 0..2000 {
+                    let (x, z) = (f64::from(i) * 37.9 - 9000.0, f64::from(i % 89) * 41.3);
+                    let full = l.height_at(x, z);
+                    let part = l.peak_height * l.sample(Channel::Height, x, z, k).value;
+                    worst = worst.max((full - part).abs());
+                }
+                assert!(worst <= bound, "{t:?}, {k} octaves: {worst} over {bound}");
+                assert!(
+                    k == l.octaves || worst > bound / 10.0,
+                    "{t:?}, {k} octaves: bound {bound} far above {worst}"
+                );
+            }
+            assert_eq!(l.remainder_bound(l.octaves), 0.0);
         }
     }
 

@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 9);
+    assert_eq!(modules.len(), 10);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -171,4 +171,35 @@ fn world_uniforms_match_wgsl() {
             / size_of::<LevelUniforms>(),
         relief::clipmap::MAX_LEVELS
     );
+}
+
+#[test]
+fn world_ray_uniforms_match_wgsl() {
+    use relief::gpu::world_rays::WorldRayUniforms;
+    let m = parse(
+        "world_rays",
+        &shader::compose(&[
+            shader::NOISE,
+            shader::SHADE,
+            shader::LANDSCAPE,
+            shader::WORLD_RAYS,
+            shader::RAYS,
+        ]),
+    );
+    let (size, members) = layout(&m, "WorldRayUniforms");
+    assert_eq!(size as usize, size_of::<WorldRayUniforms>());
+    for (name, at) in [
+        ("eye", offset_of!(WorldRayUniforms, eye)),
+        ("reference", offset_of!(WorldRayUniforms, reference)),
+        ("base_log2", offset_of!(WorldRayUniforms, base_log2)),
+        ("feature_log2", offset_of!(WorldRayUniforms, feature_log2)),
+        ("max_steps", offset_of!(WorldRayUniforms, max_steps)),
+        ("gain", offset_of!(WorldRayUniforms, gain)),
+        ("pixel_angle", offset_of!(WorldRayUniforms, pixel_angle)),
+        ("bounds", offset_of!(WorldRayUniforms, bounds)),
+        ("sky", offset_of!(WorldRayUniforms, sky)),
+        ("prefix", offset_of!(WorldRayUniforms, prefix)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
 }

@@ -91,15 +91,40 @@ fn lattice_split(s: vec2<i32>, shift: u32) -> Split {
     return out;
 }
 
+// A running sum of octaves: plain or derivative-damped ("eroded"), with its gradient per
+// metre. `acc` is the sum of the lattice-unit gradients so far (eroded only) and `dacc_x`,
+// `dacc_y` its derivatives per metre (rows acc.x and acc.y).
+struct Octaves {
+    sum: f32,
+    grad: vec2<f32>,
+    acc: vec2<f32>,
+    dacc_x: vec2<f32>,
+    dacc_y: vec2<f32>,
+}
+
+// Adds one octave's noise `n` (lattice units), of lattice frequency `freq` per metre, at
+// `amplitude`. The same operations in the same order wherever the terrain is evaluated.
+fn add_octave(st: Octaves, n: NoiseD, freq: f32, amplitude: f32, eroded: bool) -> Octaves {
+    var out = st;
+    if eroded {
+        out.acc += n.grad;
+        out.dacc_x += vec2<f32>(n.hess.x, n.hess.y) * freq;
+        out.dacc_y += vec2<f32>(n.hess.y, n.hess.z) * freq;
+        let q = 1.0 + dot(out.acc, out.acc);
+        out.sum += amplitude * n.value / q;
+        let dq = 2.0 * (out.acc.x * out.dacc_x + out.acc.y * out.dacc_y);
+        out.grad += amplitude * (n.grad * freq / q - n.value * dq / (q * q));
+    } else {
+        out.sum += amplitude * n.value;
+        out.grad += amplitude * n.grad * freq;
+    }
+    return out;
+}
+
 // The channel at world sample `s` of grid `level_log2`: (value in [0,1], d/dx, d/dz per metre).
 fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
     let eroded = u.terrain == 1u && channel == CHANNEL_HEIGHT;
-    var sum = 0.0;
-    var grad = vec2<f32>(0.0);
-    var acc = vec2<f32>(0.0);
-    // d acc / d world: rows are acc.x and acc.y.
-    var dacc_x = vec2<f32>(0.0);
-    var dacc_y = vec2<f32>(0.0);
+    var st = Octaves();
     var amplitude = 1.0;
     var norm = 0.0;
     for (var o = 0u; o < u.total_octaves; o++) {
@@ -109,23 +134,11 @@ fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f3
             let split = lattice_split(s, shift);
             let n = cell_noise_d(split.cell, split.frac, noise_stream(u.seed, channel, o));
             // Lattice units to metres: a power of two, so exact.
-            let freq = ldexp(1.0, -cell_log2);
-            if eroded {
-                acc += n.grad;
-                dacc_x += vec2<f32>(n.hess.x, n.hess.y) * freq;
-                dacc_y += vec2<f32>(n.hess.y, n.hess.z) * freq;
-                let q = 1.0 + dot(acc, acc);
-                sum += amplitude * n.value / q;
-                let dq = 2.0 * (acc.x * dacc_x + acc.y * dacc_y);
-                grad += amplitude * (n.grad * freq / q - n.value * dq / (q * q));
-            } else {
-                sum += amplitude * n.value;
-                grad += amplitude * n.grad * freq;
-            }
+            st = add_octave(st, n, ldexp(1.0, -cell_log2), amplitude, eroded);
         }
         norm += amplitude;
         amplitude *= u.gain;
     }
     let scale = 0.5 / (norm * NOISE_MAX_ABS);
-    return vec3<f32>(0.5 + scale * sum, scale * grad);
+    return vec3<f32>(0.5 + scale * st.sum, scale * st.grad);
 }

@@ -9,7 +9,8 @@
 //      when |h| < hit_k * t, `march_octaves` octaves while stepping and `normal_octaves` for the
 //      normal. Fast, and wrong in known ways (it can tunnel through thin ridges).
 //
-// Each runs as a compute shader writing storage textures, or as a full-screen fragment shader.
+// Each runs as a compute shader writing storage textures, or as a full-screen fragment shader
+// (the entry points are in rays.wgsl, composed after this file).
 
 struct RayUniforms {
     inv_view_proj: mat4x4<f32>,
@@ -37,10 +38,6 @@ struct RayUniforms {
 @group(0) @binding(1) var<uniform> ray: RayUniforms;
 @group(0) @binding(2) var color_out: texture_storage_2d<rgba8unorm, write>;
 @group(0) @binding(3) var distance_out: texture_storage_2d<r32float, write>;
-
-// Distance stored for pixels that hit nothing, and for rays that ran out of steps.
-const MISS: f32 = -1.0;
-const UNRESOLVED: f32 = -2.0;
 
 // (normalised height, d h_world / dx, d h_world / dz) of the first `octaves` octaves.
 fn surface(xz: vec2<f32>, octaves: u32) -> vec3<f32> {
@@ -140,35 +137,4 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     let u = p.xz / WORLD_SIZE + 0.5;
     let tint = fbm_grad(u, ray.frequency, ray.octaves, ray.octaves, ray.gain, ray.offset, ray.seed, CHANNEL_COLOR).x;
     return vec4<f32>(shade(r, p, n, h, tint), t);
-}
-
-@compute @workgroup_size(8, 8, 1)
-fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= ray.width || id.y >= ray.height {
-        return;
-    }
-    let c = cast_pixel(vec2<f32>(id.xy) + 0.5);
-    textureStore(color_out, vec2<i32>(id.xy), vec4<f32>(c.rgb, 1.0));
-    textureStore(distance_out, vec2<i32>(id.xy), vec4<f32>(c.w, 0.0, 0.0, 0.0));
-}
-
-@vertex
-fn fullscreen_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the viewport.
-    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
-}
-
-struct FragmentOut {
-    @location(0) color: vec4<f32>,
-    @location(1) distance: vec4<f32>,
-}
-
-@fragment
-fn raymarch_fs(@builtin(position) position: vec4<f32>) -> FragmentOut {
-    let c = cast_pixel(position.xy);
-    var out: FragmentOut;
-    out.color = vec4<f32>(c.rgb, 1.0);
-    out.distance = vec4<f32>(c.w, 0.0, 0.0, 0.0);
-    return out;
 }

@@ -1,6 +1,7 @@
 //! Blocking conveniences on top of the core (native only): a device without a window, an
 //! offscreen target drawn through the same [`Terrain`] calls as the window, and readback.
 
+use super::raymarch::{RayMarcher, RayScene};
 use super::timing::{GpuTimer, Slot, Timings};
 use super::world::{World, WorldView};
 use super::{Targets, Terrain};
@@ -799,6 +800,20 @@ pub fn world_screen_error(
     })
 }
 
+/// What a ray-cast method drew: the image, and per pixel the distance of the pixel-centre ray.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayImage {
+    /// sRGB RGBA8, supersampled where the method asks for it.
+    pub rgba: Vec<u8>,
+    /// Distance along the pixel-centre ray to the surface; -1 for sky, -2 where the ray ran
+    /// out of steps (never counted as sky).
+    pub distance: Vec<f32>,
+    /// Rays (of every subsample) that ran out of steps.
+    pub unresolved: usize,
+    /// The cast's GPU time, when a timer was given.
+    pub timings: Option<Timings>,
+}
+
 /// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
 /// distance targets, supersampled where the method asks for it (and the device allows),
 /// averaged in linear light. Returns sRGB RGBA8, with the cast's GPU time when `timer` is given.
@@ -807,11 +822,66 @@ pub fn render_rays(
     params: &crate::TerrainParams,
     shading: &crate::Shading,
     view: &View,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     method: crate::Method,
     timer: Option<&GpuTimer>,
 ) -> Result<(Vec<u8>, Option<Timings>)> {
-    let (Some(path), Some(rays)) = (method.ray_path(), method.ray_method(params.octaves)) else {
+    let Some(rays) = method.ray_method(params.octaves) else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let image = cast(gpu, size, method, RayScene::Tile, timer, |caster, _| {
+        caster.prepare(&gpu.queue, params, shading, view, rays);
+        Ok(())
+    })?;
+    Ok((image.rgba, image.timings))
+}
+
+/// [`render_rays`] for the endless world, bounded by the region the mesh draws at
+/// `params.pixel_error` ([`super::world_rays::drawn_region`]).
+pub fn render_world_rays(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
+    let Some(rays) = method.ray_method(params.land.octaves) else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let region = super::world_rays::drawn_region(params, view);
+    cast(
+        gpu,
+        view.size,
+        method,
+        RayScene::World,
+        timer,
+        |caster, size| {
+            let ray = super::world_rays::WorldRayUniforms::new(
+                params, shading, view, rays, size, region,
+            )?;
+            let render = super::world::render_uniforms(
+                params,
+                shading,
+                view.relative_matrix(1.0, 1e7),
+                true,
+            );
+            caster.prepare_world(&gpu.queue, &render, &ray)
+        },
+    )
+}
+
+/// Casts `method`'s rays at `scene` into a `width` x `height` image (times its supersampling
+/// where the device allows); `prepare(caster, cast size)` writes the uniforms.
+fn cast(
+    gpu: &Gpu,
+    (width, height): (u32, u32),
+    method: crate::Method,
+    scene: RayScene,
+    timer: Option<&GpuTimer>,
+    prepare: impl FnOnce(&RayMarcher, (u32, u32)) -> Result<()>,
+) -> Result<RayImage> {
+    let Some(path) = method.ray_path() else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
     let max = gpu.device.limits().max_texture_dimension_2d;
@@ -821,8 +891,9 @@ pub fn render_rays(
     } else {
         1
     };
-    let caster = super::raymarch::RayMarcher::new(&gpu.device, width * ss, height * ss)?;
-    caster.prepare(&gpu.queue, params, shading, view, rays);
+    let size = (width * ss, height * ss);
+    let caster = RayMarcher::for_scene(&gpu.device, size.0, size.1, scene)?;
+    prepare(&caster, size)?;
     super::scoped(&gpu.device, || {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         caster.encode(&mut encoder, path, timer);
@@ -833,10 +904,26 @@ pub fn render_rays(
     })?;
     let timings = timer.map(|t| t.read(&gpu.device)).transpose()?;
     let image = read_texture(&gpu.device, &gpu.queue, &caster.color)?;
-    let image = if ss > 1 {
-        downsample_srgb(&image, width * ss, height * ss, ss)
+    let all: Vec<f32> =
+        bytemuck::pod_collect_to_vec(&read_texture(&gpu.device, &gpu.queue, &caster.distance)?);
+    let unresolved = all.iter().filter(|&&d| d == -2.0).count();
+    // The centre subsample of each pixel (ss is odd: 1 or 3).
+    let distance = (0..height as usize)
+        .flat_map(|y| {
+            let row = (y * ss as usize + ss as usize / 2) * size.0 as usize;
+            let all = &all;
+            (0..width as usize).map(move |x| all[row + x * ss as usize + ss as usize / 2])
+        })
+        .collect();
+    let rgba = if ss > 1 {
+        downsample_srgb(&image, size.0, size.1, ss)
     } else {
         image
     };
-    Ok((image, timings))
+    Ok(RayImage {
+        rgba,
+        distance,
+        unresolved,
+        timings,
+    })
 }

@@ -11,6 +11,7 @@ pub(crate) mod render;
 pub mod shader;
 pub mod timing;
 pub mod world;
+pub mod world_rays;
 
 pub use bake::BakeUniforms;
 pub use landscape::LandscapeUniforms;

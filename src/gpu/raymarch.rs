@@ -145,8 +145,54 @@ impl RayUniforms {
     }
 }
 
+/// What a [`RayMarcher`] casts rays at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayScene {
+    /// The 2-unit tile (`wgsl/raymarch.wgsl`, [`RayUniforms`]).
+    Tile,
+    /// The endless world (`wgsl/world_rays.wgsl`, [`super::world_rays::WorldRayUniforms`]).
+    World,
+}
+
+impl RayScene {
+    fn source(self) -> String {
+        match self {
+            RayScene::Tile => {
+                shader::compose(&[shader::NOISE, shader::SHADE, shader::RAYMARCH, shader::RAYS])
+            }
+            RayScene::World => shader::compose(&[
+                shader::NOISE,
+                shader::SHADE,
+                shader::LANDSCAPE,
+                shader::WORLD_RAYS,
+                shader::RAYS,
+            ]),
+        }
+    }
+
+    fn uniform_entry(self, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+        match self {
+            RayScene::Tile => super::uniform_entry::<RayUniforms>(1, visibility),
+            RayScene::World => {
+                super::uniform_entry::<super::world_rays::WorldRayUniforms>(1, visibility)
+            }
+        }
+    }
+
+    fn uniform_buffer(self, device: &wgpu::Device) -> wgpu::Buffer {
+        let label = "relief:raymarch:ray-uniforms";
+        match self {
+            RayScene::Tile => super::uniform_buffer::<RayUniforms>(device, label),
+            RayScene::World => {
+                super::uniform_buffer::<super::world_rays::WorldRayUniforms>(device, label)
+            }
+        }
+    }
+}
+
 /// A ray-cast image target and the pipelines that fill it.
 pub struct RayMarcher {
+    scene: RayScene,
     compute: wgpu::ComputePipeline,
     fragment: wgpu::RenderPipeline,
     compute_group: wgpu::BindGroup,
@@ -167,27 +213,33 @@ impl RayMarcher {
     /// Distance format.
     pub const DISTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
-    /// Builds both pipelines and a `width` x `height` target.
+    /// Builds both pipelines and a `width` x `height` target for the tile.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self> {
+        Self::for_scene(device, width, height, RayScene::Tile)
+    }
+
+    /// Builds both pipelines and a `width` x `height` target for `scene`.
+    pub fn for_scene(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        scene: RayScene,
+    ) -> Result<Self> {
         let max = device.limits().max_texture_dimension_2d;
         for (name, v) in [("width", width), ("height", height)] {
             if v == 0 || v > max {
                 return Err(Error::invalid(name, v, format!("1..={max} on this device")));
             }
         }
-        super::scoped(device, || Self::build(device, width, height))
+        super::scoped(device, || Self::build(device, width, height, scene))
     }
 
-    fn build(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let module = shader::module(
-            device,
-            "relief:raymarch:shader",
-            &shader::compose(&[shader::NOISE, shader::SHADE, shader::RAYMARCH]),
-        );
+    fn build(device: &wgpu::Device, width: u32, height: u32, scene: RayScene) -> Self {
+        let module = shader::module(device, "relief:raymarch:shader", &scene.source());
         let both = wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT;
         let uniforms = [
             super::uniform_entry::<RenderUniforms>(0, both),
-            super::uniform_entry::<RayUniforms>(1, both),
+            scene.uniform_entry(both),
         ];
         let storage = |binding, format| wgpu::BindGroupLayoutEntry {
             binding,
@@ -250,8 +302,7 @@ impl RayMarcher {
         });
         let render_uniforms =
             super::uniform_buffer::<RenderUniforms>(device, "relief:raymarch:render-uniforms");
-        let ray_uniforms =
-            super::uniform_buffer::<RayUniforms>(device, "relief:raymarch:ray-uniforms");
+        let ray_uniforms = scene.uniform_buffer(device);
         let usage = wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::COPY_SRC;
@@ -293,6 +344,7 @@ impl RayMarcher {
             entries: &uniform_entries,
         });
         Self {
+            scene,
             compute,
             fragment,
             compute_group,
@@ -315,10 +367,31 @@ impl RayMarcher {
         view: &View,
         method: RayMethod,
     ) {
+        debug_assert_eq!(self.scene, RayScene::Tile, "prepare is the tile's");
         let r = RenderUniforms::new(params, shading, view, true);
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&r));
         let ray = RayUniforms::new(params, shading, view, method, (self.width, self.height));
         queue.write_buffer(&self.ray_uniforms, 0, bytemuck::bytes_of(&ray));
+    }
+
+    /// Writes the uniforms for one image of the endless world (a caster built for
+    /// [`RayScene::World`]; `render` from the world's shading, camera-relative).
+    pub fn prepare_world(
+        &self,
+        queue: &wgpu::Queue,
+        render: &RenderUniforms,
+        ray: &super::world_rays::WorldRayUniforms,
+    ) -> Result<()> {
+        if self.scene != RayScene::World {
+            return Err(Error::invalid(
+                "scene",
+                format!("{:?}", self.scene),
+                "a caster built for RayScene::World",
+            ));
+        }
+        queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(render));
+        queue.write_buffer(&self.ray_uniforms, 0, bytemuck::bytes_of(ray));
+        Ok(())
     }
 
     /// Records the ray cast, timed as [`Slot::Render`] when `timer` is given.

@@ -22,9 +22,14 @@ pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
 /// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
-/// `wgsl/raymarch.wgsl`: the ray casters, reference and the seed's march (needs [`NOISE`] and
-/// [`SHADE`]).
+/// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
+/// [`NOISE`] and [`SHADE`], then [`RAYS`]).
 pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
+/// `wgsl/world_rays.wgsl`: the endless world's ray casters (needs [`NOISE`], [`SHADE`] and
+/// [`LANDSCAPE`], then [`RAYS`]).
+pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
+/// `wgsl/rays.wgsl`: the ray casters' entry points, composed after a caster's file.
+pub const RAYS: &str = include_str!("../../wgsl/rays.wgsl");
 
 /// Joins shared WGSL files and a pass's file into one module source.
 pub fn compose(parts: &[&str]) -> String {
@@ -40,7 +45,11 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("render", compose(&[SHADE, RENDER])),
         ("world", compose(&[SHADE, WORLD])),
-        ("raymarch", compose(&[NOISE, SHADE, RAYMARCH])),
+        ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),
+        (
+            "world_rays",
+            compose(&[NOISE, SHADE, LANDSCAPE, WORLD_RAYS, RAYS]),
+        ),
         ("landscape", compose(&[NOISE, LANDSCAPE])),
         (
             "landscape_bake",

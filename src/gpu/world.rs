@@ -534,21 +534,7 @@ impl World {
         queue.write_buffer(&self.world_uniforms, 0, bytemuck::bytes_of(&world));
 
         let encode = !self.targets.color_format.is_srgb();
-        let tile = TerrainParams {
-            height_scale: land.peak_height as f32,
-            snow_height: self.params.snow_height,
-            ao_exponent: self.params.ao_exponent,
-            ..TerrainParams::default()
-        };
-        let relative = View {
-            view_proj: matrix,
-            eye: Vec3::ZERO,
-        };
-        let uniforms = RenderUniforms {
-            grid: 0,
-            tex_size: 0,
-            ..RenderUniforms::new(&tile, &self.shading, &relative, encode)
-        };
+        let uniforms = render_uniforms(&self.params, &self.shading, matrix, encode);
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
         let active: Vec<_> = self.map.levels.iter().filter(|l| l.active).collect();
@@ -583,6 +569,31 @@ impl World {
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..self.instance_count);
         pass.pop_debug_group();
+    }
+}
+
+/// The shading uniforms of the endless world for a camera-relative `matrix` (the camera at the
+/// origin), shared by the mesh and the ray casters.
+pub(crate) fn render_uniforms(
+    params: &WorldParams,
+    shading: &Shading,
+    matrix: Mat4,
+    encode_srgb: bool,
+) -> RenderUniforms {
+    let tile = TerrainParams {
+        height_scale: params.land.peak_height as f32,
+        snow_height: params.snow_height,
+        ao_exponent: params.ao_exponent,
+        ..TerrainParams::default()
+    };
+    let relative = View {
+        view_proj: matrix,
+        eye: Vec3::ZERO,
+    };
+    RenderUniforms {
+        grid: 0,
+        tex_size: 0,
+        ..RenderUniforms::new(&tile, shading, &relative, encode_srgb)
     }
 }
 

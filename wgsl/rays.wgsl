@@ -1,0 +1,40 @@
+// The ray casters' entry points, shared by the tile's (raymarch.wgsl) and the endless world's
+// (world_rays.wgsl) casters, composed after either: a compute shader writing storage textures
+// and a full-screen fragment shader writing two colour targets. The file before this one
+// declares `ray` (with `width` and `height`), `color_out`, `distance_out` and
+// `cast_pixel(pixel) -> (colour, distance)`.
+
+// Distance stored for pixels that hit nothing, and for rays that ran out of steps.
+const MISS: f32 = -1.0;
+const UNRESOLVED: f32 = -2.0;
+
+@compute @workgroup_size(8, 8, 1)
+fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= ray.width || id.y >= ray.height {
+        return;
+    }
+    let c = cast_pixel(vec2<f32>(id.xy) + 0.5);
+    textureStore(color_out, vec2<i32>(id.xy), vec4<f32>(c.rgb, 1.0));
+    textureStore(distance_out, vec2<i32>(id.xy), vec4<f32>(c.w, 0.0, 0.0, 0.0));
+}
+
+@vertex
+fn fullscreen_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    // One triangle covering the viewport.
+    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
+}
+
+struct FragmentOut {
+    @location(0) color: vec4<f32>,
+    @location(1) distance: vec4<f32>,
+}
+
+@fragment
+fn raymarch_fs(@builtin(position) position: vec4<f32>) -> FragmentOut {
+    let c = cast_pixel(position.xy);
+    var out: FragmentOut;
+    out.color = vec4<f32>(c.rgb, 1.0);
+    out.distance = vec4<f32>(c.w, 0.0, 0.0, 0.0);
+    return out;
+}

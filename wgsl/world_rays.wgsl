@@ -1,0 +1,230 @@
+// Ray casting of the endless world's continuous surface (src/landscape.rs): no texture, no
+// mesh. Composed after noise.wgsl, shade.wgsl and landscape.wgsl, and before rays.wgsl (the
+// entry points). Two methods, chosen by `ray.method`, as for the tile (raymarch.wgsl):
+//
+//   0, the reference: every octave, steps that can never pass through the surface, bisection
+//      to the crossing, normals from the analytic gradient. Stepping is accelerated by adding
+//      octaves one at a time: once the clearance of the partial sum exceeds the most the
+//      remaining octaves can add (their amplitude bound), the step follows from the partial
+//      sum's own (smaller) Lipschitz bound, so high above the ground a step costs one or two
+//      octaves. The ray is bounded by the region the mesh draws.
+//   1, the seed's march: t += step_factor * h, a hit when |h| < hit_k * t, `march_octaves`
+//      octaves while stepping and `normal_octaves` for the normal.
+//
+// Positions are camera-relative f32 metres from a reference sample (an integer count of
+// 2^base_log2-metre samples, the eye's sample): each octave's lattice cell is that integer
+// shifted, plus the cell of the small f32 remainder, so rays far from the origin sample the
+// same exact lattice as rays near it.
+
+struct WorldRayUniforms {
+    // Inverse of the camera-relative projection times view (the eye at the origin).
+    inv_view_proj: mat4x4<f32>,
+    // xz: the eye less the reference sample's position; y: the eye's height; metres.
+    eye: vec4<f32>,
+    // The reference sample, in samples of 2^base_log2 metres.
+    reference: vec2<i32>,
+    base_log2: i32,
+    seed: u32,
+    octaves: u32,
+    // 0: fBm, 1: eroded fBm.
+    terrain: u32,
+    feature_log2: i32,
+    method: u32,
+    march_octaves: u32,
+    normal_octaves: u32,
+    max_steps: u32,
+    width: u32,
+    height: u32,
+    gain: f32,
+    // World height of normalised height 1, metres.
+    peak: f32,
+    // 0.5 / (sum of the octaves' amplitudes * NOISE_MAX_ABS): the normalisation.
+    scale: f32,
+    step_factor: f32,
+    hit_k: f32,
+    // Radians per pixel at the image centre: the reference's smallest step is a hundredth of a
+    // pixel's footprint.
+    pixel_angle: f32,
+    _pad: u32,
+    // The region drawn, relative to the reference sample: x0, z0, x1, z1 in metres.
+    bounds: vec4<f32>,
+    // Colour stored where no terrain is hit (already encoded for the target).
+    sky: vec4<f32>,
+    // Entry k: x, Lipschitz bound (metres per metre) of the height of the first k+1 octaves;
+    // y, bound in metres on what the octaves after them add.
+    prefix: array<vec4<f32>, 24>,
+}
+
+@group(0) @binding(0) var<uniform> r: RenderUniforms;
+@group(0) @binding(1) var<uniform> ray: WorldRayUniforms;
+@group(0) @binding(2) var color_out: texture_storage_2d<rgba8unorm, write>;
+@group(0) @binding(3) var distance_out: texture_storage_2d<r32float, write>;
+
+// Octave `o`'s lattice cell and fraction at `p` (metres from the reference sample).
+fn ray_split(p: vec2<f32>, o: u32) -> Split {
+    let cell_log2 = ray.feature_log2 - i32(o);
+    let inv = ldexp(1.0, -cell_log2);
+    var out: Split;
+    if cell_log2 >= ray.base_log2 {
+        // The reference's high bits are whole cells; its low bits (exact in f32) join p.
+        let shift = u32(cell_log2 - ray.base_log2);
+        let low = vec2<f32>(ray.reference & vec2<i32>((1 << shift) - 1));
+        let local = (low * ldexp(1.0, ray.base_log2) + p) * inv;
+        let fl = floor(local);
+        out.cell = (ray.reference >> vec2<u32>(shift)) + vec2<i32>(fl);
+        out.frac = local - fl;
+    } else {
+        // Cells finer than a reference sample: the reference is a whole number of them
+        // (wrapping, as the hash does).
+        let local = p * inv;
+        let fl = floor(local);
+        out.cell = (ray.reference << vec2<u32>(u32(ray.base_log2 - cell_log2))) + vec2<i32>(fl);
+        out.frac = local - fl;
+    }
+    return out;
+}
+
+fn octave_noise(p: vec2<f32>, o: u32, channel: u32) -> NoiseD {
+    let split = ray_split(p, o);
+    return cell_noise_d(split.cell, split.frac, noise_stream(ray.seed, channel, o));
+}
+
+fn octave_freq(o: u32) -> f32 {
+    return ldexp(1.0, i32(o) - ray.feature_log2);
+}
+
+// (normalised value, d/dx, d/dz per metre) of the channel's first `octaves` octaves at `p`.
+fn world_channel(p: vec2<f32>, octaves: u32, channel: u32) -> vec3<f32> {
+    let eroded = ray.terrain == 1u && channel == CHANNEL_HEIGHT;
+    var st = Octaves();
+    var amplitude = 1.0;
+    for (var o = 0u; o < octaves; o++) {
+        st = add_octave(st, octave_noise(p, o, channel), octave_freq(o), amplitude, eroded);
+        amplitude *= ray.gain;
+    }
+    return vec3<f32>(0.5 + ray.scale * st.sum, ray.scale * st.grad);
+}
+
+fn world_height(p: vec2<f32>, octaves: u32) -> f32 {
+    return ray.peak * world_channel(p, octaves, CHANNEL_HEIGHT).x;
+}
+
+// How far the reference's ray can go from `p` without crossing the surface (> 0), or a value
+// <= 0 where `p` is already past it. `slope` is |rd.xz|; `below` says which side the ray
+// started on. Octaves are added until the partial sum's clearance c exceeds the bound R on the
+// rest: then the full clearance is at least c - R and shrinks no faster than the partial
+// sum's Lipschitz bound allows.
+fn safe_step(p: vec3<f32>, slope: f32, rd_y: f32, below: bool) -> f32 {
+    let eroded = ray.terrain == 1u;
+    var st = Octaves();
+    var amplitude = 1.0;
+    for (var o = 0u; o < ray.octaves; o++) {
+        st = add_octave(st, octave_noise(p.xz, o, CHANNEL_HEIGHT), octave_freq(o), amplitude, eroded);
+        amplitude *= ray.gain;
+        let h = ray.peak * (0.5 + ray.scale * st.sum);
+        let c = select(p.y - h, h - p.y, below);
+        let bound = ray.prefix[o];
+        if c > bound.y || o + 1u == ray.octaves {
+            // Above the sheet the clearance y - h falls at most L|rd.xz| - rd.y per unit of t;
+            // below, h - y at most L|rd.xz| + rd.y.
+            let rate = max(bound.x * slope + select(-rd_y, rd_y, below), 1e-6);
+            return (c - bound.y) / rate;
+        }
+        if c < -bound.y {
+            return c;
+        }
+    }
+    return 0.0;
+}
+
+// Entry and exit distances of the unit ray through the drawn region, or (1, 0) if none.
+fn clip_region(ro: vec3<f32>, rd: vec3<f32>) -> vec2<f32> {
+    let lo = vec3<f32>(ray.bounds.x, 0.0, ray.bounds.y);
+    let hi = vec3<f32>(ray.bounds.z, ray.peak * 1.0001, ray.bounds.w);
+    let inv = 1.0 / rd;
+    let a = (lo - ro) * inv;
+    let b = (hi - ro) * inv;
+    let tmin = min(a, b);
+    let tmax = max(a, b);
+    return vec2<f32>(max(max(tmin.x, tmin.y), max(tmin.z, 0.0)), min(min(tmax.x, tmax.y), tmax.z));
+}
+
+// Distance along the unit ray to the surface, MISS or UNRESOLVED.
+fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
+    let span = clip_region(ro, rd);
+    if span.x > span.y {
+        return MISS;
+    }
+    var t = span.x;
+    if ray.method == 0u {
+        // The surface is a sheet: a ray entering the region below it hits where it first
+        // crosses it from below.
+        let start = ro + t * rd;
+        let below = start.y < world_height(start.xz, ray.octaves);
+        let slope = length(rd.xz);
+        var t_prev = t;
+        for (var i = 0u; i < ray.max_steps; i++) {
+            let p = ro + t * rd;
+            let step = safe_step(p, slope, rd.y, below);
+            if step <= 0.0 {
+                var lo = t_prev;
+                var hi = t;
+                for (var k = 0; k < 24; k++) {
+                    let mid = 0.5 * (lo + hi);
+                    let q = ro + mid * rd;
+                    if (q.y <= world_height(q.xz, ray.octaves)) == below {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                return 0.5 * (lo + hi);
+            }
+            if t > span.y {
+                return MISS;
+            }
+            t_prev = t;
+            // A floor keeps grazing rays moving: a step of s can skip only a bump that pokes
+            // less than rate * s / 2 above the ray, so a floor of 2% of a pixel's footprint
+            // misses at most a hundredth of a pixel per unit of the clearance's rate.
+            t += max(step, 1e-3 + 0.02 * ray.pixel_angle * t);
+        }
+        return UNRESOLVED;
+    }
+    for (var i = 0u; i < ray.max_steps; i++) {
+        let p = ro + t * rd;
+        let f = p.y - world_height(p.xz, ray.march_octaves);
+        if abs(f) < ray.hit_k * t {
+            return t;
+        }
+        t += ray.step_factor * f;
+        if t > span.y || t < span.x {
+            return MISS;
+        }
+    }
+    return UNRESOLVED;
+}
+
+// (colour, distance) for the pixel whose centre is at `pixel` (in pixels from the top left).
+fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(f32(ray.width), f32(ray.height));
+    let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
+    let far = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
+    let rd = normalize(far.xyz / far.w);
+    let ro = ray.eye.xyz;
+    let t = world_intersect(ro, rd);
+    if t < 0.0 {
+        return vec4<f32>(ray.sky.rgb, t);
+    }
+    let p = ro + t * rd;
+    let normal_octaves = select(ray.octaves, ray.normal_octaves, ray.method == 1u);
+    let g = world_channel(p.xz, normal_octaves, CHANNEL_HEIGHT);
+    let n = normalize(vec3<f32>(-g.y * ray.peak, 1.0, -g.z * ray.peak));
+    var h = g.x;
+    if normal_octaves != ray.octaves {
+        h = world_channel(p.xz, ray.octaves, CHANNEL_HEIGHT).x;
+    }
+    let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR).x;
+    // The render uniforms put the camera at the origin: shade with the camera-relative point.
+    return vec4<f32>(shade(r, t * rd, n, h, tint), t);
+}
