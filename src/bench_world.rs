@@ -1,14 +1,21 @@
 //! `relief bench --world endless`: the clipmap renderer on landscape views (along the ground
 //! to the horizon, grazing over a ridge, high and oblique) over the pixel-error knob, and a
 //! flight along a path: triangles, texels baked per frame, the screen-error bound and GPU
-//! times (warm-up, then the median), written as `landscape.csv`.
+//! times (warm-up, then the median), and each image against the reference ray cast of the same
+//! view (FLIP, missed and extra pixels). The seed's ray march (compute and fragment) beside
+//! them on every view. Written as `landscape.csv`.
 
 use crate::bench::{log_ticks, measure, tick_label, Options, CHART_SIZE};
 use crate::error::Result;
-use crate::gpu::headless::{world_screen_error, Gpu, Offscreen, ScreenError, RENDER_SAMPLES};
+use crate::gpu::headless::{
+    render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen, RayImage,
+    ScreenError, RENDER_SAMPLES,
+};
+use crate::gpu::raymarch::{RayMarcher, RayScene};
 use crate::gpu::timing::{GpuTimer, Slot};
+use crate::metrics::{self, Coverage};
 use crate::world::WorldParams;
-use crate::{World, WorldView};
+use crate::{Method, World, WorldView};
 use glam::DVec3;
 
 /// A named landscape view.
@@ -63,6 +70,8 @@ pub fn views(params: &WorldParams, size: (u32, u32)) -> Vec<LandscapeView> {
 pub struct WorldRow {
     /// View name (or `flight`).
     pub view: String,
+    /// How it was drawn.
+    pub method: Method,
     /// The knob.
     pub pixel_error: f64,
     /// Cells per patch side.
@@ -92,6 +101,15 @@ pub struct WorldRow {
     pub texels_mean: f64,
     /// Mean GPU bake time per timed frame (frames that baked nothing count as 0), ms.
     pub bake_ms_mean: Option<f64>,
+    /// FLIP mean and 99th percentile against the reference ray cast of the same view.
+    pub flip: Option<(f64, f64)>,
+    /// Terrain pixels against the reference's pixel-centre rays (pixels where the reference
+    /// ran out of steps are left out).
+    pub coverage: Option<Coverage>,
+    /// Rays that ran out of steps (ray-cast rows).
+    pub unresolved: Option<usize>,
+    /// The reference's row: FLIP mean and 99th percentile of its 3x3 image against 8x8.
+    pub converged: Option<(f64, f64)>,
 }
 
 impl WorldRow {
@@ -109,6 +127,7 @@ impl WorldRow {
         let slot = |slot: Slot| times.iter().filter_map(move |t| t[slot as usize]);
         Self {
             view: view.to_owned(),
+            method: Method::Mesh,
             pixel_error: knob,
             patch_cells: s.patch_cells,
             levels: s.levels,
@@ -123,8 +142,63 @@ impl WorldRow {
             wall_ms: median(wall.to_vec()).unwrap_or(0.0),
             texels_mean: mean_texels(timed),
             bake_ms_mean: mean_bake(times),
+            flip: None,
+            coverage: None,
+            unresolved: None,
+            converged: None,
         }
     }
+
+    /// A ray-cast row (no mesh, nothing baked) drawn at `knob`'s region.
+    fn rays(view: &str, method: Method, knob: f64, render_ms: Option<f64>, wall_ms: f64) -> Self {
+        Self {
+            view: view.to_owned(),
+            method,
+            pixel_error: knob,
+            patch_cells: 0,
+            levels: 0,
+            triangles: 0,
+            error_bound_px: 0.0,
+            measured: None,
+            texels_median: 0,
+            texels_max: 0,
+            render_ms,
+            bake_ms: None,
+            bake_max_ms: None,
+            wall_ms,
+            texels_mean: 0.0,
+            bake_ms_mean: None,
+            flip: None,
+            coverage: None,
+            unresolved: None,
+            converged: None,
+        }
+    }
+
+    /// Fills in the row's error against `reference` from its image and distances.
+    fn against(&mut self, reference: &RayImage, rgba: &[u8], distance: &[f32], size: (u32, u32)) {
+        self.flip = Some(metrics::image_error(
+            &metrics::rgb(&reference.rgba),
+            &metrics::rgb(rgba),
+            size.0,
+            size.1,
+        ));
+        self.coverage = Some(resolved_coverage(&reference.distance, distance));
+    }
+}
+
+/// Relative depth difference counted as a wrong depth.
+const DEPTH_TOLERANCE: f64 = 0.01;
+
+/// [`metrics::coverage`] over the pixels whose reference ray found its answer.
+fn resolved_coverage(reference: &[f32], test: &[f32]) -> Coverage {
+    let (r, t): (Vec<f32>, Vec<f32>) = reference
+        .iter()
+        .zip(test)
+        .filter(|(&r, _)| r != -2.0)
+        .map(|(&r, &t)| (r, t))
+        .unzip();
+    metrics::coverage(&r, &t, DEPTH_TOLERANCE)
 }
 
 fn median<T: Copy + PartialOrd>(mut v: Vec<T>) -> Option<T> {
@@ -148,6 +222,7 @@ pub fn run(
     let target = Offscreen::new(&gpu.device, size.0, size.1, RENDER_SAMPLES)?;
     let color = target.color.create_view(&Default::default());
     let mut rows = Vec::new();
+    let mut references = References::default();
     let frame = |world: &mut World,
                  view: &WorldView,
                  encoder: &mut wgpu::CommandEncoder,
@@ -185,10 +260,52 @@ pub fn run(
             })?;
             let s = world.stats();
             let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
-            let measured = world_screen_error(gpu, &mut single, &v.view, 2)?;
+            let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
             let mut row = WorldRow::measured(v.name, knob, &s, &texels, &times, &wall);
             row.measured = Some(measured);
+            let (image, _) = target.render_world(gpu, &mut world, &v.view, None)?;
+            progress(&format!("{} at {knob} px: the reference", v.name));
+            let reference = references.get(gpu, &p, &v, timer.as_ref())?;
+            row.against(reference, &image, &distance, size);
             rows.push(row);
+        }
+    }
+    // The reference itself and the seed's march, at the default knob's region.
+    for v in views(params, size) {
+        progress(&format!("{}: the ray casters", v.name));
+        let reference = references.get(gpu, params, &v, timer.as_ref())?.clone();
+        let ms = reference.timings.and_then(|t| t[Slot::Render as usize]);
+        let mut row = WorldRow::rays(v.name, Method::Reference, params.pixel_error, ms, f64::NAN);
+        row.unresolved = Some(reference.unresolved);
+        if options.frames >= 10 {
+            // Has 3x3 converged? Against 8x8 rays per pixel (full runs only: 64 rays a pixel).
+            let fine = render_world_rays_at(
+                gpu,
+                params,
+                &crate::Shading::default(),
+                &v.view,
+                Method::Reference,
+                8,
+                None,
+            )?;
+            row.converged = Some(metrics::image_error(
+                &metrics::rgb(&fine.rgba),
+                &metrics::rgb(&reference.rgba),
+                size.0,
+                size.1,
+            ));
+        }
+        rows.push(row);
+        for method in [Method::Raymarch, Method::RaymarchFragment] {
+            rows.push(march_row(
+                gpu,
+                params,
+                &v,
+                method,
+                options,
+                timer.as_ref(),
+                &reference,
+            )?);
         }
     }
     // A flight at 300 km/h, 40 m above the ground, at 60 frames a second: every frame moves
@@ -240,6 +357,92 @@ pub fn run(
     Ok(rows)
 }
 
+/// Reference images, cast once per view and drawn region.
+#[derive(Default)]
+struct References {
+    cast: Vec<(String, [u64; 4], RayImage)>,
+}
+
+impl References {
+    fn get(
+        &mut self,
+        gpu: &Gpu,
+        params: &WorldParams,
+        v: &LandscapeView,
+        timer: Option<&GpuTimer>,
+    ) -> Result<&RayImage> {
+        let region = crate::gpu::world_rays::drawn_region(params, &v.view).map(f64::to_bits);
+        let found = self
+            .cast
+            .iter()
+            .position(|(name, r, _)| name == v.name && *r == region);
+        let at = match found {
+            Some(i) => i,
+            None => {
+                let shading = crate::Shading::default();
+                let image =
+                    render_world_rays(gpu, params, &shading, &v.view, Method::Reference, timer)?;
+                self.cast.push((v.name.to_owned(), region, image));
+                self.cast.len() - 1
+            }
+        };
+        Ok(&self.cast[at].2)
+    }
+}
+
+/// The seed's march (`method`, compute or fragment) on `v`, timed as the mesh is, and
+/// compared with the reference.
+fn march_row(
+    gpu: &Gpu,
+    params: &WorldParams,
+    v: &LandscapeView,
+    method: Method,
+    options: &Options,
+    timer: Option<&GpuTimer>,
+    reference: &RayImage,
+) -> Result<WorldRow> {
+    let size = v.view.size;
+    let (Some(path), Some(rays)) = (method.ray_path(), method.ray_method(params.land.octaves))
+    else {
+        return Err(crate::Error::invalid("method", method, "a ray-cast method"));
+    };
+    let shading = crate::Shading::default();
+    let caster = RayMarcher::for_scene(&gpu.device, size.0, size.1, RayScene::World)?;
+    let region = crate::gpu::world_rays::drawn_region(params, &v.view);
+    let ray = crate::gpu::world_rays::WorldRayUniforms::new(
+        params, &shading, &v.view, rays, size, region,
+    )?;
+    let render = crate::gpu::world::render_uniforms(
+        params,
+        &shading,
+        v.view.relative_matrix(1.0, 1e7),
+        true,
+    );
+    caster.prepare_world(&gpu.queue, &render, &ray)?;
+    let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
+        caster.encode(encoder, path, timer)
+    })?;
+    let ms = median(
+        times
+            .iter()
+            .filter_map(|t| t[Slot::Render as usize])
+            .collect(),
+    );
+    let mut row = WorldRow::rays(
+        v.name,
+        method,
+        params.pixel_error,
+        ms,
+        median(wall).unwrap_or(0.0),
+    );
+    let read = |t: &wgpu::Texture| crate::gpu::headless::read_texture(&gpu.device, &gpu.queue, t);
+    let image = read(&caster.color)?;
+    let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&read(&caster.distance)?);
+    row.unresolved = Some(distance.iter().filter(|&&d| d == -2.0).count());
+    row.against(reference, &image, &distance, size);
+    Ok(row)
+}
+
 /// The baseline: a uniform grid at the finest drawn level's spacing over the square the
 /// levels cover (what it takes to keep the near error everywhere without levels).
 fn uniform_triangles(r: &WorldRow) -> f64 {
@@ -273,27 +476,58 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         "# relief bench --world endless on {device}, {}x{}, {} timed frames after {} ms warm-up\n",
         options.width, options.height, options.frames, options.warmup_ms
     );
-    out.push_str("view,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms\n");
+    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99\n");
     for r in rows {
+        let mesh = r.method == Method::Mesh;
+        let cov = |f: fn(&Coverage) -> f64| opt(r.coverage.as_ref().map(f));
         out.push_str(&format!(
-            "{},{},{},{},{},{:.3},{},{},{:.3e},{},{},{:.0},{},{},{},{},{:.3}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.view,
+            r.method,
             r.pixel_error,
-            r.patch_cells,
-            r.levels,
+            if mesh {
+                r.patch_cells.to_string()
+            } else {
+                String::new()
+            },
+            if mesh {
+                r.levels.to_string()
+            } else {
+                String::new()
+            },
             r.triangles,
-            r.error_bound_px,
+            if mesh {
+                format!("{:.3}", r.error_bound_px)
+            } else {
+                String::new()
+            },
             opt(r.measured.map(|m| m.max)),
             opt(r.measured.map(|m| m.p99)),
-            uniform_triangles(r),
+            if mesh {
+                format!("{:.3e}", uniform_triangles(r))
+            } else {
+                String::new()
+            },
             r.texels_median,
             r.texels_max,
-            r.texels_mean,
+            format!("{:.0}", r.texels_mean),
             opt(r.render_ms),
             opt(r.bake_ms),
             opt(r.bake_max_ms),
             opt(r.bake_ms_mean),
-            r.wall_ms
+            if r.wall_ms.is_finite() {
+                format!("{:.3}", r.wall_ms)
+            } else {
+                String::new()
+            },
+            opt(r.flip.map(|f| f.0)),
+            opt(r.flip.map(|f| f.1)),
+            cov(|c| c.missed),
+            cov(|c| c.extra),
+            cov(|c| c.wrong_depth),
+            r.unresolved.map_or(String::new(), |u| u.to_string()),
+            opt(r.converged.map(|f| f.0)),
+            opt(r.converged.map(|f| f.1)),
         ));
     }
     out
@@ -319,10 +553,11 @@ where
     let root = root
         .titled(title, ("sans-serif", 20))
         .map_err(|e| e.to_string())?;
-    let (left, right) = root.split_horizontally(CHART_SIZE.0 / 2);
+    let (top, bottom) = root.split_vertically(CHART_SIZE.1 / 2);
+    let (left, right) = top.split_horizontally(CHART_SIZE.0 / 2);
     let views: Vec<&str> = {
         let mut v: Vec<&str> = Vec::new();
-        for r in rows.iter().filter(|r| r.measured.is_some()) {
+        for r in rows.iter().filter(|r| r.view != "flight") {
             if !v.contains(&r.view.as_str()) {
                 v.push(&r.view);
             }
@@ -413,5 +648,79 @@ where
             .draw()
             .map_err(|e| e.to_string())?;
     }
+    accuracy_panel(&bottom, rows, &views, &colors)?;
     root.present().map_err(|e| e.to_string())
+}
+
+/// FLIP against the reference over GPU time: every method on every view (the mesh through its
+/// knobs), the speed-accuracy picture.
+fn accuracy_panel<DB: plotters::prelude::DrawingBackend>(
+    area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    rows: &[WorldRow],
+    views: &[&str],
+    colors: &[plotters::prelude::RGBColor],
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let pts: Vec<(f64, f64, &WorldRow)> = rows
+        .iter()
+        .filter_map(|r| Some((r.render_ms?.max(1e-4), r.flip?.0.max(1e-4), r)))
+        .collect();
+    if pts.is_empty() {
+        return Ok(());
+    }
+    let (x0, x1) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    let (y0, y1) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let (x0, x1, y0, y1) = (x0 / 1.4, x1 * 1.4, y0 / 1.4, y1 * 1.4);
+    let mut chart = ChartBuilder::on(area)
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(56)
+        .build_cartesian_2d(
+            (x0..x1).log_scale().with_key_points(log_ticks(x0, x1, 6)),
+            (y0..y1).log_scale().with_key_points(log_ticks(y0, y1, 4)),
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| tick_label(*v))
+        .x_desc("GPU time of the frame's render or ray cast, ms (log)")
+        .y_desc("FLIP mean vs reference (log)")
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (i, view) in views.iter().enumerate() {
+        let color = colors[i % colors.len()];
+        let mine: Vec<&(f64, f64, &WorldRow)> = pts.iter().filter(|p| p.2.view == *view).collect();
+        chart
+            .draw_series(mine.iter().map(|p| {
+                let label = if p.2.method == Method::Mesh {
+                    format!("{} px", p.2.pixel_error)
+                } else {
+                    p.2.method.to_string()
+                };
+                EmptyElement::at((p.0, p.1))
+                    + Circle::new((0, 0), 4, color.filled())
+                    + Text::new(label, (6, -14), ("sans-serif", 12))
+            }))
+            .map_err(|e| e.to_string())?
+            .label(format!("{view}: mesh by knob, and the ray casters"))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())
 }

@@ -759,16 +759,28 @@ pub fn world_screen_error(
     view: &WorldView,
     stride: u32,
 ) -> Result<ScreenError> {
+    Ok(world_depth_metrics(gpu, world, view, stride)?.0)
+}
+
+/// [`world_screen_error`], and the distance from the eye of what every pixel shows (-1 for
+/// sky): what the coverage against a ray cast compares.
+pub fn world_depth_metrics(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    stride: u32,
+) -> Result<(ScreenError, Vec<f32>)> {
     let (w, h) = view.size;
     let target = Offscreen::new(&gpu.device, w, h, 1)?;
     target.render_world(gpu, world, view, None)?;
     let depth = target.read_depth(gpu)?;
-    let inverse = world.relative_matrix().inverse();
+    let inverse = world.relative_matrix().inverse().as_dmat4();
     let k = view.pixels_per_radian();
     let mut errors = Vec::new();
     let stride = stride.max(1) as usize;
-    for py in (0..h as usize).step_by(stride) {
-        for px in (0..w as usize).step_by(stride) {
+    let mut distance = vec![-1f32; depth.len()];
+    for py in 0..h as usize {
+        for px in 0..w as usize {
             let d = depth[py * w as usize + px];
             if d >= 1.0 {
                 continue; // sky
@@ -779,8 +791,12 @@ pub fn world_screen_error(
                 f64::from(d),
                 1.0,
             );
-            let p = inverse.as_dmat4() * ndc;
+            let p = inverse * ndc;
             let rel = p.truncate() / p.w;
+            distance[py * w as usize + px] = rel.length() as f32;
+            if py % stride != 0 || px % stride != 0 {
+                continue;
+            }
             let at = view.eye + rel;
             let delta = (at.y - world.height_at(at.x, at.z)).abs();
             errors.push(k * delta / rel.length().max(1e-9));
@@ -793,11 +809,12 @@ pub fn world_screen_error(
             .copied()
             .unwrap_or(0.0)
     };
-    Ok(ScreenError {
+    let error = ScreenError {
         max: errors.last().copied().unwrap_or(0.0),
         p99: pick(0.99),
         pixels: errors.len(),
-    })
+    };
+    Ok((error, distance))
 }
 
 /// What a ray-cast method drew: the image, and per pixel the distance of the pixel-centre ray.
@@ -829,7 +846,8 @@ pub fn render_rays(
     let Some(rays) = method.ray_method(params.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
-    let image = cast(gpu, size, method, RayScene::Tile, timer, |caster, _| {
+    let how = (method, method.supersample());
+    let image = cast(gpu, size, how, RayScene::Tile, timer, |caster, _| {
         caster.prepare(&gpu.queue, params, shading, view, rays);
         Ok(())
     })?;
@@ -846,6 +864,21 @@ pub fn render_world_rays(
     method: crate::Method,
     timer: Option<&GpuTimer>,
 ) -> Result<RayImage> {
+    let ss = method.supersample();
+    render_world_rays_at(gpu, params, shading, view, method, ss, timer)
+}
+
+/// [`render_world_rays`] with `supersample` rays per pixel each way (what checks that the
+/// reference's 3x3 has converged).
+pub fn render_world_rays_at(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    supersample: u32,
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
     let Some(rays) = method.ray_method(params.land.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
@@ -853,7 +886,7 @@ pub fn render_world_rays(
     cast(
         gpu,
         view.size,
-        method,
+        (method, supersample),
         RayScene::World,
         timer,
         |caster, size| {
@@ -871,12 +904,12 @@ pub fn render_world_rays(
     )
 }
 
-/// Casts `method`'s rays at `scene` into a `width` x `height` image (times its supersampling
-/// where the device allows); `prepare(caster, cast size)` writes the uniforms.
+/// Casts `method`'s rays at `scene` into a `width` x `height` image, `ss` rays per pixel each
+/// way where the device allows; `prepare(caster, cast size)` writes the uniforms.
 fn cast(
     gpu: &Gpu,
     (width, height): (u32, u32),
-    method: crate::Method,
+    (method, ss): (crate::Method, u32),
     scene: RayScene,
     timer: Option<&GpuTimer>,
     prepare: impl FnOnce(&RayMarcher, (u32, u32)) -> Result<()>,
@@ -885,7 +918,7 @@ fn cast(
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
     let max = gpu.device.limits().max_texture_dimension_2d;
-    let ss = method.supersample();
+    let ss = ss.max(1);
     let ss = if width * ss <= max && height * ss <= max {
         ss
     } else {
@@ -907,7 +940,7 @@ fn cast(
     let all: Vec<f32> =
         bytemuck::pod_collect_to_vec(&read_texture(&gpu.device, &gpu.queue, &caster.distance)?);
     let unresolved = all.iter().filter(|&&d| d == -2.0).count();
-    // The centre subsample of each pixel (ss is odd: 1 or 3).
+    // The subsample nearest each pixel's centre (its centre where ss is odd).
     let distance = (0..height as usize)
         .flat_map(|y| {
             let row = (y * ss as usize + ss as usize / 2) * size.0 as usize;

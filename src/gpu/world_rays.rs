@@ -104,12 +104,14 @@ impl WorldRayUniforms {
         };
         let mut prefix = [[0f32; 4]; MAX_OCTAVES];
         let n = land.octaves.min(MAX_OCTAVES as u32);
+        let slopes = land.slope_bounds();
         for k in 1..=n {
             // The rest's bound is widened by what f32 sums can round (never at the last
             // octave, where it must stay 0 for the final test to be exact).
             let rest = land.remainder_bound(k);
             let margin = if k < n { 1e-5 * land.peak_height } else { 0.0 };
-            prefix[k as usize - 1] = [land.lipschitz(k) as f32, (rest + margin) as f32, 0.0, 0.0];
+            let slope = slopes[k as usize - 1];
+            prefix[k as usize - 1] = [slope as f32, (rest + margin) as f32, 0.0, 0.0];
         }
         let matrix = view.relative_matrix(1.0, 1e7);
         let pixel_angle = 2.0 * (view.fov_y * 0.5).tan() / size.1.max(1) as f32;
