@@ -677,7 +677,8 @@ where
     let (y0, y1) = pts
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
-    let (x0, x1, y0, y1) = (x0 / 1.4, x1 * 1.4, y0 / 1.4, y1 * 1.4);
+    // Room on the right for the slowest point's label.
+    let (x0, x1, y0, y1) = (x0 / 1.4, x1 * 3.0, y0 / 1.4, y1 * 1.4);
     let mut chart = ChartBuilder::on(area)
         .margin(16)
         .x_label_area_size(44)
@@ -717,7 +718,7 @@ where
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(SeriesLabelPosition::LowerRight)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 14))

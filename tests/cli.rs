@@ -787,6 +787,51 @@ fn render_draws_the_same_frame_with_every_method() {
     );
 }
 
+#[test]
+fn render_draws_the_same_endless_frame_with_every_method() {
+    let dir = scratch("world-methods");
+    let (w, h) = (120u32, 68u32);
+    let render = |method: &str, extra: &[&str]| {
+        let out = dir.join(format!("{method}-{}.png", extra.len()));
+        let mut args = vec![
+            "render",
+            "--world",
+            "endless",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "120",
+            "--height",
+            "68",
+            "--pixel-error",
+            "4",
+            "--stats",
+            "--method",
+            method,
+        ];
+        args.extend_from_slice(extra);
+        let (code, stdout, err) = relief(&args);
+        assert_eq!(code, 0, "{method}: {err}");
+        let img = image::open(&out).unwrap().into_rgb8().into_raw();
+        (img, stdout)
+    };
+    let (reference, stats) = render("reference", &[]);
+    // The ray casters draw no mesh and say how many rays ran out of steps.
+    assert!(stats.contains("triangles 0\n"), "{stats}");
+    assert!(stats.contains("unresolved_rays 0\n"), "{stats}");
+    let (other_seed, _) = render("reference", &["--seed", "8"]);
+    let control = relief::metrics::image_error(&reference, &other_seed, w, h).0;
+    for m in relief::Method::NAMES {
+        let (img, _) = render(m, &[]);
+        let (flip, _) = relief::metrics::image_error(&reference, &img, w, h);
+        eprintln!("endless {m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
+        assert!(
+            flip < control * 0.75,
+            "{m}: FLIP {flip} vs control {control}"
+        );
+    }
+}
+
 /// Renders the endless world small and loose (fast on a software GPU); returns the pixels and
 /// the `--stats` lines.
 fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>) {
@@ -1015,10 +1060,6 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["a.toml", "No such file"],
     );
     render(
-        &["--world", "endless", "--method", "reference"],
-        &["--method", "reference", "mesh"],
-    );
-    render(
         &["--world", "endless", "--feature-size", "3000"],
         &["feature-size", "3000", "power of two"],
     );
@@ -1110,17 +1151,38 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
-    // Three views at two knobs, and the flight.
-    assert_eq!(rows.len(), 1 + 3 * 2 + 1, "{csv}");
+    // Three views at two knobs, the three ray casters on each view, and the flight.
+    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 3 + 1, "{csv}");
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     for row in &rows[1..7] {
         let v: Vec<&str> = row.split(',').collect();
+        assert_eq!(v[col("method")], "mesh", "{row}");
         let measured: f64 = v[col("measured_max_px")].parse().unwrap();
         let bound: f64 = v[col("error_bound_px")].parse().unwrap();
         assert!(measured <= bound, "{row}");
         assert!(v[col("triangles")].parse::<u64>().unwrap() > 0, "{row}");
+        // Against the reference of the same view: close, and drawing where it draws.
+        let flip: f64 = v[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.25, "{row}");
+        let holes: f64 =
+            v[col("missed")].parse::<f64>().unwrap() + v[col("extra")].parse::<f64>().unwrap();
+        assert!(holes < 0.02, "{row}");
     }
-    assert!(rows[7].starts_with("flight,"), "{csv}");
+    for (row, method) in rows[7..16].iter().zip(
+        ["reference", "raymarch", "raymarch-fragment"]
+            .iter()
+            .cycle(),
+    ) {
+        let v: Vec<&str> = row.split(',').collect();
+        assert_eq!(v[col("method")], *method, "{row}");
+        assert_eq!(v[col("triangles")], "0", "{row}");
+        assert!(v[col("render_ms")].parse::<f64>().unwrap() > 0.0, "{row}");
+        assert!(v[col("unresolved_rays")].parse::<u64>().is_ok(), "{row}");
+        if *method != "reference" {
+            assert!(v[col("flip_mean")].parse::<f64>().unwrap() < 0.25, "{row}");
+        }
+    }
+    assert!(rows[16].starts_with("flight,"), "{csv}");
 }
 
 #[test]

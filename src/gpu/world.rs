@@ -574,7 +574,7 @@ impl World {
 
 /// The shading uniforms of the endless world for a camera-relative `matrix` (the camera at the
 /// origin), shared by the mesh and the ray casters.
-pub(crate) fn render_uniforms(
+pub fn render_uniforms(
     params: &WorldParams,
     shading: &Shading,
     matrix: Mat4,
