@@ -217,7 +217,10 @@ pub fn run(
         progress.start(i, configs.len(), config);
         rows.push(match config.method {
             Method::Mesh => mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?,
-            Method::RaymarchFragment | Method::Raymarch | Method::Reference => ray_row(
+            Method::RaymarchFragment
+            | Method::Raymarch
+            | Method::RaymarchBandlimited
+            | Method::Reference => ray_row(
                 gpu,
                 config,
                 options,

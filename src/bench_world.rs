@@ -296,7 +296,11 @@ pub fn run(
             ));
         }
         rows.push(row);
-        for method in [Method::Raymarch, Method::RaymarchFragment] {
+        for method in [
+            Method::Raymarch,
+            Method::RaymarchFragment,
+            Method::RaymarchBandlimited,
+        ] {
             rows.push(march_row(
                 gpu,
                 params,

@@ -991,6 +991,13 @@ fn run(top: &ArgMatches) -> Result<()> {
             return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
         }
     }
+    if let Run::Render { method, .. } = run {
+        if !method.in_tile() {
+            return Err(Error::Usage(format!(
+                "--method {method} draws the endless world only so far (--world endless)"
+            )));
+        }
+    }
     let params = resolve_scene(m)?;
     let timings = m.get_flag("timings");
     match run {

@@ -14,6 +14,9 @@ pub enum Method {
     Raymarch,
     /// The same march in a full-screen fragment shader, as the seed does it.
     RaymarchFragment,
+    /// relief's own march: the seed's, in compute, with octaves finer than the pixel's
+    /// footprint faded out of its shading (the endless world only so far).
+    RaymarchBandlimited,
     /// relief's conservative ray cast of the continuous surface (every octave, Lipschitz
     /// steps, bisection), supersampled 3x3: the ground truth.
     Reference,
@@ -21,16 +24,22 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order of docs, charts and tables.
-    pub const ALL: [Method; 4] = [
+    pub const ALL: [Method; 5] = [
         Method::Mesh,
         Method::Raymarch,
         Method::RaymarchFragment,
+        Method::RaymarchBandlimited,
         Method::Reference,
     ];
 
     /// The names `--method` takes, in [`Method::ALL`]'s order.
-    pub const NAMES: &'static [&'static str] =
-        &["mesh", "raymarch", "raymarch-fragment", "reference"];
+    pub const NAMES: &'static [&'static str] = &[
+        "mesh",
+        "raymarch",
+        "raymarch-fragment",
+        "raymarch-bandlimited",
+        "reference",
+    ];
 
     /// Its name on the command line, in the CSV and on the chart.
     pub fn name(self) -> &'static str {
@@ -48,6 +57,7 @@ impl Method {
             Method::Mesh => "the displaced grid mesh, forward shaded (relief's pipeline)",
             Method::Raymarch => "the seed template's heightfield ray march, in compute",
             Method::RaymarchFragment => "the same march in a fragment shader, as the seed does it",
+            Method::RaymarchBandlimited => "the march in compute, octaves finer than a pixel faded from its shading (endless world)",
             Method::Reference => "the conservative ray cast of the continuous surface, 3x3 supersampled: the ground truth",
         }
     }
@@ -56,9 +66,16 @@ impl Method {
     pub fn ray_path(self) -> Option<RayPath> {
         match self {
             Method::Mesh => None,
-            Method::Raymarch | Method::Reference => Some(RayPath::Compute),
+            Method::Raymarch | Method::RaymarchBandlimited | Method::Reference => {
+                Some(RayPath::Compute)
+            }
             Method::RaymarchFragment => Some(RayPath::Fragment),
         }
+    }
+
+    /// Whether the tile world draws it (band-limiting is the endless world's only so far).
+    pub fn in_tile(self) -> bool {
+        self != Method::RaymarchBandlimited
     }
 
     /// Supersampling per axis of the image this method draws.
@@ -75,10 +92,13 @@ impl Method {
         match self {
             Method::Mesh => None,
             Method::Reference => Some(RayMethod::Reference),
-            Method::Raymarch | Method::RaymarchFragment => Some(RayMethod::SeedMarch(SeedMarch {
-                normal_octaves: octaves,
-                ..SeedMarch::default()
-            })),
+            Method::Raymarch | Method::RaymarchFragment | Method::RaymarchBandlimited => {
+                Some(RayMethod::SeedMarch(SeedMarch {
+                    normal_octaves: octaves,
+                    band_limit: self == Method::RaymarchBandlimited,
+                    ..SeedMarch::default()
+                }))
+            }
         }
     }
 }

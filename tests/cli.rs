@@ -764,7 +764,11 @@ fn render_draws_the_same_frame_with_every_method() {
     let reference = render("reference", &[]);
     let other_seed = render("reference", &["--seed", "8"]);
     let control = relief::metrics::image_error(&reference, &other_seed, w, h).0;
-    for m in relief::Method::NAMES {
+    for m in relief::Method::ALL
+        .iter()
+        .filter(|m| m.in_tile())
+        .map(|m| m.name())
+    {
         let img = render(m, &[]);
         let (flip, _) = relief::metrics::image_error(&reference, &img, w, h);
         eprintln!("{m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
@@ -784,6 +788,16 @@ fn render_draws_the_same_frame_with_every_method() {
     rejects(
         &["render", "--out", "x.png", "--method", "rays"],
         &["--method", "rays", "reference"],
+    );
+    rejects(
+        &[
+            "render",
+            "--out",
+            "x.png",
+            "--method",
+            "raymarch-bandlimited",
+        ],
+        &["--method", "raymarch-bandlimited", "endless"],
     );
 }
 
@@ -1151,8 +1165,8 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
-    // Three views at two knobs, the three ray casters on each view, and the flight.
-    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 3 + 1, "{csv}");
+    // Three views at two knobs, the four ray casters on each view, and the flight.
+    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 4 + 1, "{csv}");
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     for row in &rows[1..7] {
         let v: Vec<&str> = row.split(',').collect();
@@ -1168,11 +1182,13 @@ fn bench_world_endless_quick_writes_landscape_csv() {
             v[col("missed")].parse::<f64>().unwrap() + v[col("extra")].parse::<f64>().unwrap();
         assert!(holes < 0.02, "{row}");
     }
-    for (row, method) in rows[7..16].iter().zip(
-        ["reference", "raymarch", "raymarch-fragment"]
-            .iter()
-            .cycle(),
-    ) {
+    let casters = [
+        "reference",
+        "raymarch",
+        "raymarch-fragment",
+        "raymarch-bandlimited",
+    ];
+    for (row, method) in rows[7..19].iter().zip(casters.iter().cycle()) {
         let v: Vec<&str> = row.split(',').collect();
         assert_eq!(v[col("method")], *method, "{row}");
         assert_eq!(v[col("triangles")], "0", "{row}");
@@ -1182,7 +1198,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
             assert!(v[col("flip_mean")].parse::<f64>().unwrap() < 0.25, "{row}");
         }
     }
-    assert!(rows[16].starts_with("flight,"), "{csv}");
+    assert!(rows[19].starts_with("flight,"), "{csv}");
 }
 
 #[test]

@@ -9,7 +9,9 @@
 //      sum's own (smaller) Lipschitz bound, so high above the ground a step costs one or two
 //      octaves. The ray is bounded by the region the mesh draws.
 //   1, the seed's march: t += step_factor * h, a hit when |h| < hit_k * t, `march_octaves`
-//      octaves while stepping and `normal_octaves` for the normal.
+//      octaves while stepping and `normal_octaves` for the normal. With `band_limit`, the
+//      shading (normal, colour channel, snow line) fades out each octave whose cell is under two
+//      pixel footprints (gone at one): detail a pixel cannot show is not aliased into it.
 //
 // Positions are camera-relative f32 metres from a reference sample (an integer count of
 // 2^base_log2-metre samples, the eye's sample): each octave's lattice cell is that integer
@@ -45,7 +47,8 @@ struct WorldRayUniforms {
     // Radians per pixel at the image centre: the reference's smallest step is a hundredth of a
     // pixel's footprint.
     pixel_angle: f32,
-    _pad: u32,
+    // 1: the march fades octaves finer than the pixel's footprint out of its shading.
+    band_limit: u32,
     // The region drawn, relative to the reference sample: x0, z0, x1, z1 in metres.
     bounds: vec4<f32>,
     // Colour stored where no terrain is hit (already encoded for the target).
@@ -93,20 +96,24 @@ fn octave_freq(o: u32) -> f32 {
     return ldexp(1.0, i32(o) - ray.feature_log2);
 }
 
-// (normalised value, d/dx, d/dz per metre) of the channel's first `octaves` octaves at `p`.
-fn world_channel(p: vec2<f32>, octaves: u32, channel: u32) -> vec3<f32> {
+// (normalised value, d/dx, d/dz per metre) of the channel's first `octaves` octaves at `p`,
+// each octave faded by a pixel footprint of `footprint` metres (0: no fading).
+fn world_channel(p: vec2<f32>, octaves: u32, channel: u32, footprint: f32) -> vec3<f32> {
     let eroded = ray.terrain == 1u && channel == CHANNEL_HEIGHT;
     var st = Octaves();
     var amplitude = 1.0;
     for (var o = 0u; o < octaves; o++) {
-        st = add_octave(st, octave_noise(p, o, channel), octave_freq(o), amplitude, eroded);
+        let freq = octave_freq(o);
+        // Full where the cell (1 / freq) spans two footprints, gone where it spans one.
+        let keep = select(1.0, clamp(1.0 / (freq * footprint) - 1.0, 0.0, 1.0), footprint > 0.0);
+        st = add_octave(st, octave_noise(p, o, channel), freq, amplitude * keep, eroded);
         amplitude *= ray.gain;
     }
     return vec3<f32>(0.5 + ray.scale * st.sum, ray.scale * st.grad);
 }
 
 fn world_height(p: vec2<f32>, octaves: u32) -> f32 {
-    return ray.peak * world_channel(p, octaves, CHANNEL_HEIGHT).x;
+    return ray.peak * world_channel(p, octaves, CHANNEL_HEIGHT, 0.0).x;
 }
 
 // How far the reference's ray can go from `p` without crossing the surface (> 0), or a value
@@ -218,13 +225,14 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     }
     let p = ro + t * rd;
     let normal_octaves = select(ray.octaves, ray.normal_octaves, ray.method == 1u);
-    let g = world_channel(p.xz, normal_octaves, CHANNEL_HEIGHT);
+    let footprint = select(0.0, t * ray.pixel_angle, ray.method == 1u && ray.band_limit == 1u);
+    let g = world_channel(p.xz, normal_octaves, CHANNEL_HEIGHT, footprint);
     let n = normalize(vec3<f32>(-g.y * ray.peak, 1.0, -g.z * ray.peak));
     var h = g.x;
     if normal_octaves != ray.octaves {
-        h = world_channel(p.xz, ray.octaves, CHANNEL_HEIGHT).x;
+        h = world_channel(p.xz, ray.octaves, CHANNEL_HEIGHT, footprint).x;
     }
-    let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR).x;
+    let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR, footprint).x;
     // The render uniforms put the camera at the origin: shade with the camera-relative point.
     return vec4<f32>(shade(r, t * rd, n, h, tint), t);
 }

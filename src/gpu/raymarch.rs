@@ -72,6 +72,9 @@ pub struct SeedMarch {
     pub march_octaves: u32,
     /// Octaves summed for the normal (at most the scene's).
     pub normal_octaves: u32,
+    /// Fade octaves finer than the pixel's footprint out of the shading (relief's own march;
+    /// the endless world only so far). The seed does not.
+    pub band_limit: bool,
 }
 
 impl Default for SeedMarch {
@@ -83,6 +86,7 @@ impl Default for SeedMarch {
             hit_k: 0.0015,
             march_octaves: 5,
             normal_octaves: 8,
+            band_limit: false,
         }
     }
 }

@@ -63,8 +63,8 @@ pub struct WorldRayUniforms {
     pub hit_k: f32,
     /// Radians per pixel at the image centre.
     pub pixel_angle: f32,
-    /// Padding.
-    pub _pad: u32,
+    /// 1 where the march fades octaves finer than the pixel's footprint out of its shading.
+    pub band_limit: u32,
     /// The region drawn relative to the reference sample: x0, z0, x1, z1 in metres.
     pub bounds: [f32; 4],
     /// Sky colour as stored (sRGB values).
@@ -136,7 +136,7 @@ impl WorldRayUniforms {
             step_factor: seed.step_factor,
             hit_k: seed.hit_k,
             pixel_angle,
-            _pad: 0,
+            band_limit: u32::from(method_id == 1 && seed.band_limit),
             bounds: [
                 (region[0] - origin.x) as f32,
                 (region[1] - origin.z) as f32,
