@@ -483,47 +483,28 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
     out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99\n");
     for r in rows {
         let mesh = r.method == Method::Mesh;
+        // Mesh-only columns are empty for the ray casters.
+        let mesh_only = |text: String| if mesh { text } else { String::new() };
         let cov = |f: fn(&Coverage) -> f64| opt(r.coverage.as_ref().map(f));
-        out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-            r.view,
-            r.method,
-            r.pixel_error,
-            if mesh {
-                r.patch_cells.to_string()
-            } else {
-                String::new()
-            },
-            if mesh {
-                r.levels.to_string()
-            } else {
-                String::new()
-            },
-            r.triangles,
-            if mesh {
-                format!("{:.3}", r.error_bound_px)
-            } else {
-                String::new()
-            },
+        let fields = [
+            r.view.clone(),
+            r.method.to_string(),
+            r.pixel_error.to_string(),
+            mesh_only(r.patch_cells.to_string()),
+            mesh_only(r.levels.to_string()),
+            r.triangles.to_string(),
+            mesh_only(format!("{:.3}", r.error_bound_px)),
             opt(r.measured.map(|m| m.max)),
             opt(r.measured.map(|m| m.p99)),
-            if mesh {
-                format!("{:.3e}", uniform_triangles(r))
-            } else {
-                String::new()
-            },
-            r.texels_median,
-            r.texels_max,
+            mesh_only(format!("{:.3e}", uniform_triangles(r))),
+            r.texels_median.to_string(),
+            r.texels_max.to_string(),
             format!("{:.0}", r.texels_mean),
             opt(r.render_ms),
             opt(r.bake_ms),
             opt(r.bake_max_ms),
             opt(r.bake_ms_mean),
-            if r.wall_ms.is_finite() {
-                format!("{:.3}", r.wall_ms)
-            } else {
-                String::new()
-            },
+            opt(r.wall_ms.is_finite().then_some(r.wall_ms)),
             opt(r.flip.map(|f| f.0)),
             opt(r.flip.map(|f| f.1)),
             cov(|c| c.missed),
@@ -532,7 +513,9 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
             r.unresolved.map_or(String::new(), |u| u.to_string()),
             opt(r.converged.map(|f| f.0)),
             opt(r.converged.map(|f| f.1)),
-        ));
+        ];
+        out.push_str(&fields.join(","));
+        out.push('\n');
     }
     out
 }
@@ -722,7 +705,7 @@ where
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
+        .position(SeriesLabelPosition::UpperMiddle)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 14))
