@@ -127,6 +127,25 @@ pub struct Clipmap {
     /// reaches 1 as the eye climbs to the height where that level is dropped, so dropping it
     /// (or taking it up again on the way down) changes nothing on screen.
     pub fade: f64,
+    /// Strips uncovered but not baked yet (a per-frame budget defers them), in world samples
+    /// of their level: [`Clipmap::take`] hands them out, coarsest level first.
+    pub pending: Vec<Strip>,
+}
+
+/// The part of `strip` inside the square of `side` samples at `origin`, if any.
+fn clip(strip: Strip, origin: [i32; 2], side: u32) -> Option<Strip> {
+    let mut out = strip;
+    for axis in 0..2 {
+        let lo = i64::from(strip.origin[axis]).max(i64::from(origin[axis]));
+        let hi = (i64::from(strip.origin[axis]) + i64::from(strip.extent[axis]))
+            .min(i64::from(origin[axis]) + i64::from(side));
+        if hi <= lo {
+            return None;
+        }
+        out.origin[axis] = lo as i32;
+        out.extent[axis] = (hi - lo) as u32;
+    }
+    Some(out)
 }
 
 /// How far from the origin, in metres along x or z, an eye may be for `land`: level sample
@@ -266,6 +285,7 @@ impl Clipmap {
             morphing: true,
             altitude: 0.0,
             fade: 0.0,
+            pending: Vec::new(),
         }
     }
 
@@ -307,9 +327,109 @@ impl Clipmap {
         first
     }
 
-    /// Moves the levels for `eye` and returns the strips to bake: whole levels that became
-    /// active or jumped more than their size, else the rows and columns they uncovered.
+    /// Moves the levels for `eye` and queues the strips to bake in [`Clipmap::pending`]: whole
+    /// levels that became active or jumped more than their size, else the rows and columns they
+    /// uncovered. Strips still pending are kept where they overlap their level's new square.
+    /// Returns the strips this move uncovered.
     pub fn update(&mut self, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
+        let strips = self.moved(eye, pixel_error);
+        let squares: Vec<Option<[i32; 2]>> = self
+            .levels
+            .iter()
+            .map(|l| l.active.then_some(l.origin))
+            .collect();
+        let side = self.side();
+        let fresh: Vec<usize> = strips
+            .iter()
+            .filter(|s| s.extent == [side; 2])
+            .map(|s| s.level)
+            .collect();
+        let mut pending: Vec<Strip> = std::mem::take(&mut self.pending)
+            .into_iter()
+            .filter(|s| !fresh.contains(&s.level))
+            .filter_map(|s| clip(s, squares[s.level]?, side))
+            .collect();
+        pending.extend(strips.iter().copied());
+        self.pending = pending;
+        strips
+    }
+
+    /// Takes pending strips to bake now, coarsest level first, splitting a strip by rows where
+    /// the next would pass `budget` texels (at least one row is always taken) and taking at
+    /// most `max_strips`.
+    pub fn take(&mut self, budget: u64, max_strips: usize) -> Vec<Strip> {
+        // Coarse levels first: they cover the screen while finer ones wait.
+        self.pending.sort_by_key(|s| std::cmp::Reverse(s.level));
+        let mut left = budget;
+        let mut out = Vec::new();
+        let mut rest = Vec::new();
+        for s in std::mem::take(&mut self.pending) {
+            let width = u64::from(s.extent[0]);
+            let texels = width * u64::from(s.extent[1]);
+            let full = out.len() >= max_strips || (left < width && !out.is_empty());
+            if full {
+                rest.push(s);
+                continue;
+            }
+            if texels <= left {
+                left -= texels;
+                out.push(s);
+                continue;
+            }
+            let rows = (left / width).max(1) as u32;
+            left = left.saturating_sub(width * u64::from(rows));
+            out.push(Strip {
+                extent: [s.extent[0], rows],
+                ..s
+            });
+            rest.push(Strip {
+                origin: [s.origin[0], s.origin[1] + rows as i32],
+                extent: [s.extent[0], s.extent[1] - rows],
+                ..s
+            });
+        }
+        self.pending = rest;
+        out
+    }
+
+    /// Texels still waiting to be baked.
+    pub fn pending_texels(&self) -> u64 {
+        self.pending
+            .iter()
+            .map(|s| u64::from(s.extent[0]) * u64::from(s.extent[1]))
+            .sum()
+    }
+
+    /// Texels of level `l` still waiting to be baked.
+    pub fn pending_texels_of(&self, l: usize) -> u64 {
+        self.pending
+            .iter()
+            .filter(|s| s.level == l)
+            .map(|s| u64::from(s.extent[0]) * u64::from(s.extent[1]))
+            .sum()
+    }
+
+    /// The first level that is drawn: the first active level from which every coarser active
+    /// level is fully baked (a level with pending strips is not drawn, and neither is any finer
+    /// one: the next coarser level covers its square). `levels.len()` if none can be.
+    pub fn first_drawn(&self) -> usize {
+        let mut first = self.levels.len();
+        for l in (0..self.levels.len()).rev() {
+            let level = &self.levels[l];
+            if !level.active || self.pending.iter().any(|s| s.level == l) {
+                break;
+            }
+            first = l;
+        }
+        first
+    }
+
+    /// Whether level `l` is drawn: active, and no coarser active level waits on a bake.
+    pub fn drawn(&self, l: usize) -> bool {
+        l >= self.first_drawn() && self.levels[l].active
+    }
+
+    fn moved(&mut self, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
         self.altitude = (eye.position[1] - eye.ground).max(0.0);
         let first = self.first_level(eye, pixel_error);
         // The height at which `first` would be dropped, if a coarser level exists.
@@ -369,7 +489,7 @@ impl Clipmap {
     /// first patch), or `None` for the first active level.
     pub fn hole(&self, l: usize) -> Option<[i32; 2]> {
         let finer = self.levels.get(l.checked_sub(1)?)?;
-        if !finer.active {
+        if !self.drawn(l - 1) {
             return None;
         }
         let o = self.levels[l].origin;
@@ -389,8 +509,9 @@ impl Clipmap {
     ) -> Vec<Patch> {
         let mut out = Vec::new();
         let half = PATCHES / 2;
+        let first = self.first_drawn();
         for (l, level) in self.levels.iter().enumerate() {
-            if !level.active {
+            if l < first || !level.active {
                 continue;
             }
             let hole = self.hole(l);
@@ -428,13 +549,20 @@ impl Clipmap {
     /// eye, [`Clipmap::altitude`] away (less on ground steeper than the view: not counted).
     pub fn error_bound(&self, pixels_per_radian: f64) -> f64 {
         let b = f64::from(self.patch);
-        let active: Vec<&Level> = self.levels.iter().filter(|l| l.active).collect();
+        let first = self.first_drawn();
+        // While a bake is pending the first level drawn may be coarser than the first active.
+        let fading = self.levels.get(first).is_some_and(|l| l.active)
+            && (first == 0 || !self.levels[first - 1].active);
+        let active: Vec<&Level> = self.levels[first.min(self.levels.len())..]
+            .iter()
+            .filter(|l| l.active)
+            .collect();
         let mut worst: f64 = 0.0;
         for (i, level) in active.iter().enumerate() {
             let s = level.spacing();
             let own = if i == 0 {
                 // Faded towards the next level, the first level has that level's error too.
-                let faded = if self.fade > 0.0 {
+                let faded = if self.fade > 0.0 && fading {
                     active.get(1).map_or(0.0, |c| c.error)
                 } else {
                     0.0
@@ -454,6 +582,13 @@ impl Clipmap {
 mod tests {
     use super::*;
     use crate::landscape::TerrainFn;
+
+    /// Moves the levels and bakes everything at once (no budget): what they uncovered.
+    fn settle(map: &mut Clipmap, eye: &Eye, pixel_error: f64) -> Vec<Strip> {
+        let strips = map.update(eye, pixel_error);
+        map.take(u64::MAX, usize::MAX);
+        strips
+    }
 
     fn land() -> Landscape {
         Landscape {
@@ -483,7 +618,7 @@ mod tests {
             let x = (f64::from(state) / 4e9 - 0.5) * 1e7;
             state = crate::noise::pcg(state);
             let z = (f64::from(state) / 4e9 - 0.5) * 1e7;
-            map.update(&eye(x, z), 1.0);
+            settle(&mut map, &eye(x, z), 1.0);
             for l in 1..map.levels.len() {
                 let Some([hx, hy]) = map.hole(l) else {
                     continue;
@@ -524,7 +659,7 @@ mod tests {
         let mut map = Clipmap::new(&land(), 64.0, 300.0);
         assert_eq!(map.patch, PATCH_RANGE.0);
         let side = map.side() as i64;
-        map.update(&eye(0.0, 0.0), 64.0);
+        settle(&mut map, &eye(0.0, 0.0), 64.0);
         let mut state = 5u32;
         for _ in 0..60 {
             state = crate::noise::pcg(state);
@@ -533,7 +668,7 @@ mod tests {
             let step_z = f64::from(state % 97) - 48.0;
             let before: Vec<Level> = map.levels.clone();
             let e = eye(before_x(&map) + step * 3.0, before_z(&map) + step_z * 3.0);
-            let strips = map.update(&e, 64.0);
+            let strips = settle(&mut map, &e, 64.0);
             for (l, level) in map.levels.iter().enumerate() {
                 if !level.active {
                     continue;
@@ -589,7 +724,7 @@ mod tests {
         assert!(tight > loose, "{tight} {loose}");
         // The bound the layout reports is what the knob asked for (unless patches max out).
         let mut map = Clipmap::new(&land, 2.0, 1000.0);
-        map.update(&eye(0.0, 0.0), 2.0);
+        settle(&mut map, &eye(0.0, 0.0), 2.0);
         let bound = map.error_bound(1000.0);
         assert!(
             bound <= 2.0 || map.patch == PATCH_RANGE.1,
@@ -601,11 +736,11 @@ mod tests {
     #[test]
     fn a_high_eye_skips_fine_levels_and_culling_drops_patches() {
         let mut map = Clipmap::new(&land(), 1.0, 300.0);
-        map.update(&eye(0.0, 0.0), 1.0);
+        settle(&mut map, &eye(0.0, 0.0), 1.0);
         let low = map.levels.iter().filter(|l| l.active).count();
         let mut high = eye(0.0, 0.0);
         high.position[1] = 5000.0;
-        map.update(&high, 1.0);
+        settle(&mut map, &high, 1.0);
         let few = map.levels.iter().filter(|l| l.active).count();
         assert!(few < low, "{few} levels at 5 km, {low} at 300 m");
         let all = map.patches([0.0, 600.0], |_, _| true).len();
@@ -613,5 +748,72 @@ mod tests {
         let rings = (PATCHES * PATCHES - PATCHES * PATCHES / 4) as usize;
         assert_eq!(all, (few - 1) * rings + (PATCHES * PATCHES) as usize);
         assert_eq!(none, 0);
+    }
+
+    #[test]
+    fn a_budget_bakes_coarse_levels_first_and_finer_ones_wait_for_them() {
+        let mut map = Clipmap::new(&land(), 1.0, 300.0);
+        map.update(&eye(0.0, 0.0), 1.0);
+        let active = map.levels.iter().filter(|l| l.active).count();
+        let side = u64::from(map.side());
+        let whole = side * side;
+        assert_eq!(map.pending_texels(), active as u64 * whole);
+        assert_eq!(map.first_drawn(), map.levels.len(), "nothing is baked yet");
+        // One and a half levels a frame: the coarsest, then half of the next.
+        let strips = map.take(whole + whole / 2, usize::MAX);
+        let baked: u64 = strips
+            .iter()
+            .map(|s| u64::from(s.extent[0]) * u64::from(s.extent[1]))
+            .sum();
+        assert!(baked <= whole + whole / 2 && baked > whole, "{baked}");
+        let n = map.levels.len();
+        assert_eq!(
+            map.first_drawn(),
+            n - 1,
+            "the coarsest level is drawn alone"
+        );
+        assert!(
+            map.hole(n - 1).is_none(),
+            "drawn whole while finer levels wait"
+        );
+        assert_eq!(
+            map.patches([0.0, 600.0], |_, _| true).len(),
+            (PATCHES * PATCHES) as usize
+        );
+        let mut frames = 1;
+        while map.pending_texels() > 0 {
+            let strips = map.take(whole + whole / 2, usize::MAX);
+            let baked: u64 = strips
+                .iter()
+                .map(|s| u64::from(s.extent[0]) * u64::from(s.extent[1]))
+                .sum();
+            assert!(baked <= whole + whole / 2, "{baked}");
+            frames += 1;
+        }
+        // Whole rows only: a frame may fall a row short of its budget.
+        let least = (2 * active).div_ceil(3);
+        assert!(
+            (least..=least + 1).contains(&frames),
+            "{frames} frames for {active} levels"
+        );
+        assert_eq!(
+            map.first_drawn(),
+            map.levels.iter().position(|l| l.active).unwrap()
+        );
+        // A pending strip is kept only where it overlaps its level's new square.
+        settle(&mut map, &eye(0.0, 0.0), 1.0);
+        let far = eye(1.0e5, 0.0);
+        map.update(&far, 1.0);
+        for s in &map.pending {
+            let o = map.levels[s.level].origin;
+            let side = map.side() as i32;
+            assert!(
+                s.origin[0] >= o[0]
+                    && s.origin[1] >= o[1]
+                    && s.origin[0] + s.extent[0] as i32 <= o[0] + side
+                    && s.origin[1] + s.extent[1] as i32 <= o[1] + side,
+                "{s:?} outside the square at {o:?}"
+            );
+        }
     }
 }

@@ -206,6 +206,86 @@ fn no_cracks_between_levels_and_the_morph_is_what_prevents_them() {
 }
 
 #[test]
+fn a_bake_budget_spreads_big_moves_over_frames_without_holes_and_ends_as_a_fresh_bake() {
+    let gpu = common::gpu();
+    let p = params();
+    let land = p.land;
+    let mut w = world(&gpu, p);
+    w.set_shading(relief::Shading {
+        sky_color: [1.0, 0.0, 1.0],
+        ..Default::default()
+    });
+    // A third of a level of this layout (33 x 33 samples: 4-cell patches at this knob).
+    let budget = 363;
+    w.set_bake_budget(budget);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let dir = DVec3::new(1.0, -0.45, 0.3);
+    let mut last = view(&land, 0.0, 0.0, 30.0, dir);
+    let (mut frames, mut partial, mut most) = (0, 0, 0);
+    // The first frames, a jump far away (every level whole again) while the first bake is
+    // still pending, small steps, then frames until nothing waits.
+    let moves = [
+        (0.0, 0.0),
+        (0.0, 0.0),
+        (9000.0, 4000.0),
+        (9003.0, 4001.0),
+        (9010.0, 3990.0),
+    ];
+    for (x, z) in moves
+        .into_iter()
+        .chain(std::iter::repeat((9010.0, 3990.0)).take(60))
+    {
+        last = view(&land, x, z, 30.0, dir);
+        let (pixels, _) = target.render_world_budgeted(&gpu, &mut w, &last).unwrap();
+        let s = w.stats();
+        let side = u64::from(w.clipmap().side());
+        assert_eq!(side, 33, "the layout this test is sized for");
+        most = most.max(s.texels_baked);
+        // At most the budget (or a row more where a strip is split), or the coarsest level
+        // whole where nothing could be drawn otherwise.
+        assert!(s.texels_baked <= (budget + side).max(side * side), "{s:?}");
+        if s.texels_pending > 0 {
+            partial += 1;
+            assert!(s.triangles > 0, "frame {frames} drew nothing: {s:?}");
+        }
+        assert_eq!(
+            holes(&pixels, SIZE),
+            0,
+            "frame {frames}: holes while baking"
+        );
+        frames += 1;
+        if frames >= moves.len() && s.texels_pending == 0 {
+            break;
+        }
+    }
+    assert!(partial >= 4, "{partial} frames drew with a bake pending");
+    assert_eq!(w.pending_texels(), 0, "still pending after {frames} frames");
+    assert!(most > budget / 2, "{most}");
+    let mut fresh = world(&gpu, p);
+    bake_only(&gpu, &mut fresh, &last);
+    assert_eq!(w.clipmap().levels, fresh.clipmap().levels);
+    let (a, b) = (levels(&gpu, &w), levels(&gpu, &fresh));
+    let n = (w.clipmap().side() as usize).pow(2);
+    for (l, _) in fresh
+        .clipmap()
+        .levels
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.active)
+    {
+        let differ = a[l * n..(l + 1) * n]
+            .iter()
+            .zip(&b[l * n..(l + 1) * n])
+            .filter(|(x, y)| x != y)
+            .count();
+        assert_eq!(
+            differ, 0,
+            "level {l}: {differ} texels differ from a fresh bake"
+        );
+    }
+}
+
+#[test]
 fn a_view_of_only_sky_draws_nothing() {
     let gpu = common::gpu();
     let p = params();

@@ -310,10 +310,17 @@ impl App {
 
     /// Whether frames must keep coming: the tile scrolling, or the fly camera moving.
     fn animating(&self) -> bool {
-        match self.fly {
-            Some(_) => !self.held.is_empty() || self.path.is_some(),
-            None => self.options.animating(),
-        }
+        // Levels still waiting on a bake (over the per-frame budget) need more frames.
+        let baking = self
+            .state
+            .as_ref()
+            .and_then(|s| s.world.as_ref())
+            .is_some_and(|w| w.pending_texels() > 0);
+        baking
+            || match self.fly {
+                Some(_) => !self.held.is_empty() || self.path.is_some(),
+                None => self.options.animating(),
+            }
     }
 
     fn keep_camera_above(&mut self) {
@@ -526,11 +533,12 @@ impl App {
                 let _ = s.device.poll(wgpu::PollType::Poll);
             }
         }
-        // A minimised window is not drawn until it is restored (a resize event).
+        // A minimised window is not drawn until it is restored (a resize event). Levels
+        // waiting on a bake (over the per-frame budget) keep frames coming until they are in.
         let animating = match self.fly {
             Some(_) => !self.held.is_empty() || self.path.is_some(),
             None => self.options.animating(),
-        };
+        } || s.world.as_ref().is_some_and(|w| w.pending_texels() > 0);
         if animating && !s.minimised() {
             s.window.request_redraw();
         }

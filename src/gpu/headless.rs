@@ -558,14 +558,37 @@ impl Offscreen {
         )
     }
 
-    /// [`Offscreen::render`] for the endless world: moves its levels to `view`, bakes what
-    /// they uncovered, selects and draws the visible patches.
+    /// [`Offscreen::render`] for the endless world: moves its levels to `view`, bakes all they
+    /// uncovered (a still frame is drawn whole, whatever the bake budget), selects and draws
+    /// the visible patches.
     pub fn render_world(
         &self,
         gpu: &Gpu,
         world: &mut World,
         view: &WorldView,
         timer: Option<&GpuTimer>,
+    ) -> Result<(Vec<u8>, Option<Timings>)> {
+        self.world_frame(gpu, world, view, timer, true)
+    }
+
+    /// One frame of the endless world as a window draws it: the bake within the world's
+    /// per-frame budget ([`World::set_bake_budget`]), levels still waiting on it not drawn.
+    pub fn render_world_budgeted(
+        &self,
+        gpu: &Gpu,
+        world: &mut World,
+        view: &WorldView,
+    ) -> Result<(Vec<u8>, Option<Timings>)> {
+        self.world_frame(gpu, world, view, None, false)
+    }
+
+    fn world_frame(
+        &self,
+        gpu: &Gpu,
+        world: &mut World,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+        whole: bool,
     ) -> Result<(Vec<u8>, Option<Timings>)> {
         self.check_targets(world.targets())?;
         let clear = super::clear_color(world.shading().sky_color, Self::COLOR_FORMAT);
@@ -576,7 +599,24 @@ impl Offscreen {
             timer,
             |encoder| {
                 let mut w = world.borrow_mut();
-                w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
+                if !whole {
+                    w.encode_bake(&gpu.device, &gpu.queue, encoder, view)?;
+                    w.prepare(&gpu.queue, view);
+                    return Ok(());
+                }
+                // A still frame is drawn whole: everything the view uncovered is baked now.
+                let budget = w.bake_budget();
+                w.set_bake_budget(u64::MAX);
+                let mut baked = Ok(0);
+                // More than one pass only where more strips wait than one pass holds.
+                for _ in 0..crate::clipmap::MAX_LEVELS {
+                    baked = w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer);
+                    if baked.is_err() || w.pending_texels() == 0 {
+                        break;
+                    }
+                }
+                w.set_bake_budget(budget);
+                baked?;
                 w.prepare(&gpu.queue, view);
                 Ok(())
             },

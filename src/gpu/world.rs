@@ -89,6 +89,8 @@ pub struct WorldStats {
     pub finest_spacing: f64,
     /// The screen-error bound of the layout, pixels.
     pub error_bound_px: f64,
+    /// Texels uncovered but not baked yet (over the per-frame budget).
+    pub texels_pending: u64,
 }
 
 impl WorldStats {
@@ -98,6 +100,7 @@ impl WorldStats {
             format!("triangles {}", self.triangles),
             format!("patches {}", self.patches),
             format!("texels_baked {}", self.texels_baked),
+            format!("texels_pending {}", self.texels_pending),
             format!("levels {}", self.levels),
             format!("levels_total {}", self.levels_total),
             format!("patch_cells {}", self.patch_cells),
@@ -182,7 +185,16 @@ pub struct World {
     reference: [i64; 2],
     /// The camera-relative projection of the last `prepare`.
     matrix: Mat4,
+    /// Most texels one `encode_bake` bakes.
+    bake_budget: u64,
 }
+
+/// Texels [`World::encode_bake`] bakes at most per frame unless told otherwise: about 0.4 ms
+/// on an H100 (the default world's 12 octaves, two channels). A level that moves uncovers far
+/// fewer while flying (at most 0.5 M texels a frame at 300 km/h); a teleport or a new layout
+/// (every level whole, 13.6 M texels at the default) is spread over a few frames, coarse levels
+/// first, the next coarser level drawn where a finer one is not baked yet.
+pub const DEFAULT_BAKE_BUDGET: u64 = 1 << 21;
 
 /// Instances the patch buffer holds: every patch of every level.
 const MAX_PATCHES: usize = MAX_LEVELS * (PATCHES * PATCHES) as usize;
@@ -275,6 +287,7 @@ impl World {
                 stats: WorldStats::default(),
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
+                bake_budget: DEFAULT_BAKE_BUDGET,
             }
         })
     }
@@ -367,8 +380,28 @@ impl World {
         }
     }
 
+    /// Most texels one [`World::encode_bake`] bakes ([`DEFAULT_BAKE_BUDGET`] to start).
+    pub fn bake_budget(&self) -> u64 {
+        self.bake_budget
+    }
+
+    /// Sets the per-frame bake budget in texels (at least one row of a strip, and whatever the
+    /// coarsest level needs to be drawn, are always baked;
+    /// `u64::MAX` bakes everything at once, as the headless renderer does for a still frame).
+    pub fn set_bake_budget(&mut self, texels: u64) {
+        self.bake_budget = texels.max(1);
+    }
+
+    /// Texels uncovered but not baked yet: a level with some is not drawn (the next coarser
+    /// level covers it) until later frames bake them.
+    pub fn pending_texels(&self) -> u64 {
+        self.map.pending_texels()
+    }
+
     /// Moves the levels to `view` and records the bake of whatever they uncovered (nothing if
-    /// the camera stayed within its levels' snapping step) into the host's encoder. A view
+    /// the camera stayed within its levels' snapping step), within the per-frame budget
+    /// ([`World::set_bake_budget`]; what is over it waits for the next frames), into the host's
+    /// encoder. A view
     /// whose pixels per radian differ much from the layout's re-lays out the levels first (new
     /// textures, everything re-baked). Returns the texels baked.
     pub fn encode_bake(
@@ -413,7 +446,11 @@ impl World {
             self.relayout(device, k)?;
         }
         let eye = self.eye(view);
-        let strips = self.map.update(&eye, self.params.pixel_error);
+        self.map.update(&eye, self.params.pixel_error);
+        // Never a frame with nothing to draw: the coarsest level is baked whole at once.
+        let coarsest = self.map.levels.len() - 1;
+        let budget = self.bake_budget.max(self.map.pending_texels_of(coarsest));
+        let strips = self.map.take(budget, super::landscape::MAX_RECTS);
         let rects: Vec<Rect> = strips
             .iter()
             .map(|s| Rect {
@@ -423,8 +460,6 @@ impl World {
                 extent: s.extent,
             })
             .collect();
-        // At most two strips per level: always within one pass's uniform slots.
-        debug_assert!(rects.len() <= super::landscape::MAX_RECTS);
         if !rects.is_empty() {
             self.bake.encode(
                 queue,
@@ -440,6 +475,7 @@ impl World {
             .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
             .sum();
         self.stats.texels_baked = texels;
+        self.stats.texels_pending = self.map.pending_texels();
         Ok(texels)
     }
 
@@ -476,6 +512,7 @@ impl World {
         queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&patches));
         self.instance_count = patches.len() as u32;
 
+        let first = self.map.first_drawn();
         let mut levels = [LevelUniforms::default(); MAX_LEVELS];
         let side = i64::from(self.map.side());
         let n = self.map.levels.len();
@@ -526,8 +563,16 @@ impl World {
             morphing: u32::from(self.map.morphing),
             morph: self.map.morph.map(|m| m as f32),
             peak: land.peak_height as f32,
-            fade: self.map.fade as f32,
-            first: self.map.levels.iter().position(|l| l.active).unwrap_or(0) as u32,
+            // A first level drawn coarser than the first active (finer ones wait on a bake) is
+            // not faded.
+            fade: if self.map.levels.get(first).is_some_and(|l| l.active)
+                && (first == 0 || !self.map.levels[first - 1].active)
+            {
+                self.map.fade as f32
+            } else {
+                0.0
+            },
+            first: first as u32,
             _pad: [0; 3],
             levels,
         };
@@ -537,7 +582,10 @@ impl World {
         let uniforms = render_uniforms(&self.params, &self.shading, matrix, encode);
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
-        let active: Vec<_> = self.map.levels.iter().filter(|l| l.active).collect();
+        let active: Vec<_> = self.map.levels[first.min(n)..]
+            .iter()
+            .filter(|l| l.active)
+            .collect();
         let b = u64::from(self.map.patch);
         self.stats = WorldStats {
             triangles: patches.len() as u64 * 2 * b * b,
@@ -548,6 +596,7 @@ impl World {
             patch_cells: self.map.patch,
             finest_spacing: active.first().map_or(0.0, |l| l.spacing()),
             error_bound_px: self.map.error_bound(view.pixels_per_radian()),
+            texels_pending: self.map.pending_texels(),
         };
     }
 
