@@ -134,18 +134,18 @@ pub struct Clipmap {
 
 /// The part of `strip` inside the square of `side` samples at `origin`, if any.
 fn clip(strip: Strip, origin: [i32; 2], side: u32) -> Option<Strip> {
-    let mut out = strip;
-    for axis in 0..2 {
-        let lo = i64::from(strip.origin[axis]).max(i64::from(origin[axis]));
-        let hi = (i64::from(strip.origin[axis]) + i64::from(strip.extent[axis]))
-            .min(i64::from(origin[axis]) + i64::from(side));
-        if hi <= lo {
-            return None;
-        }
-        out.origin[axis] = lo as i32;
-        out.extent[axis] = (hi - lo) as u32;
-    }
-    Some(out)
+    let span = |at: i32, extent: u32, from: i32| {
+        let lo = i64::from(at).max(i64::from(from));
+        let hi = (i64::from(at) + i64::from(extent)).min(i64::from(from) + i64::from(side));
+        (hi > lo).then_some((lo as i32, (hi - lo) as u32))
+    };
+    let (x, w) = span(strip.origin[0], strip.extent[0], origin[0])?;
+    let (z, h) = span(strip.origin[1], strip.extent[1], origin[1])?;
+    Some(Strip {
+        origin: [x, z],
+        extent: [w, h],
+        ..strip
+    })
 }
 
 /// How far from the origin, in metres along x or z, an eye may be for `land`: level sample

@@ -233,7 +233,7 @@ fn a_bake_budget_spreads_big_moves_over_frames_without_holes_and_ends_as_a_fresh
     ];
     for (x, z) in moves
         .into_iter()
-        .chain(std::iter::repeat((9010.0, 3990.0)).take(60))
+        .chain(std::iter::repeat_n((9010.0, 3990.0), 80))
     {
         last = view(&land, x, z, 30.0, dir);
         let (pixels, _) = target.render_world_budgeted(&gpu, &mut w, &last).unwrap();
