@@ -489,7 +489,7 @@ impl App {
                 .last_timed
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
-        let drawn = s.draw(&view, self.fly.as_ref(), timed);
+        let drawn = s.draw(&view, self.fly.as_ref(), timed, self.options.method);
         if drawn == Drawn::SurfaceLost {
             self.surface_losses += 1;
             // Lost again before a frame could be drawn on the new surface: start over with a
@@ -792,6 +792,21 @@ impl ApplicationHandler<UserEvent> for App {
                     }
                     Key::Character(c) if c.eq_ignore_ascii_case("r") && self.fly.is_some() => {
                         self.reseed_world();
+                    }
+                    Key::Character(c) if c.eq_ignore_ascii_case("m") => {
+                        // The next method this world draws (the reference is slow).
+                        let all = crate::Method::ALL;
+                        let at = all
+                            .iter()
+                            .position(|&m| m == self.options.method)
+                            .unwrap_or(0);
+                        let next = (1..=all.len())
+                            .map(|k| all[(at + k) % all.len()])
+                            .find(|m| self.fly.is_some() || m.in_tile())
+                            .unwrap_or_default();
+                        if let Err(e) = self.set("method", next.name()) {
+                            self.report.warn(&e.to_string());
+                        }
                     }
                     Key::Named(NamedKey::Space) => {
                         let paused = if self.options.paused { "0" } else { "1" };

@@ -32,6 +32,8 @@ pub struct AppOptions {
     pub path: bool,
     /// Seconds along the path (`time` in the URL).
     pub path_time: f64,
+    /// How frames are drawn (`method` in the URL): the mesh, or a ray caster.
+    pub method: crate::Method,
 }
 
 impl Default for AppOptions {
@@ -44,7 +46,43 @@ impl Default for AppOptions {
             world: None,
             path: false,
             path_time: 0.0,
+            method: crate::Method::Mesh,
         }
+    }
+}
+
+/// The `method` key of the window and the page (not a CLI flag of the window: `relief render
+/// --method` has its own), in both worlds: [`crate::Method`]'s one list of names.
+pub static METHOD: Param<AppOptions> = Param {
+    key: "method",
+    doc: "how frames are drawn: the mesh, or a ray caster (the reference is slow: seconds a frame on a fast GPU)",
+    kind: Kind::Choice(crate::Method::NAMES),
+    control: Control::Select,
+    get: |o: &AppOptions| Value::Choice(o.method.name()),
+    set: |o: &mut AppOptions, v| {
+        if let Value::Choice(name) = v {
+            if let Some(m) = crate::Method::from_name(name) {
+                o.method = m;
+            }
+        }
+    },
+};
+
+impl AppOptions {
+    /// Sets the drawing method from text: one of [`crate::Method::NAMES`], and one the world
+    /// shown draws.
+    fn set_method(&mut self, value: &str) -> Result<()> {
+        let mut next = *self;
+        METHOD.set_text(&mut next, value)?;
+        if self.world.is_none() && !next.method.in_tile() {
+            return Err(Error::invalid(
+                "method",
+                next.method,
+                "a method the tile draws (raymarch-bandlimited is the endless world's)",
+            ));
+        }
+        *self = next;
+        Ok(())
     }
 }
 
@@ -89,6 +127,7 @@ pub fn url_keys() -> Vec<&'static str> {
     params()
         .map(|p| p.key)
         .chain(OPTIONS.iter().map(|p| p.key))
+        .chain(std::iter::once(METHOD.key))
         .collect()
 }
 
@@ -106,6 +145,9 @@ impl AppOptions {
     /// (octaves against frequency); on error nothing changes.
     pub fn set(&mut self, key: &str, value: &str) -> Result<()> {
         let key = key.trim().replace('-', "_");
+        if key == METHOD.key {
+            return self.set_method(value);
+        }
         let mut next = *self;
         if let Some((world, _)) = &mut next.world {
             let row = crate::world::world_param(&key)
@@ -181,6 +223,7 @@ impl AppOptions {
         for (k, v) in &pairs {
             let key = k.trim().replace('-', "_");
             let result = match OPTIONS.iter().find(|p| p.key == key) {
+                _ if key == METHOD.key => self.set_method(v),
                 Some(row) => row.set_text(self, v),
                 None => scene.set(&key, v).map_err(|e| match e {
                     Error::InvalidParam { name, .. } if name == "key" => {
@@ -251,6 +294,11 @@ impl AppOptions {
             let key = k.trim().replace('-', "_");
             match key.as_str() {
                 "world" => {}
+                "method" => {
+                    if let Err(e) = METHOD.set_text(self, v) {
+                        skip(&key, e.to_string());
+                    }
+                }
                 "camera" => match v.trim() {
                     "fly" => path = false,
                     "path" => path = true,
@@ -308,7 +356,7 @@ impl AppOptions {
                         &key,
                         format!(
                             "invalid key: {} (the endless world's keys: world, {}, camera, eye, \
-                             look_at, fov, time)",
+                             look_at, fov, time, method)",
                             crate::table::shorten(&key),
                             crate::world::WORLD_PARAMS
                                 .iter()
@@ -349,6 +397,9 @@ impl AppOptions {
             if self.path {
                 camera.push(format!("time={}", round(self.path_time)));
             }
+            if self.method != crate::Method::Mesh {
+                camera.push(format!("method={}", self.method));
+            }
             return std::iter::once("world=endless".to_owned())
                 .chain(keys)
                 .chain(camera)
@@ -357,8 +408,11 @@ impl AppOptions {
         }
         let scene = params().map(|p| (p.key, (p.get)(&self.params)));
         let window = OPTIONS.iter().map(|p| (p.key, (p.get)(self)));
+        // The mesh, the default, is not written: URLs from before the key stay the same.
+        let method = (self.method != crate::Method::Mesh).then(|| (METHOD.key, (METHOD.get)(self)));
         scene
             .chain(window)
+            .chain(method)
             .map(|(k, v)| format!("{k}={}", url_value(v)))
             .collect::<Vec<_>>()
             .join("&")
@@ -541,5 +595,36 @@ mod tests {
         let mut p = AppOptions::default();
         p.apply_query(&q);
         assert_eq!(p.params.offset, o.params.offset);
+    }
+
+    #[test]
+    fn the_method_rides_in_the_url_of_either_world() {
+        let mut o = AppOptions::default();
+        assert!(o.apply_query("method=raymarch").is_empty());
+        assert_eq!(o.method, crate::Method::Raymarch);
+        assert!(
+            o.to_query().ends_with("&method=raymarch"),
+            "{}",
+            o.to_query()
+        );
+        // The mesh, the default, is left out of the URL.
+        o.set("method", "mesh").unwrap();
+        assert!(!o.to_query().contains("method"));
+        // The tile does not draw the band-limited march; an unknown name lists the allowed.
+        let ignored = o.apply_query("method=raymarch-bandlimited");
+        assert_eq!(ignored.len(), 1, "{ignored:?}");
+        assert!(ignored[0].reason.contains("endless"), "{ignored:?}");
+        let e = o.set("method", "rays").unwrap_err().to_string();
+        assert!(e.contains("rays") && e.contains("reference"), "{e}");
+        assert_eq!(o.method, crate::Method::Mesh);
+        let mut w = AppOptions::default();
+        assert!(w
+            .apply_query("world=endless&method=raymarch-bandlimited")
+            .is_empty());
+        assert_eq!(w.method, crate::Method::RaymarchBandlimited);
+        let q = w.to_query();
+        let mut again = AppOptions::default();
+        again.apply_query(&q);
+        assert_eq!(again.method, w.method, "{q}");
     }
 }

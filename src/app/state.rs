@@ -4,10 +4,11 @@
 use super::{UserEvent, DEPTH_FORMAT, SAMPLES};
 use crate::camera::View;
 use crate::error::{Error, Result};
+use crate::gpu::raymarch::{RayMarcher, RayScene};
 use crate::gpu::timing::{GpuTimer, Slot};
 use crate::gpu::Targets;
 use crate::params::TerrainParams;
-use crate::{FlyCamera, Terrain, World, WorldParams};
+use crate::{FlyCamera, Method, Terrain, World, WorldParams};
 use std::sync::Arc;
 use winit::event_loop::EventLoopProxy;
 use winit::window::Window;
@@ -70,6 +71,18 @@ pub struct State {
     _adapter: wgpu::Adapter,
     /// "name (backend)" of the adapter.
     pub describe: String,
+    /// The ray caster's targets when the method is a ray caster (rebuilt for a new size or
+    /// world), and the pass that shows its image.
+    rays: Option<RayCast>,
+    blit: Option<crate::gpu::blit::Blit>,
+}
+
+/// A ray caster sized for the window: its scene, its cast size, rays per pixel each way.
+struct RayCast {
+    caster: RayMarcher,
+    scene: RayScene,
+    size: (u32, u32),
+    ss: u32,
 }
 
 impl State {
@@ -186,6 +199,8 @@ impl State {
             _instance: instance,
             _adapter: adapter,
             describe,
+            rays: None,
+            blit: None,
         };
         state.resize(size.width, size.height);
         Ok(state)
@@ -246,9 +261,16 @@ impl State {
         self.config.width as f32 / self.config.height.max(1) as f32
     }
 
-    /// Draws one frame seen through `view` (or, showing the endless world, through `fly`); with
-    /// `timed`, writes GPU timestamps and resolves them for [`GpuTimer::read_async`].
-    pub fn draw(&mut self, view: &View, fly: Option<&FlyCamera>, timed: bool) -> Drawn {
+    /// Draws one frame seen through `view` (or, showing the endless world, through `fly`) with
+    /// `method`; with `timed`, writes GPU timestamps and resolves them for
+    /// [`GpuTimer::read_async`].
+    pub fn draw(
+        &mut self,
+        view: &View,
+        fly: Option<&FlyCamera>,
+        timed: bool,
+        method: Method,
+    ) -> Drawn {
         let Some(depth) = &self.depth else {
             return Drawn::Skipped; // minimised
         };
@@ -284,6 +306,12 @@ impl State {
                 label: Some("relief:window:frame"),
             });
         let size = (self.config.width, self.config.height);
+        if method != Method::Mesh {
+            if let Err(e) = self.cast(&mut encoder, view, fly, timed, method, &target_view) {
+                log::warn!("{e}");
+            }
+            return self.finish(encoder, frame, timed);
+        }
         let world = match (&mut self.world, fly) {
             (Some(world), Some(fly)) => {
                 let view = fly.view(size);
@@ -337,7 +365,17 @@ impl State {
                 None => self.terrain.render(&mut pass),
             }
         }
-        if let Some(t) = timer {
+        self.finish(encoder, frame, timed)
+    }
+
+    /// Submits the frame's work and presents it.
+    fn finish(
+        &self,
+        mut encoder: wgpu::CommandEncoder,
+        frame: wgpu::SurfaceTexture,
+        timed: bool,
+    ) -> Drawn {
+        if let Some(t) = self.timer.as_ref().filter(|_| timed) {
             t.resolve(&mut encoder);
         }
         self.queue.submit([encoder.finish()]);
@@ -347,5 +385,110 @@ impl State {
         #[cfg(not(target_arch = "wasm32"))]
         let _ = self.device.poll(wgpu::PollType::Poll);
         Drawn::Frame
+    }
+
+    /// Records a ray-cast frame with `method` (timed as the render pass) and shows it in
+    /// `target`.
+    fn cast(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &View,
+        fly: Option<&FlyCamera>,
+        timed: bool,
+        method: Method,
+        target: &wgpu::TextureView,
+    ) -> Result<()> {
+        let (Some(path), Some(_)) = (method.ray_path(), method.ray_method(1)) else {
+            return Ok(());
+        };
+        let size = (self.config.width, self.config.height);
+        let world = match (&self.world, fly) {
+            (Some(world), Some(fly)) => Some((world, fly.view(size))),
+            _ => None,
+        };
+        let scene = if world.is_some() {
+            RayScene::World
+        } else {
+            RayScene::Tile
+        };
+        let max = self.device.limits().max_texture_dimension_2d;
+        let ss = method.supersample();
+        let ss = if size.0 * ss <= max && size.1 * ss <= max {
+            ss
+        } else {
+            1
+        };
+        let cast = (size.0 * ss, size.1 * ss);
+        if !self
+            .rays
+            .as_ref()
+            .is_some_and(|r| r.scene == scene && r.size == cast && r.ss == ss)
+        {
+            self.rays = None;
+            let caster = RayMarcher::for_scene(&self.device, cast.0, cast.1, scene)?;
+            self.rays = Some(RayCast {
+                caster,
+                scene,
+                size: cast,
+                ss,
+            });
+        }
+        let rays = self.rays.as_ref().expect("made above");
+        match world {
+            Some((world, view)) => {
+                let params = world.params();
+                let Some(how) = method.ray_method(params.land.octaves) else {
+                    return Ok(());
+                };
+                let region = crate::gpu::world_rays::drawn_region(params, &view);
+                let ray = crate::gpu::world_rays::WorldRayUniforms::new(
+                    params,
+                    world.shading(),
+                    &view,
+                    how,
+                    cast,
+                    region,
+                )?;
+                let render = crate::gpu::world::render_uniforms(
+                    params,
+                    world.shading(),
+                    view.relative_matrix(1.0, 1e7),
+                    true,
+                );
+                rays.caster.prepare_world(&self.queue, &render, &ray)?;
+            }
+            None => {
+                let params = self.terrain.params();
+                let Some(how) = method.ray_method(params.octaves) else {
+                    return Ok(());
+                };
+                let shading = *self.terrain.shading();
+                rays.caster
+                    .prepare(&self.queue, params, &shading, view, how);
+            }
+        }
+        rays.caster
+            .encode(encoder, path, self.timer.as_ref().filter(|_| timed));
+        if self
+            .blit
+            .as_ref()
+            .is_none_or(|b| b.format() != self.config.format)
+        {
+            self.blit = Some(crate::gpu::blit::Blit::new(
+                &self.device,
+                self.config.format,
+            ));
+        }
+        let blit = self.blit.as_ref().expect("made above");
+        let rays = self.rays.as_ref().expect("made above");
+        blit.encode(
+            &self.device,
+            &self.queue,
+            encoder,
+            &rays.caster.color,
+            ss,
+            target,
+        );
+        Ok(())
     }
 }

@@ -101,6 +101,7 @@ pub fn params_table() -> String {
     let rows: Vec<String> = params()
         .map(row_json)
         .chain(OPTIONS.iter().map(row_json))
+        .chain(std::iter::once(row_json(&super::options::METHOD)))
         .collect();
     format!("[{}]", rows.join(","))
 }
@@ -109,7 +110,11 @@ pub fn params_table() -> String {
 /// tile's.
 #[wasm_bindgen]
 pub fn world_params_table() -> String {
-    let rows: Vec<String> = crate::world::WORLD_PARAMS.iter().map(row_json).collect();
+    let rows: Vec<String> = crate::world::WORLD_PARAMS
+        .iter()
+        .map(row_json)
+        .chain(std::iter::once(row_json(&super::options::METHOD)))
+        .collect();
     format!("[{}]", rows.join(","))
 }
 

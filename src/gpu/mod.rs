@@ -2,6 +2,7 @@
 //! host's render pass. One file per pass; this file holds what they share.
 
 pub(crate) mod bake;
+pub mod blit;
 #[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
 pub mod landscape;

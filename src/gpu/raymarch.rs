@@ -309,6 +309,7 @@ impl RayMarcher {
         let ray_uniforms = scene.uniform_buffer(device);
         let usage = wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC;
         let texture =
             |label, format| super::texture_2d(device, label, (width, height), format, usage);

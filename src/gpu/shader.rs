@@ -28,6 +28,8 @@ pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
 /// `wgsl/world_rays.wgsl`: the endless world's ray casters (needs [`NOISE`], [`SHADE`] and
 /// [`LANDSCAPE`], then [`RAYS`]).
 pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
+/// `wgsl/blit.wgsl`: shows a ray-cast image in a window (stands alone).
+pub const BLIT: &str = include_str!("../../wgsl/blit.wgsl");
 /// `wgsl/rays.wgsl`: the ray casters' entry points, composed after a caster's file.
 pub const RAYS: &str = include_str!("../../wgsl/rays.wgsl");
 
@@ -40,6 +42,7 @@ pub fn compose(parts: &[&str]) -> String {
 pub fn all_modules() -> Vec<(&'static str, String)> {
     vec![
         ("noise", NOISE.to_owned()),
+        ("blit", BLIT.to_owned()),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),

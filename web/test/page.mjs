@@ -178,7 +178,8 @@ await withBrowser(webgpu, async (browser) => {
   // Every row of the endless world's table reaches it through the URL, and has its control.
   const wrows = await page.evaluate(async () =>
     JSON.parse((await import("./web/pkg/relief.js")).world_params_table()));
-  const walt = (r) => r.control === "select" ? r.choices[0] === "eroded" ? r.choices[1] : r.choices[0]
+  const walt = (r) => r.key === "method" ? "raymarch"
+    : r.control === "select" ? r.choices[0] === "eroded" ? r.choices[1] : r.choices[0]
     : r.key === "feature_size" ? "2048" : String(r.min + r.step);
   const wurl = `${base}/index.html?world=endless&` + wrows.map((r) => `${r.key}=${walt(r)}`).join("&");
   const wall = await openPage(browser, wurl, errors);
@@ -190,6 +191,16 @@ await withBrowser(webgpu, async (browser) => {
     wcontrols.map((r) => r.key));
   check(wmissing.length === 0 && wpresent === wcontrols.length,
     `all ${wrows.length} endless-world rows set through the URL (missing: ${wmissing.join(",") || "none"}), ${wpresent} controls`);
+
+  // A ray caster instead of the mesh (`method` in the URL and its control): run.sh compares
+  // the canvas with `relief render --method raymarch` of the same view.
+  const marched = await openPage(browser, `${base}/index.html?${ENDLESS}&method=raymarch`, errors);
+  await waitFrames(marched, 2);
+  const mq = await marched.evaluate(() => document.body.dataset.query || "");
+  const mcontrol = await marched.evaluate(() => document.querySelector('[data-key="method"]')?.value);
+  await shot(marched, "page-endless-raymarch.png");
+  check(mq.includes("method=raymarch") && mcontrol === "raymarch",
+    `the method reaches the URL and its control (${mcontrol})`);
 
   // On the path, the URL holds the camera mode and the time along it, and the time runs.
   const onPath = await openPage(browser, `${base}/index.html?${ENDLESS}&camera=path&time=5`, errors);
@@ -272,7 +283,9 @@ await withBrowser(webgpu, async (browser) => {
 
   // Every row of the table reaches the page through its URL.
   const rows = await page.evaluate(async () => JSON.parse((await import("./web/pkg/relief.js")).params_table()));
-  const alt = (r) => r.control === "checkbox" ? "1" : r.control === "select" ? r.choices[r.choices.length - 1]
+  // The method row: the cheap ray caster (the reference takes minutes a frame on a CPU).
+  const alt = (r) => r.key === "method" ? "raymarch" : r.control === "checkbox" ? "1"
+    : r.control === "select" ? r.choices[r.choices.length - 1]
     : r.control === "none" ? "0.5%2C0.25" : String(r.min + r.step);
   const url = rows.map((r) => `${r.key}=${alt(r)}`).join("&");
   const all = await openPage(browser, `${base}/index.html?${url}`, errors);

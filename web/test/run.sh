@@ -74,4 +74,12 @@ cargo run --locked --quiet --example flip -- "$out/native-endless.png" "$out/pag
 cat "$out/control-endless.txt"
 control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control-endless.txt")
 awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell the flown view from the first"; exit 1 } }'
+echo "== the page's ray march against relief render --method raymarch (FLIP)"
+cargo run --locked --quiet --bin relief -- render --out "$out/native-endless-raymarch.png" --width 256 \
+    --height 192 --world endless --seed 3 --pixel-error 16 --method raymarch
+cargo run --locked --quiet --example flip -- "$out/native-endless-raymarch.png" \
+    "$out/page-endless-raymarch.png" --max-mean "$max_mean" --diff "$out/page-vs-native-raymarch.png"
+cargo run --locked --quiet --example flip -- "$out/native-endless.png" "$out/page-endless-raymarch.png" \
+    > "$out/control-raymarch.txt"
+cat "$out/control-raymarch.txt"
 echo "web tests passed"

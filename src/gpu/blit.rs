@@ -1,0 +1,128 @@
+//! Shows a ray-cast image ([`super::raymarch::RayMarcher`]'s colour) in the host's target
+//! (`wgsl/blit.wgsl`): what the window and the page draw when their method is a ray caster.
+
+use super::shader;
+
+/// Mirrors `BlitUniforms` in `wgsl/blit.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct BlitUniforms {
+    /// Rays per pixel each way in the image shown.
+    pub ss: u32,
+    /// 1 where the target is not an sRGB format and the shader encodes.
+    pub encode_srgb: u32,
+    /// Padding.
+    pub _pad: [u32; 2],
+}
+
+/// The pipeline for one target format.
+pub struct Blit {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniforms: wgpu::Buffer,
+    format: wgpu::TextureFormat,
+}
+
+impl Blit {
+    /// A blit into targets of `format` (single-sampled, no depth).
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
+        let module = shader::module(device, "relief:blit:shader", shader::BLIT);
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:blit:layout"),
+            entries: &[
+                super::uniform_entry::<BlitUniforms>(0, wgpu::ShaderStages::FRAGMENT),
+                super::texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:blit:pipeline-layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("relief:blit:pipeline"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("blit_vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("blit_fs"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let uniforms = super::uniform_buffer::<BlitUniforms>(device, "relief:blit:uniforms");
+        Self {
+            pipeline,
+            layout,
+            uniforms,
+            format,
+        }
+    }
+
+    /// The target format it draws into.
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+
+    /// Records a pass drawing `image` (`ss` x `ss` texels a pixel) over all of `target`.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        image: &wgpu::Texture,
+        ss: u32,
+        target: &wgpu::TextureView,
+    ) {
+        let u = BlitUniforms {
+            ss: ss.max(1),
+            encode_srgb: u32::from(!self.format.is_srgb()),
+            _pad: [0; 2],
+        };
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        let view = image.create_view(&Default::default());
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:blit:group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+            ],
+        });
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("relief:blit:pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
