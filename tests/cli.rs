@@ -1165,8 +1165,8 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
-    // Three views at two knobs, the four ray casters on each view, and the flight.
-    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 4 + 1, "{csv}");
+    // Three views at two knobs, the four ray casters on each view, and two flights.
+    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 4 + 2, "{csv}");
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     for row in &rows[1..7] {
         let v: Vec<&str> = row.split(',').collect();
@@ -1199,6 +1199,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         }
     }
     assert!(rows[19].starts_with("flight,"), "{csv}");
+    assert!(rows[20].starts_with("path,"), "{csv}");
 }
 
 #[test]
