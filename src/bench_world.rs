@@ -720,12 +720,12 @@ where
                     + Text::new(label, (6, -14), ("sans-serif", 12))
             }))
             .map_err(|e| e.to_string())?
-            .label(format!("{view}: mesh by knob, and the ray casters"))
+            .label(*view)
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperMiddle)
+        .position(SeriesLabelPosition::LowerMiddle)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 14))

@@ -192,3 +192,26 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
     assert!(frames_drawn(&stdout) > still + 2, "{stdout}");
     assert!(!stdout.contains("idle"), "{stdout}");
 }
+
+#[test]
+fn m_steps_the_window_to_the_next_method() {
+    let args = [
+        "--world",
+        "endless",
+        "--pixel-error",
+        "16",
+        "--timings",
+        "--exit-after",
+        "8",
+    ];
+    let (code, stdout, err) = window_with_keys(&args, "xdotool key m; sleep 3");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a clean run prints nothing on stderr");
+    // The frames after M are drawn by the next method in the list, and their timings say so.
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("timings") && l.contains(", raymarch)")),
+        "{stdout}"
+    );
+}

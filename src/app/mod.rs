@@ -97,6 +97,8 @@ pub struct Stats {
     pub timestamps: bool,
     /// Nothing changed for [`IDLE_AFTER`]: no frames are being drawn.
     pub idle: bool,
+    /// How the last frame was drawn.
+    pub method: crate::Method,
 }
 
 /// What the app tells its user, one way per platform: native prints lines, the page writes
@@ -143,8 +145,13 @@ impl Report for Terminal {
         }
         if fresh_timings {
             if let Some((frame, t)) = stats.gpu {
+                // The method is named where it is not the mesh.
+                let method = match stats.method {
+                    crate::Method::Mesh => String::new(),
+                    m => format!(", {m}"),
+                };
                 println!(
-                    "timings on {describe} (frame {frame}): {}",
+                    "timings on {describe} (frame {frame}{method}): {}",
                     format_timings(&t)
                 );
             }
@@ -489,6 +496,7 @@ impl App {
                 .last_timed
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
+        self.stats.method = self.options.method;
         let drawn = s.draw(&view, self.fly.as_ref(), timed, self.options.method);
         if drawn == Drawn::SurfaceLost {
             self.surface_losses += 1;

@@ -199,10 +199,14 @@ impl Report for Page {
             (true, None) => "GPU: measuring".to_owned(),
             (false, _) => "GPU times: this browser exposes no timestamp-query".to_owned(),
         };
+        let method = match stats.method {
+            crate::Method::Mesh => String::new(),
+            m => format!("{m} · "),
+        };
         let text = if stats.idle {
-            format!("idle: drawn only on change · last frame {gpu}")
+            format!("{method}idle: drawn only on change · last frame {gpu}")
         } else {
-            format!("{:.0} fps · {gpu}", stats.fps)
+            format!("{method}{:.0} fps · {gpu}", stats.fps)
         };
         set_text("readout", &text);
         set_body_data("idle", if stats.idle { "1" } else { "0" });
