@@ -408,8 +408,9 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
                         }
                     }
                 }
-                // A strange lens or target.
-                _ => {}
+                // A new per-frame bake budget, from nothing to everything (the lens and target
+                // below are strange on every step anyway).
+                _ => world.set_bake_budget([0, 1, 500, 1 << 21, u64::MAX][rng.below(5) as usize]),
             }
             let ground = world.height_at(eye.x, eye.z);
             let eye_now = if ground.is_finite() && eye.y < ground {
@@ -441,13 +442,15 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     );
     run(40, &mut world, &mut rng);
     world.set_params(&device, start).unwrap();
+    world.set_bake_budget(u64::MAX);
     assert!(frame(&mut world, &sane));
     settle();
     let counts0 = counts(&device);
     let (drawn, refused, changes) = run(300, &mut world, &mut rng);
     eprintln!("300 steps of the endless world: {drawn} frames drawn, {refused} views refused, {changes} changes");
-    assert!(drawn > 100 && refused > 10 && changes > 20);
+    assert!(drawn > 50 && refused > 10 && changes > 20);
     world.set_params(&device, start).unwrap();
+    world.set_bake_budget(u64::MAX);
     assert!(frame(&mut world, &sane));
     settle();
     let counts1 = counts(&device);
