@@ -46,6 +46,11 @@ fn surface(xz: vec2<f32>, octaves: u32) -> vec3<f32> {
     return vec3<f32>(g.x, g.yz * (r.height_scale / WORLD_SIZE));
 }
 
+// What the seed's march (rays.wgsl) steps against.
+fn march_height(xz: vec2<f32>, octaves: u32) -> f32 {
+    return r.height_scale * surface(xz, octaves).x;
+}
+
 // Entry and exit distances of the ray through the terrain's bounding box, or (1, 0) if none.
 fn clip_box(ro: vec3<f32>, rd: vec3<f32>) -> vec2<f32> {
     let lo = vec3<f32>(-0.5 * WORLD_SIZE, 0.0, -0.5 * WORLD_SIZE);
@@ -104,27 +109,13 @@ fn intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
         }
         return UNRESOLVED;
     }
-    for (var i = 0u; i < ray.max_steps; i++) {
-        let p = ro + t * rd;
-        let f = p.y - r.height_scale * surface(p.xz, ray.march_octaves).x;
-        if abs(f) < ray.hit_k * t {
-            return t;
-        }
-        t += ray.step_factor * f;
-        if t > span.y || t < span.x {
-            return MISS;
-        }
-    }
-    return UNRESOLVED;
+    return seed_march(ro, rd, span);
 }
 
 // (colour, distance) for the pixel whose centre is at `pixel` (in pixels from the top left).
 fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
-    let size = vec2<f32>(f32(ray.width), f32(ray.height));
-    let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
-    let far = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
     let ro = r.camera_pos.xyz;
-    let rd = normalize(far.xyz / far.w - ro);
+    let rd = normalize(pixel_far(pixel) - ro);
     let t = intersect(ro, rd);
     if t < 0.0 {
         return vec4<f32>(ray.sky.rgb, t);

@@ -1,12 +1,40 @@
 // The ray casters' entry points, shared by the tile's (raymarch.wgsl) and the endless world's
 // (world_rays.wgsl) casters, composed after either: a compute shader writing storage textures
 // and a full-screen fragment shader writing two colour targets. The file before this one
-// declares `ray` (with `width` and `height`), `color_out`, `distance_out` and
-// `cast_pixel(pixel) -> (colour, distance)`.
+// declares `ray` (with `width`, `height`, `inv_view_proj`, `max_steps`, `march_octaves`,
+// `step_factor` and `hit_k`), `color_out`, `distance_out`, `cast_pixel(pixel) -> (colour,
+// distance)` and `march_height(xz, octaves) -> height` (what the seed's march steps against).
 
 // Distance stored for pixels that hit nothing, and for rays that ran out of steps.
 const MISS: f32 = -1.0;
 const UNRESOLVED: f32 = -2.0;
+
+// The point on the far plane under the centre of `pixel` (pixels from the top left), in the
+// space `ray.inv_view_proj` leads to.
+fn pixel_far(pixel: vec2<f32>) -> vec3<f32> {
+    let size = vec2<f32>(f32(ray.width), f32(ray.height));
+    let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
+    let far = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
+    return far.xyz / far.w;
+}
+
+// The seed's heightfield march from `t = span.x`: t += step_factor * h, a hit when
+// |h| < hit_k * t, `march_octaves` octaves. Distance, MISS or UNRESOLVED.
+fn seed_march(ro: vec3<f32>, rd: vec3<f32>, span: vec2<f32>) -> f32 {
+    var t = span.x;
+    for (var i = 0u; i < ray.max_steps; i++) {
+        let p = ro + t * rd;
+        let f = p.y - march_height(p.xz, ray.march_octaves);
+        if abs(f) < ray.hit_k * t {
+            return t;
+        }
+        t += ray.step_factor * f;
+        if t > span.y || t < span.x {
+            return MISS;
+        }
+    }
+    return UNRESOLVED;
+}
 
 @compute @workgroup_size(8, 8, 1)
 fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -116,6 +116,11 @@ fn world_height(p: vec2<f32>, octaves: u32) -> f32 {
     return ray.peak * world_channel(p, octaves, CHANNEL_HEIGHT, 0.0).x;
 }
 
+// What the seed's march (rays.wgsl) steps against.
+fn march_height(p: vec2<f32>, octaves: u32) -> f32 {
+    return world_height(p, octaves);
+}
+
 // How far the reference's ray can go from `p` without crossing the surface (> 0), or a value
 // <= 0 where `p` is already past it. `slope` is |rd.xz|; `below` says which side the ray
 // started on. Octaves are added until the partial sum's clearance c exceeds the bound R on the
@@ -198,26 +203,13 @@ fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
         }
         return UNRESOLVED;
     }
-    for (var i = 0u; i < ray.max_steps; i++) {
-        let p = ro + t * rd;
-        let f = p.y - world_height(p.xz, ray.march_octaves);
-        if abs(f) < ray.hit_k * t {
-            return t;
-        }
-        t += ray.step_factor * f;
-        if t > span.y || t < span.x {
-            return MISS;
-        }
-    }
-    return UNRESOLVED;
+    return seed_march(ro, rd, span);
 }
 
 // (colour, distance) for the pixel whose centre is at `pixel` (in pixels from the top left).
 fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
-    let size = vec2<f32>(f32(ray.width), f32(ray.height));
-    let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
-    let far = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
-    let rd = normalize(far.xyz / far.w);
+    // Camera-relative: the eye is at the origin.
+    let rd = normalize(pixel_far(pixel));
     let ro = ray.eye.xyz;
     let t = world_intersect(ro, rd);
     if t < 0.0 {

@@ -34,32 +34,14 @@ impl Blit {
                 super::texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("relief:blit:pipeline-layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("relief:blit:pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("blit_vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("blit_fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = super::fullscreen_pipeline(
+            device,
+            "relief:blit:pipeline",
+            &layout,
+            &module,
+            ("blit_vs", "blit_fs"),
+            &[Some(format.into())],
+        );
         let uniforms = super::uniform_buffer::<BlitUniforms>(device, "relief:blit:uniforms");
         Self {
             pipeline,

@@ -275,35 +275,17 @@ impl RayMarcher {
             &module,
             "raymarch_cs",
         );
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("relief:raymarch:fragment-pipeline-layout"),
-            bind_group_layouts: &[Some(&fragment_layout)],
-            immediate_size: 0,
-        });
-        let fragment = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("relief:raymarch:fragment-pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("fullscreen_vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("raymarch_fs"),
-                compilation_options: Default::default(),
-                targets: &[
-                    Some(Self::COLOR_FORMAT.into()),
-                    Some(Self::DISTANCE_FORMAT.into()),
-                ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let fragment = super::fullscreen_pipeline(
+            device,
+            "relief:raymarch:fragment-pipeline",
+            &fragment_layout,
+            &module,
+            ("fullscreen_vs", "raymarch_fs"),
+            &[
+                Some(Self::COLOR_FORMAT.into()),
+                Some(Self::DISTANCE_FORMAT.into()),
+            ],
+        );
         let render_uniforms =
             super::uniform_buffer::<RenderUniforms>(device, "relief:raymarch:render-uniforms");
         let ray_uniforms = scene.uniform_buffer(device);
