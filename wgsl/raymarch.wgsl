@@ -86,18 +86,7 @@ fn intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
             let p = ro + t * rd;
             let f = p.y - r.height_scale * surface(p.xz, ray.octaves).x;
             if (f <= 0.0) != below {
-                var lo = t_prev;
-                var hi = t;
-                for (var k = 0; k < 24; k++) {
-                    let mid = 0.5 * (lo + hi);
-                    let q = ro + mid * rd;
-                    if (q.y - r.height_scale * surface(q.xz, ray.octaves).x <= 0.0) == below {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                return 0.5 * (lo + hi);
+                return bisect(ro, rd, t_prev, t, below);
             }
             if t > span.y {
                 return MISS;

@@ -2,7 +2,7 @@
 // (world_rays.wgsl) casters, composed after either: a compute shader writing storage textures
 // and a full-screen fragment shader writing two colour targets. The file before this one
 // declares `ray` (with `width`, `height`, `inv_view_proj`, `max_steps`, `march_octaves`,
-// `step_factor` and `hit_k`), `color_out`, `distance_out`, `cast_pixel(pixel) -> (colour,
+// `step_factor`, `hit_k` and `octaves`), `color_out`, `distance_out`, `cast_pixel(pixel) -> (colour,
 // distance)` and `march_height(xz, octaves) -> height` (what the seed's march steps against).
 
 // Distance stored for pixels that hit nothing, and for rays that ran out of steps.
@@ -16,6 +16,23 @@ fn pixel_far(pixel: vec2<f32>) -> vec3<f32> {
     let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
     let far = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
     return far.xyz / far.w;
+}
+
+// The crossing of the surface (every octave) between distances `lo` (on the side the ray
+// started: `below` it or above) and `hi` (past it), to 24 halvings: the reference's last step.
+fn bisect(ro: vec3<f32>, rd: vec3<f32>, lo_in: f32, hi_in: f32, below: bool) -> f32 {
+    var lo = lo_in;
+    var hi = hi_in;
+    for (var k = 0; k < 24; k++) {
+        let mid = 0.5 * (lo + hi);
+        let q = ro + mid * rd;
+        if (q.y <= march_height(q.xz, ray.octaves)) == below {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
 }
 
 // The seed's heightfield march from `t = span.x`: t += step_factor * h, a hit when

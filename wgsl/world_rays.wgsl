@@ -179,18 +179,7 @@ fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
             let p = ro + t * rd;
             let step = safe_step(p, slope, rd.y, below);
             if step <= 0.0 {
-                var lo = t_prev;
-                var hi = t;
-                for (var k = 0; k < 24; k++) {
-                    let mid = 0.5 * (lo + hi);
-                    let q = ro + mid * rd;
-                    if (q.y <= world_height(q.xz, ray.octaves)) == below {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                return 0.5 * (lo + hi);
+                return bisect(ro, rd, t_prev, t, below);
             }
             if t > span.y {
                 return MISS;
