@@ -22,8 +22,14 @@
 //!
 //! The endless world ([`World`], [`WorldParams`], [`WorldView`]) is the same middleware shape
 //! for a landscape in metres seen from inside: geometry clipmap levels ([`clipmap`]) baked by
-//! strips as the camera moves ([`World::encode_bake`] takes the view), drawn as patch rings
-//! morphing into each other without cracks, sized by a screen-space error knob.
+//! strips as the camera moves ([`World::encode_bake`] takes the view, and bakes within a
+//! per-frame budget, [`World::set_bake_budget`]), drawn as patch rings morphing into each other
+//! without cracks, sized by a screen-space error knob.
+//!
+//! Every way of drawing a frame is a [`Method`] value from one list: the mesh, the seed's
+//! heightfield ray march (compute or fragment, optionally band-limited), and the reference ray
+//! cast of the continuous surface that every method is measured against (for the tile,
+//! [`gpu::raymarch`]; for the endless world, [`gpu::world_rays`]).
 //!
 //! ## Conventions
 //!
