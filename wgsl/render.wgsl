@@ -1,6 +1,7 @@
 // Render pass: a G x G grid drawn as G-1 instanced triangle strips (no vertex or index
 // buffers), displaced by the baked heights; per-pixel normals from the normal map, shaded by
-// shade.wgsl (composed before this file).
+// shade.wgsl (composed before this file). The textures are read `r.shift` tiles on from where
+// they were baked (wrapping: the tile is periodic), so the scroll animation bakes nothing.
 
 @group(0) @binding(0) var<uniform> r: RenderUniforms;
 @group(0) @binding(1) var terrain: texture_2d<f32>;
@@ -42,7 +43,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) row: u32) ->
     let cells = f32(r.grid - 1u);
     let ij = vec2<u32>(vi >> 1u, row + (vi & 1u));
     let uv = vec2<f32>(ij) / cells;
-    let t = terrain_at(uv);
+    let t = terrain_at(uv + r.shift);
     let world = vec3<f32>((uv.x - 0.5) * WORLD_SIZE, t.x * r.height_scale, (uv.y - 0.5) * WORLD_SIZE);
     var out: VertexOut;
     out.clip = r.view_proj * vec4<f32>(world, 1.0);
@@ -54,9 +55,9 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) row: u32) ->
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let n = normalize(textureSampleLevel(normal_map, normal_sampler, in.uv, 0.0).xyz);
+    let n = normalize(textureSampleLevel(normal_map, normal_sampler, in.uv + r.shift, 0.0).xyz);
     // Height (for snow and AO) and the colour channel per pixel, not per vertex: a coarse grid
     // would otherwise smear the colour noise and the snow line (the benchmark measures this).
-    let t = terrain_at(in.uv);
+    let t = terrain_at(in.uv + r.shift);
     return vec4<f32>(shade(r, in.world, n, t.x, t.y), 1.0);
 }

@@ -25,6 +25,9 @@ struct RenderUniforms {
     // 1 when the colour target is not an sRGB format and the shader must encode.
     encode_srgb: u32,
     specular: f32,
+    // The tile's texture reads less where it was baked, in tiles: the scroll without a bake.
+    shift: vec2<f32>,
+    _pad_shift: vec2<u32>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.

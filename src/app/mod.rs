@@ -473,11 +473,10 @@ impl App {
         } else if self.options.animating() {
             let mut options = self.options;
             options.advance(dt);
+            // The scroll moves where the textures are read: nothing is baked while it runs
+            // (pausing, or any other change, bakes the offset reached exactly).
             let result = match &mut self.state {
-                Some(s) => s
-                    .terrain
-                    .set_params(&s.device, &s.queue, options.params)
-                    .map(|_| ()),
+                Some(s) => s.terrain.scroll_to(options.params.offset),
                 None => Ok(()),
             };
             match result {

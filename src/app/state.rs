@@ -458,13 +458,14 @@ impl State {
                 rays.caster.prepare_world(&self.queue, &render, &ray)?;
             }
             None => {
-                let params = self.terrain.params();
+                // The offset shown, scrolled or baked.
+                let params = self.terrain.shown_params();
                 let Some(how) = method.ray_method(params.octaves) else {
                     return Ok(());
                 };
                 let shading = *self.terrain.shading();
                 rays.caster
-                    .prepare(&self.queue, params, &shading, view, how);
+                    .prepare(&self.queue, &params, &shading, view, how);
             }
         }
         rays.caster

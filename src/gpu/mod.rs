@@ -110,6 +110,9 @@ pub struct Terrain {
     normals: normals::NormalPass,
     mesh: render::MeshPass,
     pending: Dirty,
+    /// The offset shown: `params.offset` (where the textures were baked) moved by
+    /// [`Terrain::scroll_to`].
+    shown_offset: [f64; 2],
 }
 
 impl Terrain {
@@ -133,6 +136,7 @@ impl Terrain {
                 mesh: render::MeshPass::new(device, &targets),
                 textures,
                 pending: Dirty::ALL,
+                shown_offset: params.offset,
             }
         })
         .map_err(|e| size_too_big(params.size, e))?;
@@ -186,6 +190,7 @@ impl Terrain {
             self.bind(device);
         }
         self.params = params;
+        self.shown_offset = params.offset;
         if dirty.bake {
             self.bake.write(queue, &self.params);
         }
@@ -196,6 +201,27 @@ impl Terrain {
         self.pending.bake |= dirty.bake;
         self.pending.normals |= dirty.normals;
         Ok(dirty)
+    }
+
+    /// Scrolls the terrain to `offset` (tiles) without baking: the textures are read that far on
+    /// from where they were baked (the tile is periodic, so nothing is lost). What the scroll
+    /// animation of the window and the page calls each frame; [`Terrain::set_params`] with the
+    /// same offset bakes it exactly (the textures then hold it, for readback or a paused frame).
+    /// Texel positions are interpolated, as the grid's vertices always are, so a scrolled frame
+    /// differs from a baked one by the textures' interpolation error only (a test bounds it).
+    pub fn scroll_to(&mut self, offset: [f64; 2]) -> Result<()> {
+        let moved = TerrainParams {
+            offset,
+            ..self.params
+        };
+        moved.validate()?;
+        self.shown_offset = offset;
+        Ok(())
+    }
+
+    /// The offset drawn (see [`Terrain::scroll_to`]).
+    pub fn shown_offset(&self) -> [f64; 2] {
+        self.shown_offset
     }
 
     /// Marks every pass as owed, so the next [`Terrain::encode_bake`] redoes the whole bake
@@ -243,7 +269,11 @@ impl Terrain {
     /// Writes this frame's uniforms (camera, shading, snow, AO) through the queue.
     pub fn prepare(&self, queue: &wgpu::Queue, view: &View) {
         let encode = !self.targets.color_format.is_srgb();
-        let uniforms = RenderUniforms::new(&self.params, &self.shading, view, encode);
+        let mut uniforms = RenderUniforms::new(&self.params, &self.shading, view, encode);
+        // Reduced in f64: offsets may be far from the origin (up to 10^6 tiles).
+        let (shown, baked) = (self.shown_params(), self.params.reduced_offset());
+        let shown = shown.reduced_offset();
+        uniforms.shift = [0, 1].map(|i| (shown[i] - baked[i]).rem_euclid(1.0) as f32);
         self.mesh.write(queue, &uniforms);
     }
 
@@ -264,7 +294,15 @@ impl Terrain {
     /// triangles, so what is drawn differs from this by the mesh's sampling error (the tests
     /// bound it); at texel centres the baked heights equal it to within 1e-5 of the range.
     pub fn height_at(&self, x: f32, z: f32) -> f32 {
-        height_at(&self.params, x, z)
+        height_at(&self.shown_params(), x, z)
+    }
+
+    /// The parameters with the offset shown ([`Terrain::scroll_to`]): what is drawn.
+    pub fn shown_params(&self) -> TerrainParams {
+        TerrainParams {
+            offset: self.shown_offset,
+            ..self.params
+        }
     }
 }
 

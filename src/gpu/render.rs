@@ -40,6 +40,11 @@ pub struct RenderUniforms {
     pub encode_srgb: u32,
     /// Specular strength.
     pub specular: f32,
+    /// Where the tile's textures are read, less where they were baked, in tiles (reduced to
+    /// [0, 1)): the scroll animation moves the terrain without baking it again.
+    pub shift: [f32; 2],
+    /// Padding.
+    pub _pad: [u32; 2],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -72,6 +77,8 @@ impl RenderUniforms {
             tex_size: p.size,
             encode_srgb: u32::from(encode_srgb),
             specular: s.specular,
+            shift: [0.0; 2],
+            _pad: [0; 2],
         }
     }
 }
