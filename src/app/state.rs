@@ -440,14 +440,14 @@ impl State {
                 let Some(how) = method.ray_method(params.land.octaves) else {
                     return Ok(());
                 };
-                let region = crate::gpu::world_rays::drawn_region(params, &view);
-                let ray = crate::gpu::world_rays::WorldRayUniforms::new(
+                // The world's own layout and slope bounds: nothing measured again per frame.
+                let region = world.clipmap().drawn_region(view.eye.x, view.eye.z);
+                let ray = crate::gpu::world_rays::WorldRayUniforms::with_slopes(
                     params,
                     world.shading(),
                     &view,
-                    how,
-                    cast,
-                    region,
+                    (how, cast, region),
+                    world.slope_bounds(),
                 )?;
                 let render = crate::gpu::world::render_uniforms(
                     params,

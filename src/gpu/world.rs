@@ -166,6 +166,9 @@ pub struct World {
     shading: Shading,
     targets: Targets,
     errors: Vec<(i32, f64)>,
+    /// The reference ray cast's slope bounds ([`Landscape::slope_bounds`]), kept with the
+    /// landscape they were measured for.
+    slopes: Vec<f64>,
     map: Clipmap,
     map_k: f64,
     texture: wgpu::Texture,
@@ -270,6 +273,7 @@ impl World {
                 shading: Shading::default(),
                 targets,
                 errors,
+                slopes: params.land.slope_bounds(),
                 map,
                 map_k: k,
                 texture,
@@ -343,6 +347,7 @@ impl World {
         params.validate()?;
         if params.land != self.params.land {
             self.errors = level_errors(&params.land);
+            self.slopes = params.land.slope_bounds();
         }
         self.params = params;
         self.relayout(device, self.map_k)
@@ -390,6 +395,13 @@ impl World {
     /// `u64::MAX` bakes everything at once, as the headless renderer does for a still frame).
     pub fn set_bake_budget(&mut self, texels: u64) {
         self.bake_budget = texels.max(1);
+    }
+
+    /// The reference ray cast's slope bounds for this world's landscape, measured once
+    /// ([`Landscape::slope_bounds`]): what a host casting rays every frame passes to
+    /// [`super::world_rays::WorldRayUniforms::with_slopes`].
+    pub fn slope_bounds(&self) -> &[f64] {
+        &self.slopes
     }
 
     /// Texels uncovered but not baked yet: a level with some is not drawn (the next coarser

@@ -75,7 +75,9 @@ pub struct WorldRayUniforms {
 
 impl WorldRayUniforms {
     /// Uniforms for one `size` image of `params`' world through `view`, bounded by `region`
-    /// (world metres, `[x0, z0, x1, z1]`). Refuses an eye beyond [`max_eye`].
+    /// (world metres, `[x0, z0, x1, z1]`). Refuses an eye beyond [`max_eye`]. Measures the
+    /// slope bounds (some 20 ms of CPU): a host casting every frame keeps them
+    /// ([`crate::World::slope_bounds`]) and calls [`WorldRayUniforms::with_slopes`].
     pub fn new(
         params: &WorldParams,
         shading: &crate::Shading,
@@ -83,6 +85,18 @@ impl WorldRayUniforms {
         method: RayMethod,
         size: (u32, u32),
         region: [f64; 4],
+    ) -> Result<Self> {
+        let slopes = params.land.slope_bounds();
+        Self::with_slopes(params, shading, view, (method, size, region), &slopes)
+    }
+
+    /// [`WorldRayUniforms::new`] with the landscape's slope bounds measured already.
+    pub fn with_slopes(
+        params: &WorldParams,
+        shading: &crate::Shading,
+        view: &WorldView,
+        (method, size, region): (RayMethod, (u32, u32), [f64; 4]),
+        slopes: &[f64],
     ) -> Result<Self> {
         let land = &params.land;
         let limit = max_eye(land);
@@ -104,7 +118,13 @@ impl WorldRayUniforms {
         };
         let mut prefix = [[0f32; 4]; MAX_OCTAVES];
         let n = land.octaves.min(MAX_OCTAVES as u32);
-        let slopes = land.slope_bounds();
+        if slopes.len() < n as usize {
+            return Err(Error::invalid(
+                "slopes",
+                slopes.len(),
+                format!("one slope bound per octave ({n})"),
+            ));
+        }
         for k in 1..=n {
             // The rest's bound is widened by what f32 sums can round (never at the last
             // octave, where it must stay 0 for the final test to be exact).
