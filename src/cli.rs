@@ -1280,7 +1280,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
                 }
                 if stats {
                     // Rays draw the continuous surface: no mesh, nothing baked.
-                    println!("triangles 0\ntexels_baked 0\nlevels 0");
+                    println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0");
                     println!("unresolved_rays {}", image.unresolved);
                 }
                 if image.unresolved > 0 {

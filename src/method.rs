@@ -41,6 +41,10 @@ impl Method {
         "reference",
     ];
 
+    /// The names of the methods the tile draws ([`Method::in_tile`]), in the same order.
+    pub const TILE_NAMES: &'static [&'static str] =
+        &["mesh", "raymarch", "raymarch-fragment", "reference"];
+
     /// Its name on the command line, in the CSV and on the chart.
     pub fn name(self) -> &'static str {
         Self::NAMES[self as usize]
@@ -120,6 +124,12 @@ mod tests {
             assert!(!m.doc().is_empty());
         }
         assert_eq!(Method::NAMES.len(), Method::ALL.len());
+        let tile: Vec<&str> = Method::ALL
+            .iter()
+            .filter(|m| m.in_tile())
+            .map(|m| m.name())
+            .collect();
+        assert_eq!(tile, Method::TILE_NAMES);
         assert_eq!(Method::from_name("raymarch-compute"), None);
     }
 }

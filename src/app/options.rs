@@ -53,7 +53,15 @@ impl Default for AppOptions {
 
 /// The `method` key of the window and the page (not a CLI flag of the window: `relief render
 /// --method` has its own), in both worlds: [`crate::Method`]'s one list of names.
-pub static METHOD: Param<AppOptions> = Param {
+pub static METHOD: Param<AppOptions> = METHOD_ROW;
+
+/// [`METHOD`] as the tile's page offers it: the methods the tile draws.
+pub static TILE_METHOD: Param<AppOptions> = Param {
+    kind: Kind::Choice(crate::Method::TILE_NAMES),
+    ..METHOD_ROW
+};
+
+const METHOD_ROW: Param<AppOptions> = Param {
     key: "method",
     doc: "how frames are drawn: the mesh, or a ray caster (the reference is slow: seconds a frame on a fast GPU)",
     kind: Kind::Choice(crate::Method::NAMES),
@@ -73,14 +81,13 @@ impl AppOptions {
     /// shown draws.
     fn set_method(&mut self, value: &str) -> Result<()> {
         let mut next = *self;
-        METHOD.set_text(&mut next, value)?;
-        if self.world.is_none() && !next.method.in_tile() {
-            return Err(Error::invalid(
-                "method",
-                next.method,
-                "a method the tile draws (raymarch-bandlimited is the endless world's)",
-            ));
-        }
+        // Each world's row lists the methods it draws, and its error names them.
+        let row = if self.world.is_some() {
+            &METHOD
+        } else {
+            &TILE_METHOD
+        };
+        row.set_text(&mut next, value)?;
         *self = next;
         Ok(())
     }
@@ -613,7 +620,12 @@ mod tests {
         // The tile does not draw the band-limited march; an unknown name lists the allowed.
         let ignored = o.apply_query("method=raymarch-bandlimited");
         assert_eq!(ignored.len(), 1, "{ignored:?}");
-        assert!(ignored[0].reason.contains("endless"), "{ignored:?}");
+        let reason = &ignored[0].reason;
+        assert!(
+            reason.contains("raymarch-bandlimited") && reason.contains("allowed: mesh, raymarch"),
+            "{ignored:?}"
+        );
+        assert!(!reason.contains("or raymarch-bandlimited"), "{ignored:?}");
         let e = o.set("method", "rays").unwrap_err().to_string();
         assert!(e.contains("rays") && e.contains("reference"), "{e}");
         assert_eq!(o.method, crate::Method::Mesh);

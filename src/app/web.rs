@@ -101,7 +101,7 @@ pub fn params_table() -> String {
     let rows: Vec<String> = params()
         .map(row_json)
         .chain(OPTIONS.iter().map(row_json))
-        .chain(std::iter::once(row_json(&super::options::METHOD)))
+        .chain(std::iter::once(row_json(&super::options::TILE_METHOD)))
         .collect();
     format!("[{}]", rows.join(","))
 }
