@@ -436,7 +436,7 @@ fn march_row(
     let render = crate::gpu::world::render_uniforms(
         params,
         &shading,
-        v.view.relative_matrix(1.0, 1e7),
+        crate::gpu::world_rays::ray_matrix(&v.view),
         true,
     );
     caster.prepare_world(&gpu.queue, &render, &ray)?;

@@ -363,20 +363,22 @@ impl Clipmap {
         let mut left = budget;
         let mut out = Vec::new();
         let mut rest = Vec::new();
+        // Once a strip waits, every finer one waits too: coarse levels strictly first.
+        let mut full = false;
         for s in std::mem::take(&mut self.pending) {
             let width = u64::from(s.extent[0]);
             let texels = width * u64::from(s.extent[1]);
-            let full = out.len() >= max_strips || (left < width && !out.is_empty());
+            full |= out.len() >= max_strips || (left < width && !out.is_empty());
             if full {
                 rest.push(s);
                 continue;
             }
-            if texels <= left {
-                left -= texels;
+            let rows = (left / width).max(1) as u32;
+            if texels <= left || rows >= s.extent[1] {
+                left = left.saturating_sub(texels);
                 out.push(s);
                 continue;
             }
-            let rows = (left / width).max(1) as u32;
             left = left.saturating_sub(width * u64::from(rows));
             out.push(Strip {
                 extent: [s.extent[0], rows],
@@ -387,6 +389,7 @@ impl Clipmap {
                 extent: [s.extent[0], s.extent[1] - rows],
                 ..s
             });
+            full = true;
         }
         self.pending = rest;
         out
@@ -486,7 +489,7 @@ impl Clipmap {
     }
 
     /// The finer level's square inside level `l`, in patches of level `l` (column, row of its
-    /// first patch), or `None` for the first active level.
+    /// first patch), or `None` for the first level drawn.
     pub fn hole(&self, l: usize) -> Option<[i32; 2]> {
         let finer = self.levels.get(l.checked_sub(1)?)?;
         if !self.drawn(l - 1) {
@@ -815,5 +818,28 @@ mod tests {
                 "{s:?} outside the square at {o:?}"
             );
         }
+    }
+
+    #[test]
+    fn a_budget_under_one_row_still_bakes_a_row_and_leaves_no_empty_strip() {
+        let mut map = Clipmap::new(&land(), 1.0, 300.0);
+        settle(&mut map, &eye(0.0, 0.0), 1.0);
+        // Walk in small steps with a one-texel budget: strips one or a few rows high.
+        for k in 1..40 {
+            map.update(&eye(f64::from(k) * 3.0, f64::from(k) * 2.0), 1.0);
+            let strips = map.take(1, usize::MAX);
+            assert!(strips.len() <= 1, "{strips:?}");
+            for s in strips.iter().chain(&map.pending) {
+                assert!(s.extent[0] > 0 && s.extent[1] > 0, "an empty strip: {s:?}");
+            }
+            // A level is drawn again exactly when nothing of it (or coarser) waits.
+            let waiting = map.pending_texels() > 0;
+            let all_drawn = map.first_drawn() == map.levels.iter().position(|l| l.active).unwrap();
+            assert_eq!(all_drawn, !waiting, "step {k}");
+        }
+        while map.pending_texels() > 0 {
+            map.take(1, usize::MAX);
+        }
+        assert!(map.pending.is_empty());
     }
 }

@@ -48,8 +48,12 @@ fn cast(
     let caster = RayMarcher::for_scene(&gpu.device, SIZE.0, SIZE.1, RayScene::World).unwrap();
     let mut ray = WorldRayUniforms::new(p, &shading, v, method, SIZE, drawn_region(p, v)).unwrap();
     tweak(&mut ray);
-    let render =
-        relief::gpu::world::render_uniforms(p, &shading, v.relative_matrix(1.0, 1e7), true);
+    let render = relief::gpu::world::render_uniforms(
+        p,
+        &shading,
+        relief::gpu::world_rays::ray_matrix(v),
+        true,
+    );
     caster.prepare_world(&gpu.queue, &render, &ray).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     caster.encode(&mut encoder, relief::gpu::raymarch::RayPath::Compute, None);
@@ -61,7 +65,7 @@ fn cast(
 
 /// The world point a pixel's ray reaches at distance `t`.
 fn hit(v: &WorldView, px: usize, py: usize, t: f32) -> DVec3 {
-    let inverse = v.relative_matrix(1.0, 1e7).inverse().as_dmat4();
+    let inverse = relief::gpu::world_rays::ray_matrix(v).inverse().as_dmat4();
     let ndc = DVec4::new(
         (px as f64 + 0.5) / f64::from(SIZE.0) * 2.0 - 1.0,
         1.0 - (py as f64 + 0.5) / f64::from(SIZE.1) * 2.0,

@@ -2,12 +2,15 @@
 // mesh. Composed after noise.wgsl, shade.wgsl and landscape.wgsl, and before rays.wgsl (the
 // entry points). Two methods, chosen by `ray.method`, as for the tile (raymarch.wgsl):
 //
-//   0, the reference: every octave, steps that can never pass through the surface, bisection
-//      to the crossing, normals from the analytic gradient. Stepping is accelerated by adding
-//      octaves one at a time: once the clearance of the partial sum exceeds the most the
-//      remaining octaves can add (their amplitude bound), the step follows from the partial
-//      sum's own (smaller) Lipschitz bound, so high above the ground a step costs one or two
-//      octaves. The ray is bounded by the region the mesh draws.
+//   0, the reference: every octave, steps bounded by the surface's slope so that they do not
+//      pass through it, bisection to the crossing, normals from the analytic gradient. Stepping
+//      is accelerated by adding octaves one at a time: once the clearance of the partial sum
+//      exceeds the most the remaining octaves can add (their amplitude bound), the step follows
+//      from the partial sum's own (smaller) slope bound, so high above the ground a step costs
+//      one or two octaves. The slope bounds are measured (src/landscape.rs, slope_bounds), not
+//      proven, and steps under 2 % of a pixel's footprint are not taken: what can be stepped
+//      over is a sliver of a fraction of a pixel (a test measures it). The ray is bounded by
+//      the region the mesh draws.
 //   1, the seed's march: t += step_factor * h, a hit when |h| < hit_k * t, `march_octaves`
 //      octaves while stepping and `normal_octaves` for the normal. With `band_limit`, the
 //      shading (normal, colour channel, snow line) fades out each octave whose cell is under two
@@ -44,8 +47,8 @@ struct WorldRayUniforms {
     scale: f32,
     step_factor: f32,
     hit_k: f32,
-    // Radians per pixel at the image centre: the reference's smallest step is a hundredth of a
-    // pixel's footprint.
+    // Radians per pixel at the image centre: the reference's smallest step is 2 % of a pixel's
+    // footprint (plus a millimetre).
     pixel_angle: f32,
     // 1: the march fades octaves finer than the pixel's footprint out of its shading.
     band_limit: u32,
@@ -179,7 +182,9 @@ fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
             let p = ro + t * rd;
             let step = safe_step(p, slope, rd.y, below);
             if step <= 0.0 {
-                return bisect(ro, rd, t_prev, t, below);
+                // A crossing past the drawn square (the last step can overshoot it) is not drawn.
+                let hit = bisect(ro, rd, t_prev, t, below);
+                return select(hit, MISS, hit > span.y);
             }
             if t > span.y {
                 return MISS;

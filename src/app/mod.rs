@@ -299,6 +299,8 @@ impl App {
         options.set(key, value)?;
         if let Some(s) = &mut self.state {
             match (&mut s.world, options.world) {
+                // Unchanged parameters (a new method, say) keep the levels as they are.
+                (Some(world), Some((params, _))) if world.params() == &params => {}
                 (Some(world), Some((params, _))) => world.set_params(&s.device, params)?,
                 _ => {
                     s.terrain

@@ -309,6 +309,25 @@ impl State {
         if method != Method::Mesh {
             if let Err(e) = self.cast(&mut encoder, view, fly, timed, method, &target_view) {
                 log::warn!("{e}");
+                // Nothing was cast: show the sky, not whatever the surface texture held.
+                let sky =
+                    crate::gpu::clear_color(self.terrain.shading().sky_color, self.config.format);
+                encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("relief:window:clear"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &target_view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(sky),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
             }
             return self.finish(encoder, frame, timed);
         }
@@ -452,7 +471,7 @@ impl State {
                 let render = crate::gpu::world::render_uniforms(
                     params,
                     world.shading(),
-                    view.relative_matrix(1.0, 1e7),
+                    crate::gpu::world_rays::ray_matrix(&view),
                     true,
                 );
                 rays.caster.prepare_world(&self.queue, &render, &ray)?;

@@ -592,6 +592,25 @@ impl Offscreen {
     ) -> Result<(Vec<u8>, Option<Timings>)> {
         self.check_targets(world.targets())?;
         let clear = super::clear_color(world.shading().sky_color, Self::COLOR_FORMAT);
+        if whole {
+            // A still frame is drawn whole: everything the view uncovered is baked first. More
+            // than one pass only where more strips wait than one pass's uniform slots hold;
+            // each is submitted on its own, as the passes share those slots.
+            let budget = world.bake_budget();
+            world.set_bake_budget(u64::MAX);
+            let mut baked = Ok(0);
+            for pass in 0..crate::clipmap::MAX_LEVELS {
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                let timed = timer.filter(|_| pass == 0);
+                baked = world.encode_bake_timed(&gpu.device, &gpu.queue, &mut encoder, view, timed);
+                gpu.queue.submit([encoder.finish()]);
+                if baked.is_err() || world.pending_texels() == 0 {
+                    break;
+                }
+            }
+            world.set_bake_budget(budget);
+            baked?;
+        }
         let world = std::cell::RefCell::new(world);
         self.frame(
             gpu,
@@ -601,22 +620,7 @@ impl Offscreen {
                 let mut w = world.borrow_mut();
                 if !whole {
                     w.encode_bake(&gpu.device, &gpu.queue, encoder, view)?;
-                    w.prepare(&gpu.queue, view);
-                    return Ok(());
                 }
-                // A still frame is drawn whole: everything the view uncovered is baked now.
-                let budget = w.bake_budget();
-                w.set_bake_budget(u64::MAX);
-                let mut baked = Ok(0);
-                // More than one pass only where more strips wait than one pass holds.
-                for _ in 0..crate::clipmap::MAX_LEVELS {
-                    baked = w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer);
-                    if baked.is_err() || w.pending_texels() == 0 {
-                        break;
-                    }
-                }
-                w.set_bake_budget(budget);
-                baked?;
                 w.prepare(&gpu.queue, view);
                 Ok(())
             },
@@ -936,7 +940,7 @@ pub fn render_world_rays_at(
             let render = super::world::render_uniforms(
                 params,
                 shading,
-                view.relative_matrix(1.0, 1e7),
+                crate::gpu::world_rays::ray_matrix(view),
                 true,
             );
             caster.prepare_world(&gpu.queue, &render, &ray)

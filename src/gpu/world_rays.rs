@@ -133,7 +133,7 @@ impl WorldRayUniforms {
             let slope = slopes[k as usize - 1];
             prefix[k as usize - 1] = [slope as f32, (rest + margin) as f32, 0.0, 0.0];
         }
-        let matrix = view.relative_matrix(1.0, 1e7);
+        let matrix = ray_matrix(view);
         let pixel_angle = 2.0 * (view.fov_y * 0.5).tan() / size.1.max(1) as f32;
         Ok(Self {
             inv_view_proj: matrix.inverse().to_cols_array_2d(),
@@ -172,6 +172,13 @@ impl WorldRayUniforms {
             prefix,
         })
     }
+}
+
+/// The camera-relative matrix the ray casters unproject pixels with. Only directions come from
+/// it, so its depth range is kept short: with far/near at 10^7 the far plane's w is within two
+/// f32 ulps of zero after the inverse, and rays could come out reversed.
+pub fn ray_matrix(view: &WorldView) -> glam::Mat4 {
+    view.relative_matrix(1.0, 1000.0)
 }
 
 /// The region the mesh draws for `params` seen through `view` (the clipmap's coarsest square
