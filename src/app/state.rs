@@ -80,6 +80,8 @@ pub struct State {
 /// A ray caster sized for the window: its scene, its cast size, rays per pixel each way.
 struct RayCast {
     caster: RayMarcher,
+    /// The blit's bind group for the caster's image.
+    shown: wgpu::BindGroup,
     scene: RayScene,
     size: (u32, u32),
     ss: u32,
@@ -438,6 +440,18 @@ impl State {
             1
         };
         let cast = (size.0 * ss, size.1 * ss);
+        if self
+            .blit
+            .as_ref()
+            .is_none_or(|b| b.format() != self.config.format)
+        {
+            self.blit = Some(crate::gpu::blit::Blit::new(
+                &self.device,
+                self.config.format,
+            ));
+            self.rays = None; // bound to the old blit
+        }
+        let blit = self.blit.as_ref().expect("made above");
         if !self
             .rays
             .as_ref()
@@ -445,8 +459,10 @@ impl State {
         {
             self.rays = None;
             let caster = RayMarcher::for_scene(&self.device, cast.0, cast.1, scene)?;
+            let shown = blit.bind(&self.device, &caster.color);
             self.rays = Some(RayCast {
                 caster,
+                shown,
                 scene,
                 size: cast,
                 ss,
@@ -489,26 +505,7 @@ impl State {
         }
         rays.caster
             .encode(encoder, path, self.timer.as_ref().filter(|_| timed));
-        if self
-            .blit
-            .as_ref()
-            .is_none_or(|b| b.format() != self.config.format)
-        {
-            self.blit = Some(crate::gpu::blit::Blit::new(
-                &self.device,
-                self.config.format,
-            ));
-        }
-        let blit = self.blit.as_ref().expect("made above");
-        let rays = self.rays.as_ref().expect("made above");
-        blit.encode(
-            &self.device,
-            &self.queue,
-            encoder,
-            &rays.caster.color,
-            ss,
-            target,
-        );
+        blit.encode(&self.queue, encoder, &rays.shown, ss, target);
         Ok(())
     }
 }

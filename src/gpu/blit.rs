@@ -56,24 +56,10 @@ impl Blit {
         self.format
     }
 
-    /// Records a pass drawing `image` (`ss` x `ss` texels a pixel) over all of `target`.
-    pub fn encode(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        image: &wgpu::Texture,
-        ss: u32,
-        target: &wgpu::TextureView,
-    ) {
-        let u = BlitUniforms {
-            ss: ss.max(1),
-            encode_srgb: u32::from(!self.format.is_srgb()),
-            _pad: [0; 2],
-        };
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+    /// The bind group that shows `image`: made once per image, not per frame.
+    pub fn bind(&self, device: &wgpu::Device, image: &wgpu::Texture) -> wgpu::BindGroup {
         let view = image.create_view(&Default::default());
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:blit:group"),
             layout: &self.layout,
             entries: &[
@@ -86,7 +72,25 @@ impl Blit {
                     resource: wgpu::BindingResource::TextureView(&view),
                 },
             ],
-        });
+        })
+    }
+
+    /// Records a pass drawing the image of `group` ([`Blit::bind`]; `ss` x `ss` texels a pixel)
+    /// over all of `target`.
+    pub fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        group: &wgpu::BindGroup,
+        ss: u32,
+        target: &wgpu::TextureView,
+    ) {
+        let u = BlitUniforms {
+            ss: ss.max(1),
+            encode_srgb: u32::from(!self.format.is_srgb()),
+            _pad: [0; 2],
+        };
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("relief:blit:pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -104,7 +108,7 @@ impl Blit {
             multiview_mask: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(0, group, &[]);
         pass.draw(0..3, 0..1);
     }
 }
