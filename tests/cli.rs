@@ -739,10 +739,16 @@ fn height_prints_the_surface_height_at_each_point() {
     rejects(&["height", "--size", "64", "0,0"], &["--size", "height"]);
 }
 
-#[test]
-fn render_draws_the_same_frame_with_every_method() {
-    let dir = scratch("methods");
-    let (w, h) = (160u32, 100u32);
+/// Draws one frame with each of `methods` (flags `common` added) and checks each is far closer
+/// to the reference than the reference of another seed is. Returns the reference's stdout.
+fn every_method_draws_the_same_frame(
+    name: &str,
+    (w, h): (u32, u32),
+    methods: &[&str],
+    common: &[&str],
+) -> String {
+    let dir = scratch(name);
+    let (ws, hs) = (w.to_string(), h.to_string());
     let render = |method: &str, extra: &[&str]| {
         let out = dir.join(format!("{method}-{}.png", extra.len()));
         let mut args = vec![
@@ -750,34 +756,42 @@ fn render_draws_the_same_frame_with_every_method() {
             "--out",
             out.to_str().unwrap(),
             "--width",
-            "160",
+            &ws,
             "--height",
-            "100",
+            &hs,
             "--method",
             method,
         ];
+        args.extend_from_slice(common);
         args.extend_from_slice(extra);
-        let (code, _, err) = relief(&args);
+        let (code, stdout, err) = relief(&args);
         assert_eq!(code, 0, "{method}: {err}");
-        image::open(&out).unwrap().into_rgb8().into_raw()
+        (image::open(&out).unwrap().into_rgb8().into_raw(), stdout)
     };
-    let reference = render("reference", &[]);
-    let other_seed = render("reference", &["--seed", "8"]);
+    let (reference, stdout) = render("reference", &[]);
+    let (other_seed, _) = render("reference", &["--seed", "8"]);
     let control = relief::metrics::image_error(&reference, &other_seed, w, h).0;
-    for m in relief::Method::ALL
-        .iter()
-        .filter(|m| m.in_tile())
-        .map(|m| m.name())
-    {
-        let img = render(m, &[]);
+    for m in methods {
+        let (img, _) = render(m, &[]);
         let (flip, _) = relief::metrics::image_error(&reference, &img, w, h);
-        eprintln!("{m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
+        eprintln!("{name} {m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
         // The same frame: far closer to the reference than a different terrain is.
         assert!(
             flip < control * 0.75,
             "{m}: FLIP {flip} vs control {control}"
         );
     }
+    stdout
+}
+
+#[test]
+fn render_draws_the_same_frame_with_every_method() {
+    let tile: Vec<&str> = relief::Method::ALL
+        .iter()
+        .filter(|m| m.in_tile())
+        .map(|m| m.name())
+        .collect();
+    every_method_draws_the_same_frame("methods", (160, 100), &tile, &[]);
     // Mesh-only flags mean nothing to a ray caster: refused, not ignored.
     rejects(
         &[
@@ -803,47 +817,15 @@ fn render_draws_the_same_frame_with_every_method() {
 
 #[test]
 fn render_draws_the_same_endless_frame_with_every_method() {
-    let dir = scratch("world-methods");
-    let (w, h) = (120u32, 68u32);
-    let render = |method: &str, extra: &[&str]| {
-        let out = dir.join(format!("{method}-{}.png", extra.len()));
-        let mut args = vec![
-            "render",
-            "--world",
-            "endless",
-            "--out",
-            out.to_str().unwrap(),
-            "--width",
-            "120",
-            "--height",
-            "68",
-            "--pixel-error",
-            "4",
-            "--stats",
-            "--method",
-            method,
-        ];
-        args.extend_from_slice(extra);
-        let (code, stdout, err) = relief(&args);
-        assert_eq!(code, 0, "{method}: {err}");
-        let img = image::open(&out).unwrap().into_rgb8().into_raw();
-        (img, stdout)
-    };
-    let (reference, stats) = render("reference", &[]);
+    let stats = every_method_draws_the_same_frame(
+        "world-methods",
+        (120, 68),
+        relief::Method::NAMES,
+        &["--world", "endless", "--pixel-error", "4", "--stats"],
+    );
     // The ray casters draw no mesh and say how many rays ran out of steps.
     assert!(stats.contains("triangles 0\n"), "{stats}");
     assert!(stats.contains("unresolved_rays 0\n"), "{stats}");
-    let (other_seed, _) = render("reference", &["--seed", "8"]);
-    let control = relief::metrics::image_error(&reference, &other_seed, w, h).0;
-    for m in relief::Method::NAMES {
-        let (img, _) = render(m, &[]);
-        let (flip, _) = relief::metrics::image_error(&reference, &img, w, h);
-        eprintln!("endless {m}: FLIP {flip:.4} against the reference (another seed: {control:.4})");
-        assert!(
-            flip < control * 0.75,
-            "{m}: FLIP {flip} vs control {control}"
-        );
-    }
 }
 
 /// Renders the endless world small and loose (fast on a software GPU); returns the pixels and
