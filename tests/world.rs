@@ -130,6 +130,15 @@ fn incremental_baking_equals_a_fresh_bake_and_the_twin() {
     }
 }
 
+/// `world` drawn over a magenta sky, where a hole shows.
+fn over_magenta(mut world: World) -> World {
+    world.set_shading(relief::Shading {
+        sky_color: [1.0, 0.0, 1.0],
+        ..Default::default()
+    });
+    world
+}
+
 /// Magenta pixels below the first terrain pixel of their column: holes in the surface. (A
 /// view looking down enough that every ray below the skyline meets the ground.)
 fn holes(pixels: &[u8], (w, h): (u32, u32)) -> usize {
@@ -154,11 +163,7 @@ fn no_cracks_between_levels_and_the_morph_is_what_prevents_them() {
     let gpu = common::gpu();
     let p = params();
     let land = p.land;
-    let mut w = world(&gpu, p);
-    w.set_shading(relief::Shading {
-        sky_color: [1.0, 0.0, 1.0],
-        ..Default::default()
-    });
+    let mut w = over_magenta(world(&gpu, p));
     let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
     let mut with = 0;
     let mut without = 0;
@@ -210,11 +215,7 @@ fn a_bake_budget_spreads_big_moves_over_frames_without_holes_and_ends_as_a_fresh
     let gpu = common::gpu();
     let p = params();
     let land = p.land;
-    let mut w = world(&gpu, p);
-    w.set_shading(relief::Shading {
-        sky_color: [1.0, 0.0, 1.0],
-        ..Default::default()
-    });
+    let mut w = over_magenta(world(&gpu, p));
     // A third of a level of this layout (33 x 33 samples: 4-cell patches at this knob).
     let budget = 363;
     w.set_bake_budget(budget);
