@@ -430,13 +430,14 @@ fn march_row(
     let shading = crate::Shading::default();
     let caster = RayMarcher::for_scene(&gpu.device, size.0, size.1, RayScene::World)?;
     let region = crate::gpu::world_rays::drawn_region(params, &v.view);
-    let ray = crate::gpu::world_rays::WorldRayUniforms::new(
-        params, &shading, &v.view, rays, size, region,
-    )?;
+    let ray = crate::gpu::world_rays::WorldRayUniforms::new(params, &v.view, rays, size, region)?;
     let render = crate::gpu::world::render_uniforms(
         params,
         &shading,
-        crate::gpu::world_rays::ray_matrix(&v.view),
+        (
+            crate::gpu::world_rays::ray_matrix(&v.view),
+            crate::gpu::world::horizon(region, v.view.eye),
+        ),
         true,
     );
     caster.prepare_world(&gpu.queue, &render, &ray)?;

@@ -388,10 +388,12 @@ pub fn options_markdown() -> String {
         .iter()
         .filter(|p| crate::params::param(p.key).is_none())
     {
-        let applies = if p.key == "pixel_error" {
-            "render --world endless"
-        } else {
-            "render, height --world endless"
+        let applies = match p.key {
+            "pixel_error" => "render --world endless",
+            "sun_azimuth" | "sun_elevation" | "fog" => {
+                "window, render, scene files, URL --world endless"
+            }
+            _ => "render, height --world endless",
         };
         out.push_str(&row(p, &world, applies));
     }

@@ -87,6 +87,7 @@ pub mod params;
 pub mod raycast;
 #[cfg(feature = "scene")]
 pub mod scene;
+pub mod sky;
 pub mod table;
 pub mod world;
 

@@ -339,8 +339,13 @@ pub struct Shading {
     pub shininess: f32,
     /// Specular strength.
     pub specular: f32,
-    /// Background colour hosts may clear to (sRGB); relief itself draws no sky.
+    /// Background colour hosts may clear to (sRGB), and the flat sky relief draws where
+    /// [`Shading::sky`] is off.
     pub sky_color: [f32; 3],
+    /// Draws the sky (gradient, sun disc and halo; `crate::sky`) behind the terrain and in
+    /// the ray casters' misses. Off: they show the flat `sky_color`, and a host's own
+    /// background drawn before relief stays where relief draws nothing.
+    pub sky: bool,
 }
 
 impl Default for Shading {
@@ -357,6 +362,7 @@ impl Default for Shading {
             shininess: 24.0,
             specular: 0.25,
             sky_color: [0.64, 0.76, 0.90],
+            sky: true,
         }
     }
 }

@@ -7,6 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::landscape::{Landscape, TerrainFn};
+use crate::sky::Sky;
 use crate::table::{Control, Kind, Param, Value};
 
 /// The worlds relief can draw.
@@ -59,6 +60,8 @@ pub struct WorldParams {
     pub snow_height: f32,
     /// Height-AO exponent.
     pub ao_exponent: f32,
+    /// The sun and the air.
+    pub sky: Sky,
 }
 
 impl Default for WorldParams {
@@ -77,6 +80,7 @@ impl Default for WorldParams {
             pixel_error: 1.0,
             snow_height: 0.63,
             ao_exponent: 1.0,
+            sky: Sky::default(),
         }
     }
 }
@@ -94,7 +98,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 9] = [
+pub static WORLD_PARAMS: [WorldParam; 12] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -247,6 +251,60 @@ pub static WORLD_PARAMS: [WorldParam; 9] = [
         set: |p, v| {
             if let Value::Float(x) = v {
                 p.ao_exponent = x;
+            }
+        },
+    },
+    Param {
+        key: "sun_azimuth",
+        doc: "the sun's bearing in degrees, clockwise from north (-z) towards east (+x)",
+        kind: Kind::Float {
+            min: -360.0,
+            max: 360.0,
+        },
+        control: Control::Slider {
+            min: 0.0,
+            max: 360.0,
+            step: 1.0,
+        },
+        get: |p| Value::Float(p.sky.sun_azimuth),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.sky.sun_azimuth = x;
+            }
+        },
+    },
+    Param {
+        key: "sun_elevation",
+        doc: "the sun's height above the horizon in degrees (below 0: dusk, no sunlight)",
+        kind: Kind::Float {
+            min: -90.0,
+            max: 90.0,
+        },
+        control: Control::Slider {
+            min: -5.0,
+            max: 90.0,
+            step: 0.5,
+        },
+        get: |p| Value::Float(p.sky.sun_elevation),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.sky.sun_elevation = x;
+            }
+        },
+    },
+    Param {
+        key: "fog",
+        doc: "aerial perspective: extinction per km of green light (blue more, red less); 0 for clear air",
+        kind: Kind::Float { min: 0.0, max: 50.0 },
+        control: Control::Slider {
+            min: 0.0,
+            max: 0.5,
+            step: 0.005,
+        },
+        get: |p| Value::Float(p.sky.fog),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.sky.fog = x;
             }
         },
     },

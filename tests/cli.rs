@@ -900,6 +900,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "pixel_error" => "4",
             "snow_height" => "0.3",
             "ao_exponent" => "3",
+            "sun_azimuth" => "300",
+            "sun_elevation" => "40",
+            "fog" => "0.4",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
@@ -1075,6 +1078,16 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--pixel-error", "0"],
     );
     render(&["--peak-height", "100"], &["--peak-height", "endless"]);
+    render(
+        &["--world", "endless", "--sun-elevation", "91"],
+        &["--sun-elevation", "91", "-90..=90"],
+    );
+    render(&["--world", "endless", "--fog", "-1"], &["--fog", "-1"]);
+    render(
+        &["--world", "endless", "--sun-azimuth", "north"],
+        &["--sun-azimuth", "north"],
+    );
+    render(&["--sun-azimuth", "10"], &["--sun-azimuth", "endless"]);
     rejects(
         &[
             "bake",
@@ -1407,7 +1420,7 @@ fn endless_scene_files_and_camera_tables_round_trip() {
     bad(
         "size.toml",
         "world = \"endless\"\nsize = 64\n",
-        &["size.toml", "size", "feature_size"],
+        &["size.toml", "size", "pixel_error"],
     );
     bad(
         "fov.toml",

@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 11);
+    assert_eq!(modules.len(), 12);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -197,7 +197,6 @@ fn world_ray_uniforms_match_wgsl() {
         ("gain", offset_of!(WorldRayUniforms, gain)),
         ("pixel_angle", offset_of!(WorldRayUniforms, pixel_angle)),
         ("bounds", offset_of!(WorldRayUniforms, bounds)),
-        ("sky", offset_of!(WorldRayUniforms, sky)),
         ("prefix", offset_of!(WorldRayUniforms, prefix)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");

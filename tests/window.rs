@@ -116,7 +116,7 @@ fn window_with_keys(args: &[&str], keys: &str) -> (i32, String, String) {
     let script = format!(
         "\"$0\" \"$@\" & pid=$!; \
          sleep 2; \
-         w=$(xdotool search --sync --name '^relief$' | head -n 1); \
+         w=$(xdotool search --sync --name '^relief' | head -n 1); \
          xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
          wait $pid"
     );
@@ -213,5 +213,31 @@ fn m_steps_the_window_to_the_next_method() {
             .lines()
             .any(|l| l.starts_with("timings") && l.contains(", raymarch)")),
         "{stdout}"
+    );
+}
+
+#[test]
+fn the_sun_and_fog_keys_move_the_sun_and_the_title_says_where() {
+    let args = [
+        "--world",
+        "endless",
+        "--pixel-error",
+        "16",
+        "--exit-after",
+        "8",
+    ];
+    // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off; the title shows it.
+    let keys = "xdotool getwindowname \"$w\"; xdotool key bracketright; sleep 1; \
+                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool getwindowname \"$w\"";
+    let (code, stdout, err) = window_with_keys(&args, keys);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a clean run prints nothing on stderr");
+    assert!(
+        stdout.contains("sun 145° az, 12° up · fog 0.03 /km"),
+        "the title before: {stdout}"
+    );
+    assert!(
+        stdout.contains("sun 155° az, 10° up · fog 0 /km"),
+        "the title after ], - and F: {stdout}"
     );
 }

@@ -130,12 +130,17 @@ fn incremental_baking_equals_a_fresh_bake_and_the_twin() {
     }
 }
 
-/// `world` drawn over a magenta sky, where a hole shows.
-fn over_magenta(mut world: World) -> World {
+/// `world` drawn over a flat magenta sky (no sky pass), where a hole shows, in clear air (fog
+/// would tint the far terrain towards the magenta).
+fn over_magenta(mut world: World, gpu: &Gpu) -> World {
     world.set_shading(relief::Shading {
         sky_color: [1.0, 0.0, 1.0],
+        sky: false,
         ..Default::default()
     });
+    let mut p = *world.params();
+    p.sky.fog = 0.0;
+    world.set_params(&gpu.device, p).unwrap();
     world
 }
 
@@ -163,7 +168,7 @@ fn no_cracks_between_levels_and_the_morph_is_what_prevents_them() {
     let gpu = common::gpu();
     let p = params();
     let land = p.land;
-    let mut w = over_magenta(world(&gpu, p));
+    let mut w = over_magenta(world(&gpu, p), &gpu);
     let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
     let mut with = 0;
     let mut without = 0;
@@ -215,7 +220,7 @@ fn a_bake_budget_spreads_big_moves_over_frames_without_holes_and_ends_as_a_fresh
     let gpu = common::gpu();
     let p = params();
     let land = p.land;
-    let mut w = over_magenta(world(&gpu, p));
+    let mut w = over_magenta(world(&gpu, p), &gpu);
     // A third of a level of this layout (33 x 33 samples: 4-cell patches at this knob).
     let budget = 363;
     w.set_bake_budget(budget);

@@ -46,12 +46,16 @@ fn cast(
 ) -> (Vec<u8>, Vec<f32>) {
     let shading = Shading::default();
     let caster = RayMarcher::for_scene(&gpu.device, SIZE.0, SIZE.1, RayScene::World).unwrap();
-    let mut ray = WorldRayUniforms::new(p, &shading, v, method, SIZE, drawn_region(p, v)).unwrap();
+    let region = drawn_region(p, v);
+    let mut ray = WorldRayUniforms::new(p, v, method, SIZE, region).unwrap();
     tweak(&mut ray);
     let render = relief::gpu::world::render_uniforms(
         p,
         &shading,
-        relief::gpu::world_rays::ray_matrix(v),
+        (
+            relief::gpu::world_rays::ray_matrix(v),
+            relief::gpu::world::horizon(region, v.eye),
+        ),
         true,
     );
     caster.prepare_world(&gpu.queue, &render, &ray).unwrap();

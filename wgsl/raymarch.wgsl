@@ -30,8 +30,6 @@ struct RayUniforms {
     hit_k: f32,
     _pad: u32,
     offset: vec2<f32>,
-    // Colour stored where no terrain is hit (already encoded for the target).
-    sky: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> r: RenderUniforms;
@@ -107,7 +105,7 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     let rd = normalize(pixel_far(pixel) - ro);
     let t = intersect(ro, rd);
     if t < 0.0 {
-        return vec4<f32>(ray.sky.rgb, t);
+        return vec4<f32>(sky_pixel(r, rd), t);
     }
     let p = ro + t * rd;
     let normal_octaves = select(ray.octaves, ray.normal_octaves, ray.method == 1u);

@@ -54,8 +54,6 @@ struct WorldRayUniforms {
     band_limit: u32,
     // The region drawn, relative to the reference sample: x0, z0, x1, z1 in metres.
     bounds: vec4<f32>,
-    // Colour stored where no terrain is hit (already encoded for the target).
-    sky: vec4<f32>,
     // Entry k: x, Lipschitz bound (metres per metre) of the height of the first k+1 octaves;
     // y, bound in metres on what the octaves after them add.
     prefix: array<vec4<f32>, 24>,
@@ -207,7 +205,7 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     let ro = ray.eye.xyz;
     let t = world_intersect(ro, rd);
     if t < 0.0 {
-        return vec4<f32>(ray.sky.rgb, t);
+        return vec4<f32>(sky_pixel(r, rd), t);
     }
     let p = ro + t * rd;
     let normal_octaves = select(ray.octaves, ray.normal_octaves, ray.method == 1u);

@@ -45,6 +45,10 @@ pub const CAMERA_CLEARANCE: f32 = 0.05;
 /// Height the fly camera keeps above the endless world's ground, metres.
 pub const FLY_CLEARANCE: f64 = 2.0;
 
+/// The endless world's sun and fog keys: `[` `]` turn the sun, `-` `=` lower and raise it,
+/// `f` turns the fog off and on again.
+pub const SKY_KEYS: [&str; 5] = ["[", "]", "-", "=", "f"];
+
 /// Keys that move the fly camera (by position on the keyboard: WASD, arrows, Q/E and Page
 /// Down/Up for down and up, Shift for faster).
 pub const FLY_KEYS: [KeyCode; 14] = [
@@ -223,6 +227,8 @@ pub struct App {
     error: Option<Error>,
     report: Box<dyn Report>,
     proxy: EventLoopProxy<UserEvent>,
+    /// The fog the F key turns back on.
+    fog_off: f32,
 }
 
 impl App {
@@ -262,6 +268,7 @@ impl App {
             error: None,
             report,
             proxy,
+            fog_off: crate::sky::Sky::default().fog,
         }
     }
 
@@ -310,6 +317,9 @@ impl App {
             }
         }
         self.options = options;
+        if let Some(w) = &self.window {
+            w.set_title(&self.title());
+        }
         self.keep_camera_above();
         self.report.options(&self.options);
         self.report.accepted();
@@ -632,6 +642,46 @@ impl App {
         self.changed();
     }
 
+    /// One of [`SKY_KEYS`], through the same keys as the page's controls, so the URL follows.
+    fn sky_key(&mut self, key: &str) {
+        let Some((world, _)) = self.options.world else {
+            return;
+        };
+        let sky = world.sky;
+        let (name, value) = match key {
+            "[" | "]" => {
+                let turn = if key == "[" { -10.0 } else { 10.0 };
+                ("sun_azimuth", (sky.sun_azimuth + turn).rem_euclid(360.0))
+            }
+            "-" | "=" => {
+                let lift = if key == "-" { -2.0 } else { 2.0 };
+                (
+                    "sun_elevation",
+                    (sky.sun_elevation + lift).clamp(-90.0, 90.0),
+                )
+            }
+            _ if sky.fog > 0.0 => {
+                self.fog_off = sky.fog;
+                ("fog", 0.0)
+            }
+            _ => ("fog", self.fog_off),
+        };
+        if let Err(e) = self.set(name, &value.to_string()) {
+            self.report.warn(&e.to_string());
+        }
+    }
+
+    /// The window's title: the world and, in the endless one, the sun and the fog.
+    fn title(&self) -> String {
+        match &self.options.world {
+            Some((w, _)) => format!(
+                "relief: sun {:.0}° az, {:.0}° up · fog {} /km · [ ] - = move the sun, F fog",
+                w.sky.sun_azimuth, w.sky.sun_elevation, w.sky.fog
+            ),
+            None => "relief".to_owned(),
+        }
+    }
+
     fn camera_moved(&mut self) {
         self.keep_camera_above();
         self.changed();
@@ -652,7 +702,7 @@ impl ApplicationHandler<UserEvent> for App {
         if self.window.is_some() || self.starting {
             return;
         }
-        let attributes = Window::default_attributes().with_title("relief");
+        let attributes = Window::default_attributes().with_title(self.title());
         #[cfg(not(target_arch = "wasm32"))]
         let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280, 720));
         #[cfg(target_arch = "wasm32")]
@@ -801,6 +851,11 @@ impl ApplicationHandler<UserEvent> for App {
                     }
                     Key::Character(c) if c.eq_ignore_ascii_case("r") && self.fly.is_some() => {
                         self.reseed_world();
+                    }
+                    Key::Character(c)
+                        if self.fly.is_some() && SKY_KEYS.contains(&c.to_lowercase().as_str()) =>
+                    {
+                        self.sky_key(&c.to_lowercase());
                     }
                     Key::Character(c) if c.eq_ignore_ascii_case("m") => {
                         // The next method this world draws (the reference is slow).

@@ -479,7 +479,6 @@ impl State {
                 let region = world.clipmap().drawn_region(view.eye.x, view.eye.z);
                 let ray = crate::gpu::world_rays::WorldRayUniforms::with_slopes(
                     params,
-                    world.shading(),
                     &view,
                     (how, cast, region),
                     world.slope_bounds(),
@@ -487,7 +486,10 @@ impl State {
                 let render = crate::gpu::world::render_uniforms(
                     params,
                     world.shading(),
-                    crate::gpu::world_rays::ray_matrix(&view),
+                    (
+                        crate::gpu::world_rays::ray_matrix(&view),
+                        crate::gpu::world::horizon(region, view.eye),
+                    ),
                     true,
                 );
                 rays.caster.prepare_world(&self.queue, &render, &ray)?;

@@ -934,13 +934,14 @@ pub fn render_world_rays_at(
         RayScene::World,
         timer,
         |caster, size| {
-            let ray = super::world_rays::WorldRayUniforms::new(
-                params, shading, view, rays, size, region,
-            )?;
+            let ray = super::world_rays::WorldRayUniforms::new(params, view, rays, size, region)?;
             let render = super::world::render_uniforms(
                 params,
                 shading,
-                crate::gpu::world_rays::ray_matrix(view),
+                (
+                    crate::gpu::world_rays::ray_matrix(view),
+                    super::world::horizon(region, view.eye),
+                ),
                 true,
             );
             caster.prepare_world(&gpu.queue, &render, &ray)

@@ -10,6 +10,7 @@ pub(crate) mod normals;
 pub mod raymarch;
 pub(crate) mod render;
 pub mod shader;
+pub(crate) mod sky;
 pub mod timing;
 pub mod world;
 pub mod world_rays;
@@ -109,6 +110,7 @@ pub struct Terrain {
     bake: bake::BakePass,
     normals: normals::NormalPass,
     mesh: render::MeshPass,
+    sky: sky::SkyPass,
     pending: Dirty,
     /// The offset shown: `params.offset` (where the textures were baked) moved by
     /// [`Terrain::scroll_to`].
@@ -127,13 +129,15 @@ impl Terrain {
         params.validate_for(&device.limits())?;
         let mut terrain = scoped(device, || {
             let textures = Textures::new(device, params.size);
+            let mesh = render::MeshPass::new(device, &targets);
             Terrain {
                 params,
                 shading: Shading::default(),
                 targets,
                 bake: bake::BakePass::new(device),
                 normals: normals::NormalPass::new(device),
-                mesh: render::MeshPass::new(device, &targets),
+                sky: sky::SkyPass::new(device, &targets, mesh.uniforms()),
+                mesh,
                 textures,
                 pending: Dirty::ALL,
                 shown_offset: params.offset,
@@ -277,9 +281,12 @@ impl Terrain {
         self.mesh.write(queue, &uniforms);
     }
 
-    /// Draws the terrain into the host's pass, which must match [`Targets`].
+    /// Draws the terrain, and the sky behind it unless [`Shading::sky`] is off, into the
+    /// host's pass, which must match [`Targets`]. With depth, the host clears it to 1.0.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        self.mesh.draw(pass, self.params.grid);
+        let grid = self.params.grid;
+        self.sky
+            .around(pass, self.shading.sky, |pass| self.mesh.draw(pass, grid));
     }
 
     /// The baked textures, for reading or for the host's own passes.
@@ -478,6 +485,27 @@ pub(crate) fn terrain_pipeline(
     topology: wgpu::PrimitiveTopology,
     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
 ) -> wgpu::RenderPipeline {
+    let depth = (true, wgpu::CompareFunction::Less);
+    render_pipeline(
+        device,
+        (label, layout, module),
+        targets,
+        topology,
+        buffers,
+        depth,
+    )
+}
+
+/// A render pipeline of `vs_main` and `fs_main` into the host's targets (opaque colour, both
+/// faces), with the depth test and write of `depth` where the host's pass has depth.
+pub(crate) fn render_pipeline(
+    device: &wgpu::Device,
+    (label, layout, module): (&str, &wgpu::BindGroupLayout, &wgpu::ShaderModule),
+    targets: &Targets,
+    topology: wgpu::PrimitiveTopology,
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    (depth_write, depth_compare): (bool, wgpu::CompareFunction),
+) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&format!("{label}:pipeline-layout")),
         bind_group_layouts: &[Some(layout)],
@@ -499,8 +527,8 @@ pub(crate) fn terrain_pipeline(
         },
         depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
             format,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_write_enabled: Some(depth_write),
+            depth_compare: Some(depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),

@@ -48,8 +48,6 @@ pub struct RayUniforms {
     pub _pad: u32,
     /// Scroll offset in tiles, reduced to [0, 1).
     pub offset: [f32; 2],
-    /// Colour of sky pixels as stored (sRGB values).
-    pub sky: [f32; 4],
 }
 
 /// Which ray caster, with its knobs.
@@ -105,13 +103,7 @@ pub const MAX_STEPS: u32 = 4096;
 
 impl RayUniforms {
     /// Uniforms for one image.
-    pub fn new(
-        params: &TerrainParams,
-        shading: &Shading,
-        view: &View,
-        method: RayMethod,
-        size: (u32, u32),
-    ) -> Self {
+    pub fn new(params: &TerrainParams, view: &View, method: RayMethod, size: (u32, u32)) -> Self {
         let fbm = Fbm::from_params(params);
         let off = params.reduced_offset();
         let (method_id, seed) = match method {
@@ -139,12 +131,6 @@ impl RayUniforms {
             hit_k: seed.hit_k,
             _pad: 0,
             offset: [off[0] as f32, off[1] as f32],
-            sky: [
-                shading.sky_color[0],
-                shading.sky_color[1],
-                shading.sky_color[2],
-                1.0,
-            ],
         }
     }
 }
@@ -357,7 +343,7 @@ impl RayMarcher {
         debug_assert_eq!(self.scene, RayScene::Tile, "prepare is the tile's");
         let r = RenderUniforms::new(params, shading, view, true);
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&r));
-        let ray = RayUniforms::new(params, shading, view, method, (self.width, self.height));
+        let ray = RayUniforms::new(params, view, method, (self.width, self.height));
         queue.write_buffer(&self.ray_uniforms, 0, bytemuck::bytes_of(&ray));
     }
 

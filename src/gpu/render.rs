@@ -3,6 +3,7 @@
 use super::{Targets, Textures};
 use crate::camera::View;
 use crate::params::{srgb_to_linear, Shading, TerrainParams};
+use crate::sky::SkyLight;
 
 /// Mirrors `RenderUniforms` in `wgsl/render.wgsl` field by field.
 #[repr(C)]
@@ -45,6 +46,20 @@ pub struct RenderUniforms {
     pub shift: [f32; 2],
     /// Padding.
     pub _pad: [u32; 2],
+    /// Inverse of `view_proj`: what turns a pixel into a view direction for the sky.
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// Linear sky radiance at the zenith; w: 1 for a flat sky of `sky_horizon`'s colour (no
+    /// gradient, no sun), as [`Shading::sky`] off asks.
+    pub sky_zenith: [f32; 4],
+    /// Linear sky radiance at the horizon (w unused).
+    pub sky_horizon: [f32; 4],
+    /// A low sun's glow on the horizon towards it (rgb) and its strength (w).
+    pub sky_sunset: [f32; 4],
+    /// Extinction per world unit of red, green and blue: aerial perspective (0: clear air).
+    pub fog: [f32; 4],
+    /// x, y: the horizontal distances from the eye where terrain begins and finishes fading into
+    /// the sky (y = 0: no fade). z, w unused.
+    pub fade: [f32; 4],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -57,10 +72,12 @@ fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
 }
 
 impl RenderUniforms {
-    /// The uniforms for one frame.
+    /// The uniforms for one frame: the sky of the shading's sun, clear air.
     pub fn new(p: &TerrainParams, s: &Shading, view: &View, encode_srgb: bool) -> Self {
         let sun = glam::Vec3::from(s.sun_direction).normalize_or(glam::Vec3::Y);
-        Self {
+        let sun_color = linear(s.sun_color, s.sun_intensity);
+        let light = SkyLight::new(sun, [sun_color[0], sun_color[1], sun_color[2]]);
+        let mut u = Self {
             view_proj: view.view_proj.to_cols_array_2d(),
             camera_pos: view.eye.extend(1.0).to_array(),
             sun_dir: sun.extend(0.0).to_array(),
@@ -79,6 +96,52 @@ impl RenderUniforms {
             specular: s.specular,
             shift: [0.0; 2],
             _pad: [0; 2],
+            inv_view_proj: view.view_proj.inverse().to_cols_array_2d(),
+            sky_zenith: [0.0; 4],
+            sky_horizon: [0.0; 4],
+            sky_sunset: [0.0; 4],
+            fog: [0.0; 4],
+            fade: [0.0; 4],
+        };
+        // The tile's sun keeps the shading's colour: only the sky follows its elevation.
+        u.set_sky(
+            s,
+            &SkyLight {
+                sun: [sun_color[0], sun_color[1], sun_color[2]],
+                ..light
+            },
+        );
+        u
+    }
+
+    /// Sets the sun's direction and light and the sky's colours from `light`, or a flat sky of
+    /// the shading's `sky_color` where [`Shading::sky`] is off.
+    pub fn set_sky(&mut self, s: &Shading, light: &SkyLight) {
+        let w = |c: [f32; 3], w: f32| [c[0], c[1], c[2], w];
+        self.sun_dir = w(light.sun_dir.to_array(), 0.0);
+        self.sun_color = w(light.sun, 1.0);
+        if s.sky {
+            self.sky_zenith = w(light.zenith, 0.0);
+            self.sky_horizon = w(light.horizon, 0.0);
+            self.sky_sunset = light.sunset;
+        } else {
+            let flat = linear(s.sky_color, 1.0);
+            self.sky_zenith = w([flat[0], flat[1], flat[2]], 1.0);
+            self.sky_horizon = flat;
+            self.sky_sunset = [0.0; 4];
+        }
+    }
+
+    /// What the sky pass and the ray casters' misses twin: the light of this sky.
+    pub fn sky_light(&self) -> SkyLight {
+        let c = |v: [f32; 4]| [v[0], v[1], v[2]];
+        SkyLight {
+            sun_dir: glam::Vec4::from(self.sun_dir).truncate(),
+            sun: c(self.sun_color),
+            zenith: c(self.sky_zenith),
+            horizon: c(self.sky_horizon),
+            sunset: self.sky_sunset,
+            day: 1.0,
         }
     }
 }
@@ -92,6 +155,11 @@ pub(crate) struct MeshPass {
 }
 
 impl MeshPass {
+    /// The render uniforms' buffer (the sky pass reads it too).
+    pub fn uniforms(&self) -> &wgpu::Buffer {
+        &self.uniforms
+    }
+
     pub fn new(device: &wgpu::Device, targets: &Targets) -> Self {
         let module = super::shader::module(
             device,

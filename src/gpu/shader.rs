@@ -22,6 +22,8 @@ pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
 /// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
+/// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
+pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
 /// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
 /// [`NOISE`] and [`SHADE`], then [`RAYS`]).
 pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
@@ -48,6 +50,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("render", compose(&[SHADE, RENDER])),
         ("world", compose(&[SHADE, WORLD])),
+        ("sky", compose(&[SHADE, SKY])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),
         (
             "world_rays",

@@ -14,6 +14,7 @@ use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
 use crate::error::{Error, Result};
 use crate::landscape::Landscape;
 use crate::params::{Shading, TerrainParams};
+use crate::sky::SkyLight;
 pub use crate::world::WorldParams;
 
 /// A camera in the endless world: an eye in f64 metres, a direction and a lens.
@@ -177,6 +178,7 @@ pub struct World {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
+    sky: super::sky::SkyPass,
     render_uniforms: wgpu::Buffer,
     world_uniforms: wgpu::Buffer,
     indices: wgpu::Buffer,
@@ -282,6 +284,7 @@ impl World {
                 pipeline,
                 layout,
                 bind_group,
+                sky: super::sky::SkyPass::new(device, &targets, &render_uniforms),
                 render_uniforms,
                 world_uniforms,
                 indices,
@@ -342,15 +345,22 @@ impl World {
         self.params.land.height_at(x, z)
     }
 
-    /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out.
+    /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out,
+    /// and the shading keys (snow, AO, the sun, fog) change nothing baked.
     pub fn set_params(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         params.validate()?;
+        // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
+        let relayout =
+            params.land != self.params.land || params.pixel_error != self.params.pixel_error;
         if params.land != self.params.land {
             self.errors = level_errors(&params.land);
             self.slopes = params.land.slope_bounds();
         }
         self.params = params;
-        self.relayout(device, self.map_k)
+        if relayout {
+            self.relayout(device, self.map_k)?;
+        }
+        Ok(())
     }
 
     fn relayout(&mut self, device: &wgpu::Device, k: f64) -> Result<()> {
@@ -591,7 +601,13 @@ impl World {
         queue.write_buffer(&self.world_uniforms, 0, bytemuck::bytes_of(&world));
 
         let encode = !self.targets.color_format.is_srgb();
-        let uniforms = render_uniforms(&self.params, &self.shading, matrix, encode);
+        let region = self.map.drawn_region(eye.x, eye.z);
+        let uniforms = render_uniforms(
+            &self.params,
+            &self.shading,
+            (matrix, horizon(region, eye)),
+            encode,
+        );
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
         let active: Vec<_> = self.map.levels[first.min(n)..]
@@ -618,27 +634,46 @@ impl World {
         self.matrix
     }
 
-    /// Draws the patches selected by the last [`World::prepare`] into the host's pass.
+    /// Draws the patches selected by the last [`World::prepare`], and the sky behind them
+    /// unless [`Shading::sky`] is off, into the host's pass (whose depth, if any, is cleared to
+    /// 1.0).
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        if self.instance_count == 0 {
-            return;
-        }
-        pass.push_debug_group("relief:world");
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..self.instance_count);
-        pass.pop_debug_group();
+        self.sky.around(pass, self.shading.sky, |pass| {
+            if self.instance_count == 0 {
+                return;
+            }
+            pass.push_debug_group("relief:world");
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.set_vertex_buffer(0, self.instances.slice(..));
+            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.index_count, 0, 0..self.instance_count);
+            pass.pop_debug_group();
+        });
     }
 }
 
+/// How far the drawn square `region` ([`Clipmap::drawn_region`]) reaches from `eye` in every
+/// direction: the terrain fades into the sky before this distance (where fog is on).
+pub fn horizon(region: [f64; 4], eye: DVec3) -> f64 {
+    (eye.x - region[0])
+        .min(region[2] - eye.x)
+        .min(eye.z - region[1])
+        .min(region[3] - eye.z)
+        .max(0.0)
+}
+
+/// Where terrain begins fading into the sky, as a fraction of [`horizon`].
+pub const FADE_START: f64 = 0.7;
+
 /// The shading uniforms of the endless world for a camera-relative `matrix` (the camera at the
-/// origin), shared by the mesh and the ray casters.
+/// origin) and the [`horizon`] of the square drawn, shared by the mesh and the ray casters: the
+/// sun and sky of `params.sky`, its fog, and (with fog) the fade into the sky before the
+/// horizon.
 pub fn render_uniforms(
     params: &WorldParams,
     shading: &Shading,
-    matrix: Mat4,
+    (matrix, horizon): (Mat4, f64),
     encode_srgb: bool,
 ) -> RenderUniforms {
     let tile = TerrainParams {
@@ -651,11 +686,22 @@ pub fn render_uniforms(
         view_proj: matrix,
         eye: Vec3::ZERO,
     };
-    RenderUniforms {
+    let mut u = RenderUniforms {
         grid: 0,
         tex_size: 0,
         ..RenderUniforms::new(&tile, shading, &relative, encode_srgb)
+    };
+    let sun = glam::Vec4::from(u.sun_color).truncate().to_array();
+    let light = SkyLight::new(params.sky.sun_direction(), sun);
+    u.set_sky(shading, &light);
+    u.ambient_color = u.ambient_color.map(|c| c * light.day);
+    u.ambient_color[3] = 1.0;
+    if params.sky.fog > 0.0 {
+        let e = params.sky.extinction();
+        u.fog = [e[0], e[1], e[2], 0.0];
+        u.fade = [(FADE_START * horizon) as f32, horizon as f32, 0.0, 0.0];
     }
+    u
 }
 
 fn level_errors(land: &Landscape) -> Vec<(i32, f64)> {

@@ -67,8 +67,6 @@ pub struct WorldRayUniforms {
     pub band_limit: u32,
     /// The region drawn relative to the reference sample: x0, z0, x1, z1 in metres.
     pub bounds: [f32; 4],
-    /// Sky colour as stored (sRGB values).
-    pub sky: [f32; 4],
     /// Per octave count k+1: (Lipschitz bound of the partial sum, bound on the rest, 0, 0).
     pub prefix: [[f32; 4]; MAX_OCTAVES],
 }
@@ -80,20 +78,18 @@ impl WorldRayUniforms {
     /// ([`crate::World::slope_bounds`]) and calls [`WorldRayUniforms::with_slopes`].
     pub fn new(
         params: &WorldParams,
-        shading: &crate::Shading,
         view: &WorldView,
         method: RayMethod,
         size: (u32, u32),
         region: [f64; 4],
     ) -> Result<Self> {
         let slopes = params.land.slope_bounds();
-        Self::with_slopes(params, shading, view, (method, size, region), &slopes)
+        Self::with_slopes(params, view, (method, size, region), &slopes)
     }
 
     /// [`WorldRayUniforms::new`] with the landscape's slope bounds measured already.
     pub fn with_slopes(
         params: &WorldParams,
-        shading: &crate::Shading,
         view: &WorldView,
         (method, size, region): (RayMethod, (u32, u32), [f64; 4]),
         slopes: &[f64],
@@ -162,12 +158,6 @@ impl WorldRayUniforms {
                 (region[1] - origin.z) as f32,
                 (region[2] - origin.x) as f32,
                 (region[3] - origin.z) as f32,
-            ],
-            sky: [
-                shading.sky_color[0],
-                shading.sky_color[1],
-                shading.sky_color[2],
-                1.0,
             ],
             prefix,
         })

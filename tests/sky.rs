@@ -1,0 +1,275 @@
+//! The sky and the air on lavapipe, at small sizes: the sky is the sky (above the horizon, seen
+//! from above the highest ground, every pixel is the CPU twin's sky, for the mesh and the ray
+//! casters alike), the sun's disc is where the sun is, fog grows with distance, the landscape's
+//! far end fades into the sky without an edge (and does not without fog: the control), and
+//! moving the sun or the fog bakes nothing.
+
+mod common;
+
+use glam::{DVec3, Mat4, Vec3, Vec4};
+use relief::gpu::headless::{self, Gpu, Offscreen};
+use relief::landscape::{Landscape, TerrainFn};
+use relief::sky::Sky;
+use relief::{Method, Shading, World, WorldParams, WorldView};
+
+const SIZE: (u32, u32) = (160, 96);
+
+/// A small world: ridges 256 m apart, at most 150 m high; a loose knob keeps lavapipe's work
+/// small. Fog thick enough that the small world's few kilometres show it.
+fn params(fog: f32) -> WorldParams {
+    WorldParams {
+        land: Landscape {
+            seed: 5,
+            octaves: 7,
+            gain: 0.5,
+            feature_log2: 8,
+            peak_height: 150.0,
+            terrain: TerrainFn::Fbm,
+        },
+        pixel_error: 16.0,
+        sky: Sky {
+            sun_azimuth: 200.0,
+            sun_elevation: 20.0,
+            fog,
+        },
+        ..WorldParams::default()
+    }
+}
+
+fn draw(
+    gpu: &Gpu,
+    p: WorldParams,
+    shading: Shading,
+    view: &WorldView,
+) -> (Vec<u8>, Vec<f32>, Mat4) {
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+    world.set_shading(shading);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let (rgba, _) = target.render_world(gpu, &mut world, view, None).unwrap();
+    let depth = target.read_depth(gpu).unwrap();
+    (rgba, depth, world.relative_matrix())
+}
+
+/// The unit view direction through the centre of pixel (x, y) under the camera-relative
+/// `matrix`.
+fn direction(matrix: Mat4, x: u32, y: u32) -> Vec3 {
+    let ndc = |depth: f32| {
+        let v = matrix.inverse()
+            * Vec4::new(
+                2.0 * (x as f32 + 0.5) / SIZE.0 as f32 - 1.0,
+                1.0 - 2.0 * (y as f32 + 0.5) / SIZE.1 as f32,
+                depth,
+                1.0,
+            );
+        v.truncate() / v.w
+    };
+    (ndc(1.0) - ndc(0.5)).normalize()
+}
+
+fn encode(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    255.0
+        * if c <= 0.003_130_8 {
+            12.92 * c
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        }
+}
+
+/// Largest difference (of 255) between the pixels of `rgba` looking more than 1 degree up and
+/// the twin's sky, and how many such pixels there are.
+fn sky_error(rgba: &[u8], matrix: Mat4, p: &WorldParams) -> (f32, usize) {
+    let light = relief::gpu::world::render_uniforms(p, &Shading::default(), (matrix, 1e4), false)
+        .sky_light();
+    let (mut worst, mut count) = (0f32, 0);
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let dir = direction(matrix, x, y);
+            if dir.y < 1f32.to_radians().sin() {
+                continue;
+            }
+            let want = light.radiance(dir, true);
+            let i = ((y * SIZE.0 + x) * 4) as usize;
+            for c in 0..3 {
+                worst = worst.max((f32::from(rgba[i + c]) - encode(want[c])).abs());
+            }
+            count += 1;
+        }
+    }
+    (worst, count)
+}
+
+#[test]
+fn the_sky_is_the_sky_for_the_mesh_and_the_rays_and_the_sun_is_where_it_is() {
+    let gpu = common::gpu();
+    let p = params(1.0);
+    // Above the highest the terrain can reach, looking level: nothing may cover the sky.
+    let eye = DVec3::new(300.0, p.land.peak_height + 40.0, -200.0);
+    let view = WorldView::look_at(eye, eye + DVec3::new(1.0, 0.0, 0.4), 0.9, SIZE);
+    let (mesh, _, matrix) = draw(&gpu, p, Shading::default(), &view);
+    let (worst, count) = sky_error(&mesh, matrix, &p);
+    assert!(count > 2000, "{count} sky pixels");
+    // 8-bit rounding and f32 against f32 with another order of operations: 2 levels.
+    assert!(
+        worst <= 2.0,
+        "mesh: the sky differs from the twin by {worst} of 255"
+    );
+    let rays =
+        headless::render_world_rays(&gpu, &p, &Shading::default(), &view, Method::Raymarch, None)
+            .unwrap();
+    let rays_matrix = relief::gpu::world_rays::ray_matrix(&view);
+    let (worst, _) = sky_error(&rays.rgba, rays_matrix, &p);
+    assert!(
+        worst <= 2.0,
+        "rays: the sky differs from the twin by {worst} of 255"
+    );
+
+    // The sun's disc: white where the sun is, sky a few pixels away from it.
+    let toward = relief::sky::sun_direction(70.0, 10.0);
+    let q = WorldParams {
+        sky: Sky {
+            sun_azimuth: 70.0,
+            sun_elevation: 10.0,
+            ..p.sky
+        },
+        ..p
+    };
+    let at_sun = WorldView::look_at(eye, eye + toward.as_dvec3(), 0.9, SIZE);
+    let (img, _, m) = draw(&gpu, q, Shading::default(), &at_sun);
+    let centre = m * toward.extend(0.0);
+    let px = |ndc: f32, n: u32| ((ndc * 0.5 + 0.5) * n as f32) as usize;
+    let (cx, cy) = (
+        px(centre.x / centre.w, SIZE.0),
+        px(-centre.y / centre.w, SIZE.1),
+    );
+    let at = |x: usize, y: usize| &img[(y * SIZE.0 as usize + x) * 4..][..3];
+    assert!(
+        at(cx, cy).iter().all(|&c| c >= 250),
+        "the sun's centre is {:?}",
+        at(cx, cy)
+    );
+    assert!(
+        at(cx, cy - 8).iter().any(|&c| c < 250),
+        "8 px from the sun: {:?}",
+        at(cx, cy - 8)
+    );
+}
+
+/// Distance from the eye of each pixel's depth (None for the sky).
+fn distances(depth: &[f32], matrix: Mat4) -> Vec<Option<f32>> {
+    let inv = matrix.inverse();
+    (0..SIZE.1)
+        .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let d = depth[(y * SIZE.0 + x) as usize];
+            (d < 1.0).then(|| {
+                let v = inv
+                    * Vec4::new(
+                        2.0 * (x as f32 + 0.5) / SIZE.0 as f32 - 1.0,
+                        1.0 - 2.0 * (y as f32 + 0.5) / SIZE.1 as f32,
+                        d,
+                        1.0,
+                    );
+                (v.truncate() / v.w).length()
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn fog_grows_with_distance_and_the_far_end_fades_into_the_sky() {
+    let gpu = common::gpu();
+    let clear = params(0.0);
+    let foggy = params(0.6);
+    let eye = DVec3::new(0.0, clear.land.height_at(0.0, 0.0) + 500.0, 0.0);
+    let view = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.12, 0.3), 0.9, SIZE);
+    let (plain, depth, matrix) = draw(&gpu, clear, Shading::default(), &view);
+    let (fogged, _, _) = draw(&gpu, foggy, Shading::default(), &view);
+    let d = distances(&depth, matrix);
+
+    // How far each terrain pixel moved towards the air's colour, by distance quartile.
+    let mut terrain: Vec<(f32, f32)> = d
+        .iter()
+        .enumerate()
+        .filter_map(|(i, d)| {
+            d.map(|d| {
+                let change: f32 = (0..3)
+                    .map(|c| (f32::from(fogged[i * 4 + c]) - f32::from(plain[i * 4 + c])).abs())
+                    .sum();
+                (d, change)
+            })
+        })
+        .collect();
+    assert!(terrain.len() > 4000, "{} terrain pixels", terrain.len());
+    terrain.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let quarter = terrain.len() / 4;
+    let means: Vec<f32> = terrain
+        .chunks(quarter)
+        .take(4)
+        .map(|c| c.iter().map(|t| t.1).sum::<f32>() / c.len() as f32)
+        .collect();
+    assert!(
+        means.windows(2).all(|w| w[1] > w[0]) && means[0] > 1.0,
+        "fog by distance quartile (near to far): {means:?}"
+    );
+
+    // The far end: in each column, the topmost terrain pixel against the sky pixel above it.
+    let edge = |img: &[u8]| {
+        let mut steps: Vec<f32> = (0..SIZE.0 as usize)
+            .filter_map(|x| {
+                let top = (1..SIZE.1 as usize).find(|&y| d[y * SIZE.0 as usize + x].is_some())?;
+                let (a, b) = (
+                    (top * SIZE.0 as usize + x) * 4,
+                    ((top - 1) * SIZE.0 as usize + x) * 4,
+                );
+                Some(
+                    (0..3)
+                        .map(|c| (f32::from(img[a + c]) - f32::from(img[b + c])).abs())
+                        .sum(),
+                )
+            })
+            .collect();
+        steps.sort_by(f32::total_cmp);
+        steps[steps.len() / 2]
+    };
+    let (with_fog, without) = (edge(&fogged), edge(&plain));
+    // The sky's own gradient from one row to the next is under a level per channel.
+    assert!(
+        with_fog <= 4.0,
+        "the far end stands out of the fog by {with_fog} (median, of 3x255)"
+    );
+    assert!(
+        without >= 20.0,
+        "without fog the far end is an edge: {without} (the control)"
+    );
+}
+
+#[test]
+fn moving_the_sun_or_the_fog_bakes_nothing() {
+    let gpu = common::gpu();
+    let p = params(0.6);
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+    let eye = DVec3::new(0.0, p.land.height_at(0.0, 0.0) + 300.0, 0.0);
+    let view = WorldView::look_at(eye, eye + DVec3::X, 0.9, SIZE);
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let (before, _) = target.render_world(&gpu, &mut world, &view, None).unwrap();
+    assert!(world.stats().texels_baked > 0);
+    for sky in [
+        Sky {
+            sun_azimuth: 20.0,
+            ..p.sky
+        },
+        Sky {
+            sun_elevation: 60.0,
+            ..p.sky
+        },
+        Sky { fog: 0.0, ..p.sky },
+    ] {
+        world
+            .set_params(&gpu.device, WorldParams { sky, ..p })
+            .unwrap();
+        let (after, _) = target.render_world(&gpu, &mut world, &view, None).unwrap();
+        assert_eq!(world.stats().texels_baked, 0, "{sky:?} baked");
+        assert_ne!(after, before, "{sky:?} changed nothing");
+    }
+}
