@@ -436,7 +436,8 @@ fn march_row(
         &shading,
         (
             crate::gpu::world_rays::ray_matrix(&v.view),
-            crate::gpu::world::horizon(region, v.view.eye),
+            region,
+            v.view.eye,
         ),
         true,
     );

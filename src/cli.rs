@@ -390,7 +390,7 @@ pub fn options_markdown() -> String {
     {
         let applies = match p.key {
             "pixel_error" => "render --world endless",
-            "sun_azimuth" | "sun_elevation" | "fog" => {
+            "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" => {
                 "window, render, scene files, URL --world endless"
             }
             _ => "render, height --world endless",
@@ -677,8 +677,7 @@ fn resolve_world(m: &ArgMatches) -> Result<WorldParams> {
         }
     }
     for row in WORLD_PARAMS.iter().filter(|r| given(m, r.key)) {
-        let text = string(m, row.key).unwrap_or_default();
-        (row.set)(&mut p, flag_value(row, &text)?);
+        (row.set)(&mut p, flag_value(row, &flag_text(m, row))?);
     }
     p.validate().map_err(|e| match e {
         Error::InvalidParam {
@@ -702,6 +701,14 @@ fn given(m: &ArgMatches, id: &str) -> bool {
 }
 
 /// Parses `--flag VALUE` of a table row, naming the flag in the error.
+/// The text of `row`'s flag as given: `1` for a flag without a value (a bool).
+fn flag_text<T>(m: &ArgMatches, row: &Param<T>) -> String {
+    match row.kind {
+        Kind::Bool => "1".to_owned(),
+        _ => string(m, row.key).unwrap_or_default(),
+    }
+}
+
 fn flag_value<T>(p: &Param<T>, text: &str) -> Result<Value> {
     p.parse(text)
         .map_err(|_| Error::invalid(format!("--{}", p.flag()), table::shorten(text), p.allowed()))
@@ -758,11 +765,7 @@ fn resolve_app(m: &ArgMatches, params: TerrainParams) -> Result<AppOptions> {
         ..Default::default()
     };
     for row in OPTIONS.iter().filter(|r| given(m, r.key)) {
-        let text = match row.kind {
-            Kind::Bool => "1".to_owned(),
-            _ => string(m, row.key).unwrap_or_default(),
-        };
-        (row.set)(&mut o, flag_value(row, &text)?);
+        (row.set)(&mut o, flag_value(row, &flag_text(m, row))?);
     }
     Ok(o)
 }

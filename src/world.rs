@@ -62,11 +62,15 @@ pub struct WorldParams {
     pub ao_exponent: f32,
     /// The sun and the air.
     pub sky: Sky,
+    /// Height of the water's surface, metres.
+    pub water_level: f32,
+    /// No water (and no sand).
+    pub no_water: bool,
 }
 
 impl Default for WorldParams {
     /// Eroded mountains some 2 km high with ridges about 4 km apart, detail down to a metre,
-    /// drawn to within a pixel.
+    /// drawn to within a pixel; lakes in the valleys below 1000 m; a low evening sun.
     fn default() -> Self {
         Self {
             land: Landscape {
@@ -81,6 +85,8 @@ impl Default for WorldParams {
             snow_height: 0.63,
             ao_exponent: 1.0,
             sky: Sky::default(),
+            water_level: 1000.0,
+            no_water: false,
         }
     }
 }
@@ -98,7 +104,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 12] = [
+pub static WORLD_PARAMS: [WorldParam; 14] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -305,6 +311,37 @@ pub static WORLD_PARAMS: [WorldParam; 12] = [
         set: |p, v| {
             if let Value::Float(x) = v {
                 p.sky.fog = x;
+            }
+        },
+    },
+    Param {
+        key: "water_level",
+        doc: "height of the water's surface in metres (lakes and seas fill what lies below)",
+        kind: Kind::Float {
+            min: -20000.0,
+            max: 20000.0,
+        },
+        control: Control::Slider {
+            min: 0.0,
+            max: 2400.0,
+            step: 10.0,
+        },
+        get: |p| Value::Float(p.water_level),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.water_level = x;
+            }
+        },
+    },
+    Param {
+        key: "no_water",
+        doc: "no water and no sand: the terrain only",
+        kind: Kind::Bool,
+        control: Control::Checkbox,
+        get: |p| Value::Bool(p.no_water),
+        set: |p, v| {
+            if let Value::Bool(x) = v {
+                p.no_water = x;
             }
         },
     },

@@ -903,10 +903,16 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "sun_azimuth" => "300",
             "sun_elevation" => "40",
             "fog" => "0.4",
+            "water_level" => "1300",
+            "no_water" => "1",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
-        let (img, s) = render_endless(&dir, row.key, &[&flag, value]);
+        let args: &[&str] = match row.kind {
+            relief::table::Kind::Bool => &[&flag],
+            _ => &[&flag, value],
+        };
+        let (img, s) = render_endless(&dir, row.key, args);
         if row.key == "pixel_error" {
             assert!(
                 stat(&s, "triangles") > stat(&stats, "triangles"),
@@ -1088,6 +1094,10 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--sun-azimuth", "north"],
     );
     render(&["--sun-azimuth", "10"], &["--sun-azimuth", "endless"]);
+    render(
+        &["--world", "endless", "--water-level", "1e9"],
+        &["--water-level", "1e9"],
+    );
     rejects(
         &[
             "bake",

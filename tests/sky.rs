@@ -2,7 +2,8 @@
 //! from above the highest ground, every pixel is the CPU twin's sky, for the mesh and the ray
 //! casters alike), the sun's disc is where the sun is, fog grows with distance, the landscape's
 //! far end fades into the sky without an edge (and does not without fog: the control), and
-//! moving the sun or the fog bakes nothing.
+//! moving the sun or the fog bakes nothing; water lies only below its level and mirrors the
+//! sky.
 
 mod common;
 
@@ -32,6 +33,7 @@ fn params(fog: f32) -> WorldParams {
             sun_elevation: 20.0,
             fog,
         },
+        no_water: true,
         ..WorldParams::default()
     }
 }
@@ -79,8 +81,13 @@ fn encode(c: f32) -> f32 {
 /// Largest difference (of 255) between the pixels of `rgba` looking more than 1 degree up and
 /// the twin's sky, and how many such pixels there are.
 fn sky_error(rgba: &[u8], matrix: Mat4, p: &WorldParams) -> (f32, usize) {
-    let light = relief::gpu::world::render_uniforms(p, &Shading::default(), (matrix, 1e4), false)
-        .sky_light();
+    let light = relief::gpu::world::render_uniforms(
+        p,
+        &Shading::default(),
+        (matrix, [-1e4, -1e4, 1e4, 1e4], DVec3::ZERO),
+        false,
+    )
+    .sky_light();
     let (mut worst, mut count) = (0f32, 0);
     for y in 0..SIZE.1 {
         for x in 0..SIZE.0 {
@@ -272,4 +279,95 @@ fn moving_the_sun_or_the_fog_bakes_nothing() {
         assert_eq!(world.stats().texels_baked, 0, "{sky:?} baked");
         assert_ne!(after, before, "{sky:?} changed nothing");
     }
+}
+
+/// Counts over the terrain pixels of `view` drawn with and without water at `level`: dry ones
+/// (above the sand) left unchanged, of all dry; wet ones (a metre under the water) changed, of
+/// all wet; and wet ones seen at a grazing angle (under 6 degrees, Fresnel over 0.4) nearer the
+/// sky mirrored in calm water than the ground that was there, of all those.
+fn water_counts(gpu: &Gpu, level: f32, view: &WorldView) -> [(usize, usize); 3] {
+    let dry = params(0.0);
+    let wet = WorldParams {
+        water_level: level,
+        no_water: false,
+        ..dry
+    };
+    let (plain, depth, matrix) = draw(gpu, dry, Shading::default(), view);
+    let (water, _, _) = draw(gpu, wet, Shading::default(), view);
+    let region = [-1e4, -1e4, 1e4, 1e4];
+    let light = relief::gpu::world::render_uniforms(
+        &wet,
+        &Shading::default(),
+        (matrix, region, view.eye),
+        false,
+    )
+    .sky_light();
+    let inv = matrix.inverse();
+    let sand_top = f64::from(level) + 1.6 * relief::gpu::world::SAND_BAND + 0.5;
+    let mut counts = [(0, 0); 3];
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let i = (y * SIZE.0 + x) as usize;
+            if depth[i] >= 1.0 {
+                continue;
+            }
+            let ndc = Vec4::new(
+                2.0 * (x as f32 + 0.5) / SIZE.0 as f32 - 1.0,
+                1.0 - 2.0 * (y as f32 + 0.5) / SIZE.1 as f32,
+                depth[i],
+                1.0,
+            );
+            let v = inv * ndc;
+            let rel = v.truncate() / v.w;
+            let height = view.eye.y + f64::from(rel.y);
+            let px = |img: &[u8]| [0, 1, 2].map(|c| f32::from(img[i * 4 + c]));
+            let (a, b) = (px(&water), px(&plain));
+            if height > sand_top {
+                counts[0].1 += 1;
+                counts[0].0 += usize::from(a == b);
+            } else if height < f64::from(level) - 1.0 {
+                counts[1].1 += 1;
+                counts[1].0 += usize::from(a != b);
+                let dir = rel.normalize();
+                if dir.y > -6f32.to_radians().sin() {
+                    let sky = light
+                        .radiance(Vec3::new(dir.x, -dir.y, dir.z), true)
+                        .map(encode);
+                    let off = |c: [f32; 3]| (0..3).map(|k| (a[k] - c[k]).abs()).sum::<f32>();
+                    counts[2].1 += 1;
+                    counts[2].0 += usize::from(off(sky) < off(b));
+                }
+            }
+        }
+    }
+    counts
+}
+
+#[test]
+fn water_lies_only_below_its_level_and_mirrors_the_sky() {
+    let gpu = common::gpu();
+    let level = 58.0;
+    let land = params(0.0).land;
+    // Looking down on lakes: the water covers exactly the ground under its level.
+    let eye = DVec3::new(0.0, land.peak_height + 150.0, 0.0);
+    let down = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.35, 0.3), 0.9, SIZE);
+    let [(same, dry), (changed, wet), _] = water_counts(&gpu, level, &down);
+    assert!(dry > 1000 && wet > 300, "{dry} dry and {wet} wet pixels");
+    assert_eq!(
+        same, dry,
+        "pixels of ground above the water and its sand changed"
+    );
+    assert!(
+        changed * 100 >= wet * 99,
+        "{changed} of {wet} pixels under water changed"
+    );
+    // Across a lake at a grazing angle: the water is the sky's mirror.
+    let low = DVec3::new(0.0, f64::from(level) + 12.0, 0.0);
+    let across = WorldView::look_at(low, low + DVec3::new(1.0, -0.03, 0.3), 0.9, SIZE);
+    let [_, _, (mirrors, grazing)] = water_counts(&gpu, level, &across);
+    assert!(grazing > 50, "{grazing} water pixels at a grazing angle");
+    assert!(
+        mirrors * 100 >= grazing * 90,
+        "{mirrors} of {grazing} grazing water pixels are nearer the mirrored sky than the ground"
+    );
 }

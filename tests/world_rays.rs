@@ -52,10 +52,7 @@ fn cast(
     let render = relief::gpu::world::render_uniforms(
         p,
         &shading,
-        (
-            relief::gpu::world_rays::ray_matrix(v),
-            relief::gpu::world::horizon(region, v.eye),
-        ),
+        (relief::gpu::world_rays::ray_matrix(v), region, v.eye),
         true,
     );
     caster.prepare_world(&gpu.queue, &render, &ray).unwrap();

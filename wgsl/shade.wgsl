@@ -42,6 +42,11 @@ struct RenderUniforms {
     // x, y: horizontal distance where terrain begins and finishes fading into the sky (y = 0:
     // no fade).
     fade: vec4<f32>,
+    // Water: level in normalised height, its plane's y here, time (s), 1 when there is water.
+    water: vec4<f32>,
+    // xy: the eye's xz modulo RIPPLE_PERIOD (ripples stay put in the world); z: the sand band
+    // above the water, normalised height.
+    water_origin: vec4<f32>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.
@@ -123,6 +128,63 @@ fn fog(r: RenderUniforms, lit: vec3<f32>, world: vec3<f32>) -> vec3<f32> {
     return c;
 }
 
+// Water (src/sky.rs documents the same constants): light left after a metre of clear water in
+// red, green and blue, the colour it scatters back (times the light falling on it), and the
+// ripples: plane waves of whole cycles per RIPPLE_PERIOD metres, so the eye's position can be
+// reduced modulo that period.
+const WATER_EXTINCTION: vec3<f32> = vec3<f32>(0.45, 0.09, 0.06);
+const WATER_SCATTER: vec3<f32> = vec3<f32>(0.010, 0.040, 0.050);
+const SAND: vec3<f32> = vec3<f32>(0.55, 0.45, 0.24);
+const RIPPLE_PERIOD: f32 = 256.0;
+const RIPPLES: array<vec3<f32>, 4> = array<vec3<f32>, 4>(
+    // Cycles per period in x and z, and the wave's amplitude in metres.
+    vec3<f32>(37.0, 11.0, 0.020),
+    vec3<f32>(-19.0, 41.0, 0.016),
+    vec3<f32>(53.0, -29.0, 0.011),
+    vec3<f32>(-71.0, -60.0, 0.007),
+);
+
+// The water's normal at `xz` (world metres, reduced) `d` metres from the eye: the slope of
+// four travelling plane waves, each faded out where it is too fine for the distance (about
+// 100 wavelengths away it is gone), so far water is a calm mirror rather than noise.
+fn ripple_normal(r: RenderUniforms, xz: vec2<f32>, d: f32) -> vec3<f32> {
+    var slope = vec2<f32>(0.0);
+    for (var i = 0u; i < 4u; i++) {
+        let w = RIPPLES[i];
+        let k = w.xy * (6.2831853 / RIPPLE_PERIOD);
+        let wavelength = 6.2831853 / length(k);
+        let fade = 1.0 - smoothstep(25.0 * wavelength, 100.0 * wavelength, d);
+        // Deep-water waves: angular frequency sqrt(g k).
+        let phase = dot(k, xz) - sqrt(9.81 * length(k)) * r.water.z;
+        slope += w.z * fade * cos(phase) * k;
+    }
+    return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
+}
+
+// What the eye sees where its ray to terrain at `world` (lit `lit`, normalised height `h`)
+// crosses the water first: the bottom through the water, and the sky in the ripples by
+// Fresnel (Schlick, water's 2 % at normal incidence). Returns the colour and the point seen.
+fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, h: f32) -> array<vec3<f32>, 2> {
+    let eye = r.camera_pos.xyz;
+    let rel = world - eye;
+    // The fraction of the way to the terrain where the ray meets the plane.
+    let t = clamp((r.water.y - eye.y) / min(rel.y, -1e-30), 0.0, 1.0);
+    let surface = eye + rel * t;
+    let dist = length(rel);
+    let view = rel / max(dist, 1e-30);
+    let n = ripple_normal(r, surface.xz + r.water_origin.xy, dist * t);
+    // The bottom, through the water it crosses (deeper looks darker and bluer).
+    let through = exp(-WATER_EXTINCTION * dist * (1.0 - t));
+    let light = r.ambient_color.rgb + r.sun_color.rgb * max(r.sun_dir.y, 0.0);
+    let below = lit * through + WATER_SCATTER * light * (1.0 - through);
+    var reflected = reflect(view, n);
+    reflected.y = abs(reflected.y);
+    let cos_v = clamp(-dot(view, n), 0.0, 1.0);
+    let fresnel = 0.02 + 0.98 * pow(1.0 - cos_v, 5.0);
+    let color = mix(below, sky_light(r, reflected, true), fresnel);
+    return array<vec3<f32>, 2>(color, surface);
+}
+
 fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
     let lo = c * 12.92;
     let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
@@ -138,6 +200,11 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32) -
     let line = r.snow_height + (tint - 0.5) * SNOW_JITTER;
     let snow = smoothstep(line - SNOW_EDGE, line + SNOW_EDGE, h) * smoothstep(0.45, 0.75, n.y);
     albedo = mix(albedo, r.snow_color.rgb, snow);
+    // Sand along the shore, its upper edge jittered by the colour noise as the snow line is.
+    if r.water.w != 0.0 {
+        let top = r.water.x + r.water_origin.z * (0.6 + tint);
+        albedo = mix(albedo, SAND, 1.0 - smoothstep(top - 0.5 * r.water_origin.z, top, h));
+    }
 
     // Valleys (low h) get less sky and less sun.
     let ao = pow(max(h, 1e-4), r.ao_exponent);
@@ -150,5 +217,10 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32) -
     let lit = albedo * (r.ambient_color.rgb + r.sun_color.rgb * ndl) * ao
         + r.sun_color.rgb * (spec * r.specular * (0.3 + 0.7 * snow) * ao);
 
+    // Terrain under water, seen from above it: the water's surface is what the ray meets.
+    if r.water.w != 0.0 && h < r.water.x && r.camera_pos.y > r.water.y {
+        let w = water_surface(r, world, lit, h);
+        return to_target(r, fog(r, w[0], w[1]));
+    }
     return to_target(r, fog(r, lit, world));
 }

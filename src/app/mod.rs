@@ -508,6 +508,10 @@ impl App {
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
         self.stats.method = self.options.method;
+        if let Some(world) = &mut s.world {
+            // The water's ripples move on while frames come (an idle window draws none).
+            world.set_time(self.started.elapsed().as_secs_f32());
+        }
         let drawn = s.draw(&view, self.fly.as_ref(), timed, self.options.method);
         if drawn == Drawn::SurfaceLost {
             self.surface_losses += 1;

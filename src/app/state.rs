@@ -486,10 +486,7 @@ impl State {
                 let render = crate::gpu::world::render_uniforms(
                     params,
                     world.shading(),
-                    (
-                        crate::gpu::world_rays::ray_matrix(&view),
-                        crate::gpu::world::horizon(region, view.eye),
-                    ),
+                    (crate::gpu::world_rays::ray_matrix(&view), region, view.eye),
                     true,
                 );
                 rays.caster.prepare_world(&self.queue, &render, &ray)?;

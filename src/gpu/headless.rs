@@ -938,10 +938,7 @@ pub fn render_world_rays_at(
             let render = super::world::render_uniforms(
                 params,
                 shading,
-                (
-                    crate::gpu::world_rays::ray_matrix(view),
-                    super::world::horizon(region, view.eye),
-                ),
+                (crate::gpu::world_rays::ray_matrix(view), region, view.eye),
                 true,
             );
             caster.prepare_world(&gpu.queue, &render, &ray)

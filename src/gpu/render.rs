@@ -60,6 +60,13 @@ pub struct RenderUniforms {
     /// x, y: the horizontal distances from the eye where terrain begins and finishes fading into
     /// the sky (y = 0: no fade). z, w unused.
     pub fade: [f32; 4],
+    /// Water: x, its level in normalised height; y, its plane's y in the shading's space; z,
+    /// time in seconds (the ripples); w, 1 when there is water.
+    pub water: [f32; 4],
+    /// xy: the eye's x and z reduced modulo the ripples' period (so ripples stay put in the
+    /// world while positions are camera-relative); z: the sand band above the water, in
+    /// normalised height; w unused.
+    pub water_origin: [f32; 4],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -102,6 +109,8 @@ impl RenderUniforms {
             sky_sunset: [0.0; 4],
             fog: [0.0; 4],
             fade: [0.0; 4],
+            water: [0.0; 4],
+            water_origin: [0.0; 4],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(

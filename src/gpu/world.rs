@@ -192,6 +192,8 @@ pub struct World {
     matrix: Mat4,
     /// Most texels one `encode_bake` bakes.
     bake_budget: u64,
+    /// Seconds of animation (the water's ripples), from [`World::set_time`].
+    time: f32,
 }
 
 /// Texels [`World::encode_bake`] bakes at most per frame unless told otherwise: about 0.4 ms
@@ -295,6 +297,7 @@ impl World {
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
                 bake_budget: DEFAULT_BAKE_BUDGET,
+                time: 0.0,
             }
         })
     }
@@ -343,6 +346,12 @@ impl World {
     /// World height in metres of the continuous surface at (x, z), from the CPU twin.
     pub fn height_at(&self, x: f64, z: f64) -> f64 {
         self.params.land.height_at(x, z)
+    }
+
+    /// Sets the animation's time in seconds (the water's ripples move with it); the next
+    /// [`World::prepare`] uses it. Still frames keep 0.
+    pub fn set_time(&mut self, seconds: f32) {
+        self.time = if seconds.is_finite() { seconds } else { 0.0 };
     }
 
     /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out,
@@ -602,12 +611,9 @@ impl World {
 
         let encode = !self.targets.color_format.is_srgb();
         let region = self.map.drawn_region(eye.x, eye.z);
-        let uniforms = render_uniforms(
-            &self.params,
-            &self.shading,
-            (matrix, horizon(region, eye)),
-            encode,
-        );
+        let mut uniforms =
+            render_uniforms(&self.params, &self.shading, (matrix, region, eye), encode);
+        uniforms.water[2] = self.time;
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
         let active: Vec<_> = self.map.levels[first.min(n)..]
@@ -667,15 +673,16 @@ pub fn horizon(region: [f64; 4], eye: DVec3) -> f64 {
 pub const FADE_START: f64 = 0.7;
 
 /// The shading uniforms of the endless world for a camera-relative `matrix` (the camera at the
-/// origin) and the [`horizon`] of the square drawn, shared by the mesh and the ray casters: the
-/// sun and sky of `params.sky`, its fog, and (with fog) the fade into the sky before the
-/// horizon.
+/// origin), the square drawn (`region`, [`Clipmap::drawn_region`]) and the `eye`, shared by the
+/// mesh and the ray casters: the sun and sky of `params.sky`, its fog and (with fog) the fade
+/// into the sky before the [`horizon`], and the water.
 pub fn render_uniforms(
     params: &WorldParams,
     shading: &Shading,
-    (matrix, horizon): (Mat4, f64),
+    (matrix, region, eye): (Mat4, [f64; 4], DVec3),
     encode_srgb: bool,
 ) -> RenderUniforms {
+    let horizon = horizon(region, eye);
     let tile = TerrainParams {
         height_scale: params.land.peak_height as f32,
         snow_height: params.snow_height,
@@ -701,8 +708,29 @@ pub fn render_uniforms(
         u.fog = [e[0], e[1], e[2], 0.0];
         u.fade = [(FADE_START * horizon) as f32, horizon as f32, 0.0, 0.0];
     }
+    if !params.no_water {
+        let peak = params.land.peak_height;
+        let period = f64::from(RIPPLE_PERIOD);
+        u.water = [
+            (f64::from(params.water_level) / peak) as f32,
+            (f64::from(params.water_level) - eye.y) as f32,
+            0.0,
+            1.0,
+        ];
+        u.water_origin = [
+            eye.x.rem_euclid(period) as f32,
+            eye.z.rem_euclid(period) as f32,
+            (SAND_BAND / peak) as f32,
+            0.0,
+        ];
+    }
     u
 }
+
+/// Period in metres of the water's ripples (`RIPPLE_PERIOD` in `wgsl/shade.wgsl`).
+pub const RIPPLE_PERIOD: f32 = 256.0;
+/// Height in metres of the sand along the shore (jittered by the colour noise).
+pub const SAND_BAND: f64 = 12.0;
 
 fn level_errors(land: &Landscape) -> Vec<(i32, f64)> {
     let finest = crate::clipmap::finest_log2(land);
