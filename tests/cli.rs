@@ -1430,7 +1430,7 @@ fn endless_scene_files_and_camera_tables_round_trip() {
     bad(
         "size.toml",
         "world = \"endless\"\nsize = 64\n",
-        &["size.toml", "size", "pixel_error"],
+        &["size.toml", "size", "water_level"],
     );
     bad(
         "fov.toml",

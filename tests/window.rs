@@ -4,7 +4,12 @@
 use std::process::Command;
 
 /// Runs `relief ARGS` in a window on a fresh virtual display; returns (status, stdout, stderr).
+/// One window at a time: on two cores, windows drawing side by side on a software GPU starve
+/// each other, and the tests count frames.
+static ONE_WINDOW: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 fn window(args: &[&str]) -> (i32, String, String) {
+    let _one = ONE_WINDOW.lock().unwrap_or_else(|e| e.into_inner());
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24"])
         .arg(env!("CARGO_BIN_EXE_relief"))
@@ -120,6 +125,7 @@ fn window_with_keys(args: &[&str], keys: &str) -> (i32, String, String) {
          xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
          wait $pid"
     );
+    let _one = ONE_WINDOW.lock().unwrap_or_else(|e| e.into_inner());
     let out = Command::new("xvfb-run")
         .args([
             "-a",
