@@ -79,10 +79,12 @@ pub mod clipmap;
 pub mod error;
 pub mod gpu;
 pub mod landscape;
+pub mod light;
 pub mod method;
 #[cfg(feature = "metrics")]
 pub mod metrics;
 pub mod noise;
+pub mod palette;
 pub mod params;
 pub mod raycast;
 #[cfg(feature = "scene")]

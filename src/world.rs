@@ -7,6 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::landscape::{Landscape, TerrainFn};
+use crate::palette::Palette;
 use crate::sky::Sky;
 use crate::table::{Control, Kind, Param, Value};
 
@@ -66,6 +67,8 @@ pub struct WorldParams {
     pub water_level: f32,
     /// No water (and no sand).
     pub no_water: bool,
+    /// How the terrain is coloured and lit.
+    pub palette: Palette,
 }
 
 impl Default for WorldParams {
@@ -87,6 +90,7 @@ impl Default for WorldParams {
             sky: Sky::default(),
             water_level: 1000.0,
             no_water: false,
+            palette: Palette::SeedTemplate,
         }
     }
 }
@@ -104,7 +108,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 14] = [
+pub static WORLD_PARAMS: [WorldParam; 15] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -243,7 +247,7 @@ pub static WORLD_PARAMS: [WorldParam; 14] = [
     },
     Param {
         key: "ao_exponent",
-        doc: "height ambient occlusion h^k (0 turns it off)",
+        doc: "height ambient occlusion h^k of the blog palette (0 turns it off)",
         kind: Kind::Float {
             min: 0.0,
             max: crate::params::MAX_AO_EXPONENT,
@@ -342,6 +346,18 @@ pub static WORLD_PARAMS: [WorldParam; 14] = [
         set: |p, v| {
             if let Value::Bool(x) = v {
                 p.no_water = x;
+            }
+        },
+    },
+    Param {
+        key: "palette",
+        doc: "seed-template (rock, grass, snow and sand by height, slope and noise; sky, back and rim light; valley occlusion; a tone curve) or blog (two colours, height occlusion)",
+        kind: Kind::Choice(Palette::NAMES),
+        control: Control::Select,
+        get: |p| Value::Choice(p.palette.name()),
+        set: |p, v| {
+            if let Value::Choice(name) = v {
+                p.palette = Palette::from_name(name).unwrap_or_default();
             }
         },
     },

@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 12);
+    assert_eq!(modules.len(), 13);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -118,6 +118,7 @@ fn uniform_structs_match_wgsl() {
     );
     assert_eq!(offset(&m, "grid"), offset_of!(RenderUniforms, grid));
     assert_eq!(offset(&m, "specular"), offset_of!(RenderUniforms, specular));
+    assert_eq!(offset(&m, "look"), offset_of!(RenderUniforms, look));
 }
 
 #[test]
@@ -171,6 +172,46 @@ fn world_uniforms_match_wgsl() {
             / size_of::<LevelUniforms>(),
         relief::clipmap::MAX_LEVELS
     );
+}
+
+#[test]
+fn light_uniforms_match_wgsl() {
+    use relief::gpu::world_light::{LightLevel, LightRect, LightUniforms};
+    let m = parse("world_light", shader::WORLD_LIGHT);
+    let (size, members) = layout(&m, "LightUniforms");
+    assert_eq!(size as usize, size_of::<LightUniforms>());
+    for (name, at) in [
+        ("sun", offset_of!(LightUniforms, sun)),
+        ("cells", offset_of!(LightUniforms, cells)),
+        ("side", offset_of!(LightUniforms, side)),
+        ("levels", offset_of!(LightUniforms, levels)),
+        ("peak", offset_of!(LightUniforms, peak)),
+        ("steps", offset_of!(LightUniforms, steps)),
+        ("valley_radius", offset_of!(LightUniforms, valley_radius)),
+        ("entries", offset_of!(LightUniforms, entries)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
+    let (size, members) = layout(&m, "LightLevel");
+    assert_eq!(size as usize, size_of::<LightLevel>());
+    for (name, at) in [
+        ("origin", offset_of!(LightLevel, origin)),
+        ("origin_mod", offset_of!(LightLevel, origin_mod)),
+        ("spacing_log2", offset_of!(LightLevel, spacing_log2)),
+        ("layer", offset_of!(LightLevel, layer)),
+        ("usable", offset_of!(LightLevel, usable)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
+    let (size, members) = layout(&m, "LightRect");
+    assert_eq!(size as usize, size_of::<LightRect>());
+    for (name, at) in [
+        ("origin", offset_of!(LightRect, origin)),
+        ("extent", offset_of!(LightRect, extent)),
+        ("level", offset_of!(LightRect, level)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
 }
 
 #[test]

@@ -114,5 +114,5 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     let h = surface(p.xz, ray.octaves).x;
     let u = p.xz / WORLD_SIZE + 0.5;
     let tint = fbm_grad(u, ray.frequency, ray.octaves, ray.octaves, ray.gain, ray.offset, ray.seed, CHANNEL_COLOR).x;
-    return vec4<f32>(shade(r, p, n, h, tint), t);
+    return vec4<f32>(shade(r, p, n, h, tint, unshadowed(r, h)), t);
 }

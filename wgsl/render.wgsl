@@ -59,5 +59,5 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Height (for snow and AO) and the colour channel per pixel, not per vertex: a coarse grid
     // would otherwise smear the colour noise and the snow line (the benchmark measures this).
     let t = terrain_at(in.uv + r.shift);
-    return vec4<f32>(shade(r, in.world, n, t.x, t.y), 1.0);
+    return vec4<f32>(shade(r, in.world, n, t.x, t.y, unshadowed(r, t.x)), 1.0);
 }

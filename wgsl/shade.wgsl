@@ -1,8 +1,10 @@
 // Shading shared by every way relief draws terrain (the mesh in render.wgsl and world.wgsl, the
 // ray casters in raymarch.wgsl and world_rays.wgsl, the sky pass in sky.wgsl): Blinn-Phong under
-// a directional sun, two-colour albedo, a noise-jittered snow line and height ambient occlusion
-// h^k, seen through the air (aerial perspective), in front of the sky. Composed before the file
-// that uses it. The sky and the fog are an analytic model whose CPU twin is src/sky.rs.
+// a directional sun with a noise-jittered snow line, in one of two palettes (src/palette.rs):
+// the blog's two colours with height ambient occlusion h^k, or the seed template's rock, grass
+// and sand with sky, back and rim light, shadows and valley occlusion (src/light.rs) and a tone
+// curve; seen through the air (aerial perspective), in front of the sky. Composed before the
+// file that uses it. The sky and the fog are an analytic model whose CPU twin is src/sky.rs.
 
 struct RenderUniforms {
     view_proj: mat4x4<f32>,
@@ -47,6 +49,9 @@ struct RenderUniforms {
     // xy: the eye's xz modulo RIPPLE_PERIOD (ripples stay put in the world); z: the sand band
     // above the water, normalised height.
     water_origin: vec4<f32>,
+    // x: 1 when the caller's horizon casts shadows; y: the sun's elevation (radians); z: the
+    // palette (src/palette.rs: 0 the blog's, 1 the seed template's).
+    look: vec4<f32>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.
@@ -96,9 +101,23 @@ fn sky_light(r: RenderUniforms, dir: vec3<f32>, disc: bool) -> vec3<f32> {
     return base + r.sun_color.rgb * (halo + glow);
 }
 
-// Clamped and encoded for the target.
+// The seed template's tone curve (src/palette.rs, tone_map): the identity up to SHOULDER, then
+// a smooth roll-off towards 1.
+const SHOULDER: f32 = 0.8;
+
+fn tone_map(c: vec3<f32>) -> vec3<f32> {
+    let k = 1.0 - SHOULDER;
+    let rolled = SHOULDER + k * (1.0 - exp(-max(c - SHOULDER, vec3<f32>(0.0)) / k));
+    return select(rolled, c, c <= vec3<f32>(SHOULDER));
+}
+
+// Tone-mapped (seed template), clamped and encoded for the target.
 fn to_target(r: RenderUniforms, linear: vec3<f32>) -> vec3<f32> {
-    var color = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
+    var color = linear;
+    if r.look.z != PALETTE_BLOG {
+        color = tone_map(max(color, vec3<f32>(0.0)));
+    }
+    color = clamp(color, vec3<f32>(0.0), vec3<f32>(1.0));
     if r.encode_srgb != 0u {
         color = srgb_encode(color);
     }
@@ -161,10 +180,11 @@ fn ripple_normal(r: RenderUniforms, xz: vec2<f32>, d: f32) -> vec3<f32> {
     return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
 }
 
-// What the eye sees where its ray to terrain at `world` (lit `lit`, normalised height `h`)
+// What the eye sees where its ray to terrain at `world` (lit `lit`)
 // crosses the water first: the bottom through the water, and the sky in the ripples by
-// Fresnel (Schlick, water's 2 % at normal incidence). Returns the colour and the point seen.
-fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, h: f32) -> array<vec3<f32>, 2> {
+// Fresnel (Schlick, water's 2 % at normal incidence); `sunlit` is how much of the sun reaches
+// the water. Returns the colour and the point seen.
+fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, sunlit: f32) -> array<vec3<f32>, 2> {
     let eye = r.camera_pos.xyz;
     let rel = world - eye;
     // The fraction of the way to the terrain where the ray meets the plane.
@@ -175,7 +195,7 @@ fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, h: f32) ->
     let n = ripple_normal(r, surface.xz + r.water_origin.xy, dist * t);
     // The bottom, through the water it crosses (deeper looks darker and bluer).
     let through = exp(-WATER_EXTINCTION * dist * (1.0 - t));
-    let light = r.ambient_color.rgb + r.sun_color.rgb * max(r.sun_dir.y, 0.0);
+    let light = r.ambient_color.rgb + r.sun_color.rgb * (max(r.sun_dir.y, 0.0) * sunlit);
     let below = lit * through + WATER_SCATTER * light * (1.0 - through);
     var reflected = reflect(view, n);
     reflected.y = abs(reflected.y);
@@ -185,16 +205,70 @@ fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, h: f32) ->
     return array<vec3<f32>, 2>(color, surface);
 }
 
+// Sunlight and sky light over the terrain (src/light.rs has the same constants): the sun's disc
+// is seen through a penumbra as wide as the disc above the terrain's horizon towards it, and
+// ground lying below the mean height of a ring VALLEY_RADIUS metres around it gets less sky,
+// down to VALLEY_FLOOR at a depth of VALLEY_DEPTH times the radius.
+const VALLEY_RADIUS: f32 = 256.0;
+const VALLEY_DEPTH: f32 = 0.5;
+const VALLEY_FLOOR: f32 = 0.35;
+const PALETTE_BLOG: f32 = 0.0;
+
+// What reaches a point (x: of the sun, y: of the ambient light), where the terrain's horizon
+// towards the sun stands at `horizon` radians and the point lies `valley` metres above its
+// surroundings. The blog's palette darkens low ground by h^k instead of valleys.
+fn occlusion(r: RenderUniforms, h: f32, horizon: f32, valley: f32) -> vec2<f32> {
+    var sun = 1.0;
+    if r.look.x != 0.0 {
+        sun = smoothstep(-SUN_RADIUS, SUN_RADIUS, r.look.y - horizon);
+    }
+    if r.look.z == PALETTE_BLOG {
+        return vec2<f32>(sun, pow(max(h, 1e-4), r.ao_exponent));
+    }
+    let open = smoothstep(-VALLEY_DEPTH * VALLEY_RADIUS, 0.1 * VALLEY_RADIUS, valley);
+    return vec2<f32>(sun, VALLEY_FLOOR + (1.0 - VALLEY_FLOOR) * open);
+}
+
+// What the tile shades with: no shadows, the palette's occlusion.
+fn unshadowed(r: RenderUniforms, h: f32) -> vec2<f32> {
+    return vec2<f32>(1.0, occlusion(r, h, -2.0, 0.0).y);
+}
+
 fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
     let lo = c * 12.92;
     let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
     return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
 
-// Colour of terrain at `world` with unit normal `n`, normalised height `h` and colour channel
-// `tint`, ready to store in the target (sRGB-encoded when the target is not an sRGB format).
-fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32) -> vec3<f32> {
-    var albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
+// The seed template's materials (src/palette.rs): linear albedos of rock (dark to light with
+// the colour noise), grass (lush low, dry towards the snow line).
+const ROCK_DARK: vec3<f32> = vec3<f32>(0.10, 0.085, 0.07);
+const ROCK_LIGHT: vec3<f32> = vec3<f32>(0.32, 0.27, 0.22);
+const GRASS: vec3<f32> = vec3<f32>(0.06, 0.12, 0.025);
+const DRY_GRASS: vec3<f32> = vec3<f32>(0.22, 0.19, 0.08);
+
+// Rock where it is steep, grass where it is gentle (drier higher up), each edge moved by the
+// colour noise so that no edge follows a contour or a slope line.
+fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> vec3<f32> {
+    let jitter = 2.0 * (tint - 0.5);
+    let rock = mix(ROCK_DARK, ROCK_LIGHT, smoothstep(0.25, 0.75, tint));
+    let alpine = smoothstep(r.snow_height - 0.3, r.snow_height - 0.05, h + 0.1 * jitter);
+    let grass = mix(GRASS, DRY_GRASS, alpine);
+    let gentle = smoothstep(0.72, 0.88, n.y + 0.08 * jitter) * (1.0 - 0.6 * alpine);
+    return mix(rock, grass, gentle);
+}
+
+// Colour of terrain at `world` with unit normal `n`, normalised height `h`, colour channel
+// `tint` and occlusion `occl` (x: of the sun, y: of the ambient light; see `occlusion`), ready
+// to store in the target (sRGB-encoded when the target is not an sRGB format).
+fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl: vec2<f32>) -> vec3<f32> {
+    let blog = r.look.z == PALETTE_BLOG;
+    var albedo: vec3<f32>;
+    if blog {
+        albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
+    } else {
+        albedo = template_albedo(r, n, h, tint);
+    }
     // Snow above the snow height, its edge jittered by the colour noise so it does not follow
     // a contour line, and thinning on steep slopes where it would not settle.
     let line = r.snow_height + (tint - 0.5) * SNOW_JITTER;
@@ -206,20 +280,31 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32) -
         albedo = mix(albedo, SAND, 1.0 - smoothstep(top - 0.5 * r.water_origin.z, top, h));
     }
 
-    // Valleys (low h) get less sky and less sun.
-    let ao = pow(max(h, 1e-4), r.ao_exponent);
-
+    let ao = occl.y;
+    let sun = r.sun_color.rgb * occl.x;
     let l = r.sun_dir.xyz;
     let v = normalize(r.camera_pos.xyz - world);
     let half_vec = normalize(l + v);
     let ndl = max(dot(n, l), 0.0);
     let spec = select(0.0, pow(max(dot(n, half_vec), 0.0), r.shininess), ndl > 0.0);
-    let lit = albedo * (r.ambient_color.rgb + r.sun_color.rgb * ndl) * ao
-        + r.sun_color.rgb * (spec * r.specular * (0.3 + 0.7 * snow) * ao);
+    var lit: vec3<f32>;
+    if blog {
+        lit = albedo * (r.ambient_color.rgb + sun * ndl) * ao
+            + sun * (spec * r.specular * (0.3 + 0.7 * snow) * ao);
+    } else {
+        // A hemisphere of sky light (half as bright from below), a back light from the side
+        // away from the sun, and a Fresnel rim of the horizon's light at grazing angles.
+        let sky = r.ambient_color.rgb * (0.75 + 0.25 * n.y);
+        let away = vec3<f32>(-l.x, 0.0, -l.z);
+        let back = r.sun_color.rgb * 0.1 * max(dot(n, away / max(length(away), 1e-4)), 0.0);
+        let rim = r.sky_horizon.rgb * 0.2 * pow(1.0 - clamp(dot(n, v), 0.0, 1.0), 5.0);
+        lit = albedo * ((sky + back) * ao + sun * ndl) + rim * ao
+            + sun * (spec * r.specular * (0.3 + 0.7 * snow));
+    }
 
     // Terrain under water, seen from above it: the water's surface is what the ray meets.
     if r.water.w != 0.0 && h < r.water.x && r.camera_pos.y > r.water.y {
-        let w = water_surface(r, world, lit, h);
+        let w = water_surface(r, world, lit, occl.x);
         return to_target(r, fog(r, w[0], w[1]));
     }
     return to_target(r, fog(r, lit, world));

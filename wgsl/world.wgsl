@@ -53,6 +53,9 @@ struct WorldUniforms {
 @group(0) @binding(0) var<uniform> r: RenderUniforms;
 @group(0) @binding(1) var<uniform> w: WorldUniforms;
 @group(0) @binding(2) var level_tex: texture_2d_array<f32>;
+// Per level texel: the terrain's horizon towards the sun (radians) and the valley depth
+// (metres), from the light bake (world_light.wgsl).
+@group(0) @binding(3) var light_tex: texture_2d_array<f32>;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -63,24 +66,31 @@ struct VertexOut {
     // information as reading the texture per pixel (piecewise linear instead of bilinear within
     // a cell) at a fraction of the cost: the fragment shader reads no texture.
     @location(1) sample: vec4<f32>,
+    // The light bake's (horizon, valley), interpolated the same way: the horizon is continuous
+    // over the ground, so the shadow's edge falls between vertices where it should.
+    @location(2) light: vec2<f32>,
 }
 
-fn texel(lv: Level, ij: vec2<i32>) -> vec4<f32> {
+// The level's texel `ij` (clamped to the level), of the heights (light false) or the light.
+fn texel(lv: Level, ij: vec2<i32>, light: bool) -> vec4<f32> {
     let c = clamp(ij, vec2<i32>(0), vec2<i32>(i32(w.cells)));
-    let t = (lv.origin_mod + vec2<u32>(c)) % vec2<u32>(w.side);
-    return textureLoad(level_tex, vec2<i32>(t), i32(lv.layer), 0);
+    let t = vec2<i32>((lv.origin_mod + vec2<u32>(c)) % vec2<u32>(w.side));
+    if light {
+        return textureLoad(light_tex, t, i32(lv.layer), 0);
+    }
+    return textureLoad(level_tex, t, i32(lv.layer), 0);
 }
 
-// Bilinear by hand (rgba32float is not filterable in core WebGPU). At integer positions the
-// weights are exactly 0, so the texel itself comes back unchanged.
-fn sample_level(lv: Level, p: vec2<f32>) -> vec4<f32> {
+// Bilinear by hand (32-bit float textures are not filterable in core WebGPU). At integer
+// positions the weights are exactly 0, so the texel itself comes back unchanged.
+fn sample_level(lv: Level, p: vec2<f32>, light: bool) -> vec4<f32> {
     let p0 = floor(p);
     let t = p - p0;
     let i = vec2<i32>(p0);
-    let a = texel(lv, i);
-    let b = texel(lv, i + vec2<i32>(1, 0));
-    let c = texel(lv, i + vec2<i32>(0, 1));
-    let d = texel(lv, i + vec2<i32>(1, 1));
+    let a = texel(lv, i, light);
+    let b = texel(lv, i + vec2<i32>(1, 0), light);
+    let c = texel(lv, i + vec2<i32>(0, 1), light);
+    let d = texel(lv, i + vec2<i32>(1, 1), light);
     return mix(mix(a, b, t.x), mix(c, d, t.x), t.y);
 }
 
@@ -118,9 +128,11 @@ fn vs_main(
     let p = vec2<f32>(local) - alpha * odd;
     let clv = w.levels[lv.coarse];
     let q = (vec2<f32>(lv.delta) + p) * 0.5;
-    var s = sample_level(lv, p);
+    var s = sample_level(lv, p, false);
+    var light = sample_level(lv, p, true).xy;
     if alpha > 0.0 {
-        s = morph_blend(s, sample_level(clv, q), alpha);
+        s = morph_blend(s, sample_level(clv, q, false), alpha);
+        light = morph_blend(vec4<f32>(light, 0.0, 0.0), sample_level(clv, q, true), alpha).xy;
     }
     let scale = f32(1u << lv.shift);
     let xz = (vec2<f32>(lv.origin_rel) + p * scale) * w.eye.w - w.eye.xz;
@@ -129,6 +141,7 @@ fn vs_main(
     out.clip = r.view_proj * vec4<f32>(rel, 1.0);
     out.rel = rel;
     out.sample = s;
+    out.light = light;
     return out;
 }
 
@@ -137,5 +150,6 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let s = in.sample;
     // Gradient per metre of normalised height, to a unit normal in metres.
     let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));
-    return vec4<f32>(shade(r, in.rel, n, s.x, s.w), 1.0);
+    let occl = occlusion(r, s.x, in.light.x, in.light.y);
+    return vec4<f32>(shade(r, in.rel, n, s.x, s.w, occl), 1.0);
 }

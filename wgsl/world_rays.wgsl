@@ -198,6 +198,78 @@ fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
     return seed_march(ro, rd, span);
 }
 
+// The terrain's horizon towards the sun from `p` (a point of the surface, `h0` metres high),
+// in radians: the light bake's quantity for the mesh (src/light.rs), over the continuous
+// surface. Only elevations within the sun's disc matter (lower ones leave it wholly lit,
+// higher ones wholly hidden), so the march starts from the disc's lower limb and stops once
+// the disc is hidden.
+//   0, the reference: horizontal steps that the slope bound makes safe against the line of
+//      the steepest rise found so far (no ridge that would raise it is stepped over, bar a
+//      floor of a quarter of the disc's angle), every octave, to the drawn square's edge;
+//   1, the seed's shadow march: t += clamp(clearance, lo, hi) along the ray at the sun's
+//      elevation, `march_octaves` octaves, 64 steps; lo and hi scale with the peak height.
+const SHADOW_STEPS: u32 = 64u;
+
+fn world_horizon(p: vec3<f32>, h0: f32) -> f32 {
+    let e = r.look.y;
+    let flat = length(r.sun_dir.xz);
+    if e + SUN_RADIUS <= 0.0 || flat < 1e-6 {
+        return -1.5;
+    }
+    let d = r.sun_dir.xz / flat;
+    let hidden = tan(min(e + SUN_RADIUS, 1.5));
+    var s = tan(max(e - SUN_RADIUS, -1.5));
+    if ray.method == 0u {
+        let bound = ray.prefix[ray.octaves - 1u].x;
+        var t = 1e-3 + 1e-3 * ray.peak;
+        for (var i = 0u; i < ray.max_steps; i++) {
+            let q = p.xz + t * d;
+            if any(q < ray.bounds.xy) || any(q > ray.bounds.zw) || h0 + s * t > ray.peak || bound <= s {
+                break;
+            }
+            let rise = world_height(q, ray.octaves) - h0;
+            s = max(s, rise / t);
+            if s >= hidden {
+                break;
+            }
+            t += max((s * t - rise) / (bound - s), 0.25 * SUN_RADIUS * t);
+        }
+        return atan(s);
+    }
+    let tan_e = tan(e);
+    let lo = 0.002 * ray.peak;
+    let hi = 0.1 * ray.peak;
+    var least = tan_e - s;
+    var t = lo;
+    for (var i = 0u; i < SHADOW_STEPS; i++) {
+        let q = p.xz + t * d;
+        let y = h0 + t * tan_e;
+        if any(q < ray.bounds.xy) || any(q > ray.bounds.zw) || y > ray.peak {
+            break;
+        }
+        let c = y - march_height(q, ray.march_octaves);
+        least = min(least, c / t);
+        if tan_e - least >= hidden {
+            break;
+        }
+        t += clamp(c, lo, hi);
+    }
+    return atan(tan_e - least);
+}
+
+// How far (metres) the point at `xz`, `h0` metres high, lies above the mean height of the ring
+// VALLEY_RADIUS around it, from the octaves a grid of an eighth of the radius keeps (the
+// level the light bake reads the ring from).
+fn world_valley(xz: vec2<f32>, h0: f32) -> f32 {
+    let octaves = u32(clamp(ray.feature_log2 - i32(log2(VALLEY_RADIUS * 0.125)), 0, i32(ray.octaves)));
+    var sum = 0.0;
+    for (var i = 0u; i < 8u; i++) {
+        let a = f32(i) * 0.78539816;
+        sum += world_height(xz + VALLEY_RADIUS * vec2<f32>(cos(a), sin(a)), octaves);
+    }
+    return h0 - sum * 0.125;
+}
+
 // (colour, distance) for the pixel whose centre is at `pixel` (in pixels from the top left).
 fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     // Camera-relative: the eye is at the origin.
@@ -217,6 +289,16 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
         h = world_channel(p.xz, ray.octaves, CHANNEL_HEIGHT, footprint).x;
     }
     let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR, footprint).x;
+    let h0 = h * ray.peak;
+    var horizon = -1.5;
+    if r.look.x != 0.0 {
+        horizon = world_horizon(p, h0);
+    }
+    var valley = 0.0;
+    if r.look.z != PALETTE_BLOG {
+        valley = world_valley(p.xz, h0);
+    }
+    let occl = occlusion(r, h, horizon, valley);
     // The render uniforms put the camera at the origin: shade with the camera-relative point.
-    return vec4<f32>(shade(r, t * rd, n, h, tint), t);
+    return vec4<f32>(shade(r, t * rd, n, h, tint, occl), t);
 }

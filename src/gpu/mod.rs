@@ -13,6 +13,7 @@ pub mod shader;
 pub(crate) mod sky;
 pub mod timing;
 pub mod world;
+pub mod world_light;
 pub mod world_rays;
 
 pub use bake::BakeUniforms;

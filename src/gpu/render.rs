@@ -67,6 +67,10 @@ pub struct RenderUniforms {
     /// world while positions are camera-relative); z: the sand band above the water, in
     /// normalised height; w unused.
     pub water_origin: [f32; 4],
+    /// The look: x, 1 when the terrain casts shadows (`shade`'s caller passes the horizon);
+    /// y, the sun's elevation in radians; z, the palette ([`crate::light::Palette::code`]: 0
+    /// the blog's, 1 the seed template's materials and lighting, tone-mapped); w unused.
+    pub look: [f32; 4],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -111,6 +115,7 @@ impl RenderUniforms {
             fade: [0.0; 4],
             water: [0.0; 4],
             water_origin: [0.0; 4],
+            look: [0.0, sun.y.clamp(-1.0, 1.0).asin(), 0.0, 0.0],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(
@@ -128,6 +133,7 @@ impl RenderUniforms {
     pub fn set_sky(&mut self, s: &Shading, light: &SkyLight) {
         let w = |c: [f32; 3], w: f32| [c[0], c[1], c[2], w];
         self.sun_dir = w(light.sun_dir.to_array(), 0.0);
+        self.look[1] = light.sun_dir.y.clamp(-1.0, 1.0).asin();
         self.sun_color = w(light.sun, 1.0);
         if s.sky {
             self.sky_zenith = w(light.zenith, 0.0);

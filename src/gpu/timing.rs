@@ -12,11 +12,13 @@ pub enum Slot {
     Normals = 1,
     /// The host's render pass holding the terrain draw.
     Render = 2,
+    /// The endless world's light bake (shadows and valley occlusion).
+    Light = 3,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 3] = [Slot::Bake, Slot::Normals, Slot::Render];
+    pub const ALL: [Slot; 4] = [Slot::Bake, Slot::Normals, Slot::Render, Slot::Light];
 
     /// The slot's name as printed.
     pub fn name(self) -> &'static str {
@@ -24,12 +26,13 @@ impl Slot {
             Slot::Bake => "bake",
             Slot::Normals => "normals",
             Slot::Render => "render",
+            Slot::Light => "light",
         }
     }
 }
 
 /// Durations in milliseconds per [`Slot`]; `None` where the pass did not run.
-pub type Timings = [Option<f64>; 3];
+pub type Timings = [Option<f64>; 4];
 
 /// Begin/end timestamp pairs for each [`Slot`], resolved into a buffer and read back.
 pub struct GpuTimer {
@@ -156,7 +159,7 @@ fn durations(bytes: &[u8], mask: u32, period_ns: f64) -> Result<Timings> {
         .chunks_exact(8)
         .map(|c| u64::from_le_bytes(c.try_into().expect("8-byte chunks")))
         .collect();
-    let mut out = [None; 3];
+    let mut out = [None; Slot::ALL.len()];
     for slot in Slot::ALL {
         if mask & (1 << slot as u32) != 0 {
             let i = (BLOCK / 8) as usize * slot as usize;

@@ -6,6 +6,7 @@
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
+use super::world_light::{LightBake, LightRect, LightUniforms};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 use super::{scoped, shader, Targets};
@@ -175,6 +176,9 @@ pub struct World {
     texture: wgpu::Texture,
     bake: LandscapeBake,
     bake_target: LevelTarget,
+    /// The light bake's output beside the levels: horizon and valley depth per texel.
+    light: LevelLight,
+    light_bake: LightBake,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
@@ -223,7 +227,9 @@ impl World {
         let map = layout(&params, &errors, k);
         scoped(device, || {
             let bake = LandscapeBake::new(device);
+            let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
+            let light = LevelLight::new(device, &light_bake, &texture, &map);
             let module = shader::module(
                 device,
                 "relief:world:shader",
@@ -235,16 +241,8 @@ impl World {
                 entries: &[
                     super::uniform_entry::<RenderUniforms>(0, vf),
                     super::uniform_entry::<WorldUniforms>(1, vf),
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 2,
-                        visibility: vf,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                            view_dimension: wgpu::TextureViewDimension::D2Array,
-                            multisampled: false,
-                        },
-                        count: None,
-                    },
+                    array_entry(2),
+                    array_entry(3),
                 ],
             });
             let pipeline = super::terrain_pipeline(
@@ -264,7 +262,12 @@ impl World {
                 super::uniform_buffer::<RenderUniforms>(device, "relief:world:render-uniforms");
             let world_uniforms =
                 super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
-            let bind_group = bind(device, &layout, &render_uniforms, &world_uniforms, &texture);
+            let bind_group = bind(
+                device,
+                &layout,
+                (&render_uniforms, &world_uniforms),
+                (&texture, &light.texture),
+            );
             let (indices, index_count) = patch_indices(device, map.patch);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:world:patches"),
@@ -283,6 +286,8 @@ impl World {
                 texture,
                 bake,
                 bake_target,
+                light,
+                light_bake,
                 pipeline,
                 layout,
                 bind_group,
@@ -338,6 +343,13 @@ impl World {
         &self.texture
     }
 
+    /// The light texture array beside the levels: side x side x levels, rg32float (the
+    /// terrain's horizon towards the sun in radians, the valley depth in metres), at the same
+    /// texels as [`World::level_texture`]'s samples.
+    pub fn light_texture(&self) -> &wgpu::Texture {
+        &self.light.texture
+    }
+
     /// What the last frame cost.
     pub fn stats(&self) -> WorldStats {
         self.stats
@@ -375,7 +387,11 @@ impl World {
     fn relayout(&mut self, device: &wgpu::Device, k: f64) -> Result<()> {
         let morphing = self.map.morphing;
         let map = layout(&self.params, &self.errors, k);
-        let (texture, target) = scoped(device, || level_texture(device, &self.bake, &map))?;
+        let (texture, target, light) = scoped(device, || {
+            let (texture, target) = level_texture(device, &self.bake, &map);
+            let light = LevelLight::new(device, &self.light_bake, &texture, &map);
+            (texture, target, light)
+        })?;
         if map.patch != self.map.patch {
             let (indices, count) = patch_indices(device, map.patch);
             self.indices = indices;
@@ -384,10 +400,10 @@ impl World {
         self.bind_group = bind(
             device,
             &self.layout,
-            &self.render_uniforms,
-            &self.world_uniforms,
-            &texture,
+            (&self.render_uniforms, &self.world_uniforms),
+            (&texture, &light.texture),
         );
+        self.light = light;
         self.texture = texture;
         self.bake_target = target;
         self.map = map;
@@ -501,6 +517,7 @@ impl World {
                 timer.map(|t| t.compute_writes(Slot::Bake)),
             );
         }
+        self.encode_light(queue, encoder, &strips, timer);
         let texels = rects
             .iter()
             .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
@@ -508,6 +525,67 @@ impl World {
         self.stats.texels_baked = texels;
         self.stats.texels_pending = self.map.pending_texels();
         Ok(texels)
+    }
+
+    /// Records the light bake after the levels' bake: the strips just baked, and every level
+    /// whole where the sun has turned or a level's earlier strips were lit while it was still
+    /// being baked (from coarser levels only). Levels are lit coarsest first.
+    fn encode_light(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        strips: &[crate::clipmap::Strip],
+        timer: Option<&GpuTimer>,
+    ) {
+        let azimuth = self.params.sky.sun_azimuth;
+        let n = self.map.levels.len();
+        let usable: Vec<bool> = (0..n)
+            .map(|l| self.map.levels[l].active && self.map.pending_texels_of(l) == 0)
+            .collect();
+        let turned = self.light.azimuth != Some(azimuth);
+        let cells = self.map.side();
+        let mut rects = Vec::new();
+        for l in (0..n).rev() {
+            if !self.map.levels[l].active {
+                continue;
+            }
+            if turned || (usable[l] && self.light.partial[l]) {
+                rects.push(LightRect {
+                    origin: self.map.levels[l].origin,
+                    extent: [cells; 2],
+                    level: l as u32,
+                    _pad: [0; 3],
+                });
+                self.light.partial[l] = !usable[l];
+            } else {
+                for s in strips.iter().filter(|s| s.level == l) {
+                    rects.push(LightRect {
+                        origin: s.origin,
+                        extent: s.extent,
+                        level: l as u32,
+                        _pad: [0; 3],
+                    });
+                    self.light.partial[l] |= !usable[l];
+                }
+            }
+        }
+        if rects.is_empty() {
+            return;
+        }
+        let uniforms = LightUniforms::new(&self.map, azimuth, self.params.land.peak_height, |l| {
+            usable[l]
+        });
+        for chunk in rects.chunks(super::world_light::MAX_LIGHT_RECTS) {
+            self.light_bake.encode(
+                queue,
+                encoder,
+                &self.light.bind_group,
+                &uniforms,
+                chunk,
+                timer.map(|t| t.compute_writes(Slot::Light)),
+            );
+        }
+        self.light.azimuth = Some(azimuth);
     }
 
     /// Selects the patches inside `view`'s frustum and writes the frame's uniforms.
@@ -703,6 +781,9 @@ pub fn render_uniforms(
     u.set_sky(shading, &light);
     u.ambient_color = u.ambient_color.map(|c| c * light.day);
     u.ambient_color[3] = 1.0;
+    // The world casts shadows (its callers pass the horizon) in its palette.
+    u.look[0] = 1.0;
+    u.look[2] = params.palette.code();
     if params.sky.fog > 0.0 {
         let e = params.sky.extinction();
         u.fog = [e[0], e[1], e[2], 0.0];
@@ -770,6 +851,58 @@ fn level_texture(
     (texture, target)
 }
 
+/// The light bake's texture array (one layer per level, as the heights) and what writes it.
+struct LevelLight {
+    texture: wgpu::Texture,
+    bind_group: wgpu::BindGroup,
+    /// The sun's azimuth the texels were lit for (None: not lit yet).
+    azimuth: Option<f32>,
+    /// Per level: some texels were lit while the level was still being baked.
+    partial: Vec<bool>,
+}
+
+impl LevelLight {
+    fn new(device: &wgpu::Device, bake: &LightBake, heights: &wgpu::Texture, map: &Clipmap) -> Self {
+        let side = map.side();
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("relief:world:light"),
+            size: wgpu::Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: map.levels.len() as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: LightBake::FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let bind_group = bake.bind(device, &array_view(heights), &array_view(&texture));
+        Self {
+            texture,
+            bind_group,
+            azimuth: None,
+            partial: vec![false; map.levels.len()],
+        }
+    }
+}
+
+fn array_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
 fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
     texture.create_view(&wgpu::TextureViewDescriptor {
         label: Some("relief:world:levels-view"),
@@ -781,9 +914,8 @@ fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
 fn bind(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
-    render: &wgpu::Buffer,
-    world: &wgpu::Buffer,
-    texture: &wgpu::Texture,
+    (render, world): (&wgpu::Buffer, &wgpu::Buffer),
+    (texture, light): (&wgpu::Texture, &wgpu::Texture),
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("relief:world:bind-group"),
@@ -800,6 +932,10 @@ fn bind(
             wgpu::BindGroupEntry {
                 binding: 2,
                 resource: wgpu::BindingResource::TextureView(&array_view(texture)),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::TextureView(&array_view(light)),
             },
         ],
     })
