@@ -68,8 +68,10 @@ fn direction(matrix: Mat4, x: u32, y: u32) -> Vec3 {
     (ndc(1.0) - ndc(0.5)).normalize()
 }
 
+/// A linear channel as the world's palette (the seed template's) stores it: tone-mapped, then
+/// sRGB-encoded, in 0..255.
 fn encode(c: f32) -> f32 {
-    let c = c.clamp(0.0, 1.0);
+    let c = relief::palette::tone_map(c.max(0.0)).clamp(0.0, 1.0);
     255.0
         * if c <= 0.003_130_8 {
             12.92 * c
@@ -186,8 +188,14 @@ fn distances(depth: &[f32], matrix: Mat4) -> Vec<Option<f32>> {
 #[test]
 fn fog_grows_with_distance_and_the_far_end_fades_into_the_sky() {
     let gpu = common::gpu();
-    let clear = params(0.0);
-    let foggy = params(0.6);
+    // The blog's flat two-colour palette: what changes with distance is then the fog, not the
+    // materials and shadows of the farther ground (the fog is the same for every palette).
+    let blog = |fog| WorldParams {
+        palette: relief::palette::Palette::Blog,
+        ..params(fog)
+    };
+    let clear = blog(0.0);
+    let foggy = blog(0.6);
     let eye = DVec3::new(0.0, clear.land.height_at(0.0, 0.0) + 500.0, 0.0);
     let view = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.12, 0.3), 0.9, SIZE);
     let (plain, depth, matrix) = draw(&gpu, clear, Shading::default(), &view);

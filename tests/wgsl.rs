@@ -177,7 +177,10 @@ fn world_uniforms_match_wgsl() {
 #[test]
 fn light_uniforms_match_wgsl() {
     use relief::gpu::world_light::{LightLevel, LightRect, LightUniforms};
-    let m = parse("world_light", shader::WORLD_LIGHT);
+    let m = parse(
+        "world_light",
+        &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::WORLD_LIGHT]),
+    );
     let (size, members) = layout(&m, "LightUniforms");
     assert_eq!(size as usize, size_of::<LightUniforms>());
     for (name, at) in [
@@ -188,6 +191,11 @@ fn light_uniforms_match_wgsl() {
         ("peak", offset_of!(LightUniforms, peak)),
         ("steps", offset_of!(LightUniforms, steps)),
         ("valley_radius", offset_of!(LightUniforms, valley_radius)),
+        ("seed", offset_of!(LightUniforms, seed)),
+        ("total_octaves", offset_of!(LightUniforms, total_octaves)),
+        ("terrain", offset_of!(LightUniforms, terrain)),
+        ("gain", offset_of!(LightUniforms, gain)),
+        ("feature_log2", offset_of!(LightUniforms, feature_log2)),
         ("entries", offset_of!(LightUniforms, entries)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");

@@ -227,8 +227,11 @@ fn far_from_the_origin_the_mesh_is_as_close_to_the_reference_as_near_it() {
     let (near, far) = (flip[0], flip[1]);
     eprintln!("mean FLIP mesh vs reference: near the origin {near:.4}, 10^6 m out {far:.4}");
     // Different terrain lies 10^6 m out: its error may differ, but not by a different kind.
+    // The bound on `near` (0.12 with the blog's palette) is 0.15 with the seed template's: its
+    // rock takes light and dark tones from the colour noise, whose finest octaves the mesh's
+    // levels do not keep and the reference's supersampling averages (0.13 on lavapipe).
     assert!(
-        far < 1.5 * near + 0.01 && near < 0.12,
+        far < 1.5 * near + 0.01 && near < 0.15,
         "mesh vs reference: near {near}, far {far}"
     );
 }

@@ -123,6 +123,13 @@ fn add_octave(st: Octaves, n: NoiseD, freq: f32, amplitude: f32, eroded: bool) -
 
 // The channel at world sample `s` of grid `level_log2`: (value in [0,1], d/dx, d/dz per metre).
 fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
+    return landscape_sample_at(s, vec2<f32>(0.0), u, channel);
+}
+
+// The same `f` samples of the grid (a small offset, either sign) from sample `s`. Each octave's
+// cell comes from the integer sample and only the fraction takes the offset, so the point is
+// exact far from the origin; an offset of 0 gives landscape_sample's value bit for bit.
+fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
     let eroded = u.terrain == 1u && channel == CHANNEL_HEIGHT;
     var st = Octaves();
     var amplitude = 1.0;
@@ -132,7 +139,9 @@ fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f3
             let cell_log2 = u.feature_log2 - i32(o);
             let shift = u32(cell_log2 - u.level_log2);
             let split = lattice_split(s, shift);
-            let n = cell_noise_d(split.cell, split.frac, noise_stream(u.seed, channel, o));
+            let frac = split.frac + f * ldexp(1.0, -i32(shift));
+            let whole = floor(frac);
+            let n = cell_noise_d(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o));
             // Lattice units to metres: a power of two, so exact.
             st = add_octave(st, n, ldexp(1.0, -cell_log2), amplitude, eroded);
         }

@@ -2,13 +2,15 @@
 // the terrain's horizon towards the sun's azimuth (what a sun lower than it cannot light) and
 // how far the sample lies below its neighbourhood (valley occlusion), written into an rg32float
 // texture-array layer at the same toroidal texel as the sample's heights. Reads the levels'
-// baked heights; stands alone (no noise). Its CPU twin is src/light.rs.
+// baked heights, and near the sample the terrain function itself (composed after noise.wgsl and
+// landscape.wgsl). The truth it is measured against is src/light.rs.
 //
-// The horizon: from the sample, march towards the sun in horizontal steps that grow with the
-// distance (a cone: at distance t, a step of max(spacing, t / STEPS_PER_DOUBLING)), reading at
-// each step the finest level whose spacing is within the step and whose square holds the point,
-// bilinearly. What a level leaves out (octaves finer than it keeps) subtends no more than its
-// spacing over the distance, which is under the step's angle. The elevation is independent of
+// The horizon: from the sample, march towards the sun. Near it (NEAR samples of its level),
+// where an error in height is a large error in angle, every half sample, evaluating the
+// octaves the level keeps at the point; then in steps that grow with the distance (a cone: at
+// distance t, a step of max(spacing, t / STEPS_PER_DOUBLING)), reading the finest level whose
+// spacing is within the step and whose square holds the point, bilinearly: what that level
+// leaves out subtends about its spacing over the distance, under the step's angle. The elevation is independent of
 // the sun's elevation, so moving the sun up or down bakes nothing; turning it re-bakes.
 
 struct LightLevel {
@@ -33,8 +35,20 @@ struct LightUniforms {
     // Steps per doubling of the distance, and the valley radius in metres.
     steps: f32,
     valley_radius: f32,
+    // The terrain function (see LandscapeUniforms).
+    seed: u32,
+    total_octaves: u32,
+    terrain: u32,
+    gain: f32,
+    feature_log2: i32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
     entries: array<LightLevel, 24>,
 }
+
+// Samples of its level out to which the march evaluates the terrain function.
+const NEAR: f32 = 4.0;
 
 // One rectangle: its level, its first sample (the level's samples) and its size.
 struct LightRect {
@@ -127,19 +141,39 @@ fn light_main(@builtin(global_invocation_id) id: vec3<u32>) {
     // The horizon's slope (rise over run) towards the sun; never under 0, since a sun below
     // the horizontal lights nothing anyway.
     var slope = 0.0;
-    var t = spacing;
+    var u: LandscapeUniforms;
+    u.seed = light.seed;
+    u.total_octaves = light.total_octaves;
+    u.terrain = light.terrain;
+    u.gain = light.gain;
+    u.feature_log2 = light.feature_log2;
+    u.level_log2 = lk.spacing_log2;
+    u.octaves = u32(clamp(light.feature_log2 - lk.spacing_log2, 0, i32(light.total_octaves)));
+    let h_own = light.peak * landscape_sample(s, u, CHANNEL_HEIGHT).x;
+    for (var i = 1u; i <= u32(2.0 * NEAR); i++) {
+        let d = 0.5 * f32(i);
+        let at = light.peak * landscape_sample_at(s, d * light.sun, u, CHANNEL_HEIGHT).x;
+        slope = max(slope, (at - h_own) / (d * spacing));
+    }
+    var t = NEAR * spacing;
     let growth = 1.0 / light.steps;
+    // The level read grows with the step (never shrinks: the step only grows).
+    var j = k;
     loop {
         // Nothing farther can rise above the horizon found so far.
         if t * max(slope, 1e-3) > light.peak - h {
             break;
         }
-        let at = height_near(s, k, level_for(k, max(spacing, t * growth)), t * light.sun);
+        let step = max(spacing, t * growth);
+        while j + 1u < light.levels && ldexp(1.0, light.entries[j + 1u].spacing_log2) <= step {
+            j += 1u;
+        }
+        let at = height_near(s, k, j, t * light.sun);
         if !at.found {
             break;
         }
         slope = max(slope, (at.height - h) / t);
-        t += max(spacing, t * growth);
+        t += step;
     }
 
     // Valley occlusion: the sample's height less the mean of eight around it at the valley

@@ -30,7 +30,8 @@ pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
 /// `wgsl/world_rays.wgsl`: the endless world's ray casters (needs [`NOISE`], [`SHADE`] and
 /// [`LANDSCAPE`], then [`RAYS`]).
 pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
-/// `wgsl/world_light.wgsl`: the endless world's light bake (stands alone).
+/// `wgsl/world_light.wgsl`: the endless world's light bake (needs [`NOISE`] and
+/// [`LANDSCAPE`]).
 pub const WORLD_LIGHT: &str = include_str!("../../wgsl/world_light.wgsl");
 /// `wgsl/blit.wgsl`: shows a ray-cast image in a window (stands alone).
 pub const BLIT: &str = include_str!("../../wgsl/blit.wgsl");
@@ -47,7 +48,10 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
     vec![
         ("noise", NOISE.to_owned()),
         ("blit", BLIT.to_owned()),
-        ("world_light", WORLD_LIGHT.to_owned()),
+        (
+            "world_light",
+            compose(&[NOISE, LANDSCAPE, WORLD_LIGHT]),
+        ),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),

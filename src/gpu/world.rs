@@ -572,9 +572,7 @@ impl World {
         if rects.is_empty() {
             return;
         }
-        let uniforms = LightUniforms::new(&self.map, azimuth, self.params.land.peak_height, |l| {
-            usable[l]
-        });
+        let uniforms = LightUniforms::new(&self.map, azimuth, &self.params.land, |l| usable[l]);
         for chunk in rects.chunks(super::world_light::MAX_LIGHT_RECTS) {
             self.light_bake.encode(
                 queue,

@@ -5,6 +5,7 @@
 
 use super::shader;
 use crate::clipmap::{Clipmap, MAX_LEVELS};
+use crate::landscape::Landscape;
 use crate::light::{STEPS_PER_DOUBLING, VALLEY_RADIUS};
 
 /// Mirrors `LightLevel` in `wgsl/world_light.wgsl`.
@@ -43,6 +44,19 @@ pub struct LightUniforms {
     pub steps: f32,
     /// [`VALLEY_RADIUS`].
     pub valley_radius: f32,
+    /// The terrain function: hash seed, octaves, [`crate::landscape::TerrainFn::code`], gain,
+    /// log2 of octave 0's cell.
+    pub seed: u32,
+    /// All octaves.
+    pub total_octaves: u32,
+    /// The terrain function's code.
+    pub terrain: u32,
+    /// Amplitude ratio between octaves.
+    pub gain: f32,
+    /// log2 of octave 0's cell in metres.
+    pub feature_log2: i32,
+    /// Padding.
+    pub _pad: [u32; 3],
     /// The levels.
     pub entries: [LightLevel; MAX_LEVELS],
 }
@@ -64,7 +78,7 @@ pub struct LightRect {
 impl LightUniforms {
     /// The uniforms for `map` under a sun at `azimuth` degrees (clockwise from -z towards +x);
     /// `usable(l)` says whether level `l`'s texels may be read.
-    pub fn new(map: &Clipmap, azimuth: f32, peak: f64, usable: impl Fn(usize) -> bool) -> Self {
+    pub fn new(map: &Clipmap, azimuth: f32, land: &Landscape, usable: impl Fn(usize) -> bool) -> Self {
         let side = map.side();
         let mut entries = [LightLevel::default(); MAX_LEVELS];
         for (l, level) in map.levels.iter().enumerate() {
@@ -83,9 +97,15 @@ impl LightUniforms {
             cells: map.cells(),
             side,
             levels: map.levels.len() as u32,
-            peak: peak as f32,
+            peak: land.peak_height as f32,
             steps: STEPS_PER_DOUBLING,
             valley_radius: VALLEY_RADIUS,
+            seed: land.seed,
+            total_octaves: land.octaves,
+            terrain: land.terrain.code(),
+            gain: land.gain as f32,
+            feature_log2: land.feature_log2,
+            _pad: [0; 3],
             entries,
         }
     }
@@ -109,7 +129,11 @@ impl LightBake {
 
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let module = shader::module(device, "relief:world-light:shader", shader::WORLD_LIGHT);
+        let module = shader::module(
+            device,
+            "relief:world-light:shader",
+            &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::WORLD_LIGHT]),
+        );
         let c = wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:world-light:bind-group-layout"),

@@ -1,0 +1,223 @@
+//! Shadows and valley occlusion of the endless world on lavapipe, at small sizes, against the
+//! truth: for level texels around the camera, lit or shadowed by the light bake agrees with an
+//! f64 ray towards the sun over the CPU twin's continuous surface, outside a band two texels of
+//! the finest level drawn either side of the shadow's edge, for a high, a low and a grazing sun
+//! (where a coarse shadow march tunnels through thin ridges); turning the sun moves the shadows
+//! (and the truth of another azimuth agrees far less: the control that shows the comparison can
+//! fail); the ray casters' shadows agree with the mesh's.
+
+mod common;
+
+use glam::DVec3;
+use relief::gpu::headless::{self, Gpu, Offscreen};
+use relief::landscape::{Landscape, TerrainFn};
+use relief::light::lit_by_ray;
+use relief::sky::Sky;
+use relief::{World, WorldParams, WorldView};
+
+const SIZE: (u32, u32) = (160, 96);
+
+/// A small world: ridges 256 m apart, at most 150 m high, detail to 16 m, so that the finest
+/// level drawn (8 m) holds every octave and its shadows can be held to the continuous
+/// surface's; a loose knob keeps lavapipe's work small.
+fn params(azimuth: f32, elevation: f32) -> WorldParams {
+    WorldParams {
+        land: Landscape {
+            seed: 11,
+            octaves: 5,
+            gain: 0.5,
+            feature_log2: 8,
+            peak_height: 150.0,
+            terrain: TerrainFn::Fbm,
+        },
+        pixel_error: 2.0,
+        sky: Sky {
+            sun_azimuth: azimuth,
+            sun_elevation: elevation,
+            fog: 0.0,
+        },
+        no_water: true,
+        ..WorldParams::default()
+    }
+}
+
+fn view(land: &Landscape) -> WorldView {
+    let (x, z) = (300.0, -200.0);
+    let eye = DVec3::new(x, land.height_at(x, z) + 30.0, z);
+    WorldView::look_at(eye, eye + DVec3::new(1.0, -0.2, 0.3), 50f32.to_radians(), SIZE)
+}
+
+fn baked(gpu: &Gpu, p: WorldParams) -> World {
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+    world.set_bake_budget(u64::MAX);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    world
+        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view(&p.land))
+        .unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    world
+}
+
+/// Per level texel of `world`'s light texture: (horizon, valley).
+fn light(gpu: &Gpu, world: &World) -> Vec<[f32; 2]> {
+    bytemuck::pod_collect_to_vec(
+        &headless::read_texture(&gpu.device, &gpu.queue, world.light_texture()).unwrap(),
+    )
+}
+
+/// Sampled texels of level `l`: (world x, z, horizon in radians).
+fn texels(world: &World, light: &[[f32; 2]], l: usize) -> Vec<(f64, f64, f32)> {
+    let map = world.clipmap();
+    let level = &map.levels[l];
+    let side = map.side() as i64;
+    let s = level.spacing();
+    let mut out = Vec::new();
+    for j in (0..=map.cells() as i64).step_by(2) {
+        for i in (0..=map.cells() as i64).step_by(2) {
+            let (si, sj) = (
+                i64::from(level.origin[0]) + i,
+                i64::from(level.origin[1]) + j,
+            );
+            let t = (level.layer as i64 * side + sj.rem_euclid(side)) * side + si.rem_euclid(side);
+            out.push((si as f64 * s, sj as f64 * s, light[t as usize][0]));
+        }
+    }
+    out
+}
+
+struct Agreement {
+    /// Lit by the bake where the ray is shadowed: an occluder the bake missed.
+    missed: usize,
+    judged: usize,
+    agree: usize,
+    lit: usize,
+}
+
+/// Compares the bake's lit (horizon under the sun) with the f64 ray at each texel whose
+/// neighbours `band` metres away in x and z get the same answer from the ray.
+fn agreement(
+    land: &Landscape,
+    points: &[(f64, f64, f32)],
+    (azimuth, elevation): (f32, f32),
+    band: f64,
+) -> Agreement {
+    let slope = *land.slope_bounds().last().unwrap();
+    let sun = (
+        f64::from(azimuth).to_radians(),
+        f64::from(elevation).to_radians(),
+    );
+    let ray = |x: f64, z: f64| lit_by_ray(land, (x, z), sun, slope, 1e9);
+    let mut a = Agreement {
+        missed: 0,
+        judged: 0,
+        agree: 0,
+        lit: 0,
+    };
+    for &(x, z, horizon) in points {
+        let truth = ray(x, z);
+        let settled = [(band, 0.0), (-band, 0.0), (0.0, band), (0.0, -band)]
+            .iter()
+            .all(|(dx, dz)| ray(x + dx, z + dz) == truth);
+        if !settled {
+            continue;
+        }
+        a.judged += 1;
+        a.lit += usize::from(truth);
+        let gpu_lit = horizon < elevation.to_radians();
+        a.agree += usize::from(gpu_lit == truth);
+        a.missed += usize::from(gpu_lit && !truth);
+    }
+    a
+}
+
+#[test]
+fn shadows_agree_with_f64_rays_towards_the_sun_for_high_low_and_grazing_suns() {
+    let gpu = common::gpu();
+    let azimuth = 200.0;
+    for elevation in [30.0, 8.0, 3.0] {
+        let p = params(azimuth, elevation);
+        let world = baked(&gpu, p);
+        let light = light(&gpu, &world);
+        let first = world.clipmap().first_drawn();
+        for l in first..first + 3 {
+            // Two texels of the level: of the finest level drawn for the first, and of the
+            // coarser ones (drawn farther away, where their texels are as small on screen)
+            // for the others.
+            let band = 2.0 * world.clipmap().levels[l].spacing();
+            let points = texels(&world, &light, l);
+            let a = agreement(&p.land, &points, (azimuth, elevation), band);
+            let share = a.agree as f64 / a.judged.max(1) as f64;
+            eprintln!(
+                "sun {elevation}°, level {l} ({} m): {} of {} judged texels agree ({:.2} %, {} lit where the ray is shadowed), {} lit, {} in the band",
+                world.clipmap().levels[l].spacing(),
+                a.agree,
+                a.judged,
+                100.0 * share,
+                a.missed,
+                a.lit,
+                points.len() - a.judged
+            );
+            assert!(
+                a.judged >= 100,
+                "sun {elevation}°, level {l}: only {} of {} texels outside the band",
+                a.judged,
+                points.len()
+            );
+            assert!(
+                share >= 0.99,
+                "sun {elevation}°, level {l}: lit or shadowed agrees with the f64 ray at {:.2} % of texels (want 99 %)",
+                100.0 * share
+            );
+            if elevation < 10.0 {
+                assert!(
+                    a.lit > 0 && a.lit < a.judged,
+                    "sun {elevation}°, level {l}: {} of {} lit: the view shows no shadow edge",
+                    a.lit,
+                    a.judged
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
+    let gpu = common::gpu();
+    let elevation = 8.0;
+    let (a, b) = (200.0, 290.0);
+    let wa = baked(&gpu, params(a, elevation));
+    let la = light(&gpu, &wa);
+    // The same world turned by set_params (what the window's keys do): only the light re-bakes.
+    let mut wb = baked(&gpu, params(a, elevation));
+    wb.set_params(&gpu.device, params(b, elevation)).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let texels_baked = wb
+        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view(&params(a, 0.0).land))
+        .unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    assert_eq!(texels_baked, 0, "turning the sun re-baked heights");
+    let lb = light(&gpu, &wb);
+    let first = wa.clipmap().first_drawn();
+    let e = (elevation as f32).to_radians();
+    let (pa, pb) = (texels(&wa, &la, first), texels(&wb, &lb, first));
+    let moved = pa
+        .iter()
+        .zip(&pb)
+        .filter(|(x, y)| (x.2 < e) != (y.2 < e))
+        .count();
+    assert!(
+        moved * 10 > pa.len(),
+        "turning the sun 90° changed lit or shadowed at only {moved} of {} texels",
+        pa.len()
+    );
+    // The control: the bake for azimuth a judged by the truth for b.
+    let land = params(a, elevation).land;
+    let band = 2.0 * wa.clipmap().levels[first].spacing();
+    let wrong = agreement(&land, &pa, (b, elevation), band);
+    let share = wrong.agree as f64 / wrong.judged.max(1) as f64;
+    assert!(
+        share < 0.95,
+        "the truth for another sun agrees at {:.1} %: the comparison cannot tell",
+        100.0 * share
+    );
+}
