@@ -390,7 +390,7 @@ pub fn options_markdown() -> String {
     {
         let applies = match p.key {
             "pixel_error" => "render --world endless",
-            "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" => {
+            "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" | "palette" => {
                 "window, render, scene files, URL --world endless"
             }
             _ => "render, height --world endless",

@@ -905,14 +905,23 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "fog" => "0.4",
             "water_level" => "1300",
             "no_water" => "1",
+            "palette" => "blog",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
-        let args: &[&str] = match row.kind {
-            relief::table::Kind::Bool => &[&flag],
-            _ => &[&flag, value],
+        let mut args: Vec<&str> = match row.kind {
+            relief::table::Kind::Bool => vec![&flag],
+            _ => vec![&flag, value],
         };
-        let (img, s) = render_endless(&dir, row.key, args);
+        // The height occlusion exponent is the blog palette's: it changes that picture.
+        let blog = row.key == "ao_exponent";
+        let base = if blog {
+            args.extend(["--palette", "blog"]);
+            render_endless(&dir, "blog", &["--palette", "blog"]).0
+        } else {
+            base.clone()
+        };
+        let (img, s) = render_endless(&dir, row.key, &args);
         if row.key == "pixel_error" {
             assert!(
                 stat(&s, "triangles") > stat(&stats, "triangles"),
@@ -923,11 +932,14 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         }
         // The same value as a scene-file key draws the same picture as the flag.
         let scene = dir.join(format!("{}.toml", row.key));
-        let knob = if row.key == "pixel_error" {
+        let mut knob = if row.key == "pixel_error" {
             String::new()
         } else {
             "pixel_error = 16\n".to_owned()
         };
+        if blog {
+            knob.push_str("palette = \"blog\"\n");
+        }
         std::fs::write(
             &scene,
             format!(

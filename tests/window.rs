@@ -223,7 +223,7 @@ fn m_steps_the_window_to_the_next_method() {
 }
 
 #[test]
-fn the_sun_and_fog_keys_move_the_sun_and_the_title_says_where() {
+fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     let args = [
         "--world",
         "endless",
@@ -232,18 +232,20 @@ fn the_sun_and_fog_keys_move_the_sun_and_the_title_says_where() {
         "--exit-after",
         "8",
     ];
-    // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off; the title shows it.
+    // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off, L the water; the title
+    // shows it.
     let keys = "xdotool getwindowname \"$w\"; xdotool key bracketright; sleep 1; \
-                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool getwindowname \"$w\"";
+                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool key l; sleep 1; \
+                xdotool getwindowname \"$w\"";
     let (code, stdout, err) = window_with_keys(&args, keys);
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
     assert!(
-        stdout.contains("sun 145° az, 12° up · fog 0.03 /km"),
+        stdout.contains("sun 145° az, 12° up · fog 0.03 /km · water on"),
         "the title before: {stdout}"
     );
     assert!(
-        stdout.contains("sun 155° az, 10° up · fog 0 /km"),
-        "the title after ], - and F: {stdout}"
+        stdout.contains("sun 155° az, 10° up · fog 0 /km · water off"),
+        "the title after ], -, F and L: {stdout}"
     );
 }

@@ -252,7 +252,7 @@ const DRY_GRASS: vec3<f32> = vec3<f32>(0.22, 0.19, 0.08);
 fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> vec3<f32> {
     let jitter = 2.0 * (tint - 0.5);
     let rock = mix(ROCK_DARK, ROCK_LIGHT, smoothstep(0.25, 0.75, tint));
-    let alpine = smoothstep(r.snow_height - 0.3, r.snow_height - 0.05, h + 0.1 * jitter);
+    let alpine = smoothstep(r.snow_height - 0.12, r.snow_height, h + 0.1 * jitter);
     let grass = mix(GRASS, DRY_GRASS, alpine);
     let gentle = smoothstep(0.6, 0.95, n.y + 0.08 * jitter) * (1.0 - 0.6 * alpine);
     return mix(rock, grass, gentle);

@@ -45,9 +45,9 @@ pub const CAMERA_CLEARANCE: f32 = 0.05;
 /// Height the fly camera keeps above the endless world's ground, metres.
 pub const FLY_CLEARANCE: f64 = 2.0;
 
-/// The endless world's sun and fog keys: `[` `]` turn the sun, `-` `=` lower and raise it,
-/// `f` turns the fog off and on again.
-pub const SKY_KEYS: [&str; 5] = ["[", "]", "-", "=", "f"];
+/// The endless world's sun, fog and water keys: `[` `]` turn the sun, `-` `=` lower and raise
+/// it, `f` turns the fog off and on again, `l` the water (lakes).
+pub const SKY_KEYS: [&str; 6] = ["[", "]", "-", "=", "f", "l"];
 
 /// Keys that move the fly camera (by position on the keyboard: WASD, arrows, Q/E and Page
 /// Down/Up for down and up, Shift for faster).
@@ -664,6 +664,7 @@ impl App {
                     (sky.sun_elevation + lift).clamp(-90.0, 90.0),
                 )
             }
+            "l" => ("no_water", if world.no_water { 0.0 } else { 1.0 }),
             _ if sky.fog > 0.0 => {
                 self.fog_off = sky.fog;
                 ("fog", 0.0)
@@ -679,8 +680,11 @@ impl App {
     fn title(&self) -> String {
         match &self.options.world {
             Some((w, _)) => format!(
-                "relief: sun {:.0}° az, {:.0}° up · fog {} /km · [ ] - = move the sun, F fog",
-                w.sky.sun_azimuth, w.sky.sun_elevation, w.sky.fog
+                "relief: sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
+                w.sky.sun_azimuth,
+                w.sky.sun_elevation,
+                w.sky.fog,
+                if w.no_water { "off" } else { "on" }
             ),
             None => "relief".to_owned(),
         }
