@@ -390,9 +390,8 @@ pub fn options_markdown() -> String {
     {
         let applies = match p.key {
             "pixel_error" => "render --world endless",
-            "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" | "palette" => {
-                "window, render, scene files, URL --world endless"
-            }
+            "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" | "palette"
+            | "no_shadows" => "window, render, scene files, URL --world endless",
             _ => "render, height --world endless",
         };
         out.push_str(&row(p, &world, applies));
@@ -1360,10 +1359,23 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
         "relief: the endless world's LOD on {} (knob in px beside each point)",
         gpu.describe()
     );
+    let look = || -> Result<()> {
+        let rows = crate::bench_look::run(&gpu, params, &options, |what| {
+            eprint!("\r\x1b[K{what}");
+        })?;
+        eprint!("\r\x1b[K");
+        let csv = crate::bench_look::csv(&rows, &gpu.describe(), &options);
+        print!("{csv}");
+        let path = dir.join("look.csv");
+        let tmp = temp_name(&path);
+        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
+        std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e))
+    };
     let result = std::fs::write(&tmp, csv)
         .map_err(|e| Error::io(&tmp, e))
         .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e)))
-        .and_then(|()| crate::bench_world::chart(&rows, &title, &dir.join("landscape")));
+        .and_then(|()| crate::bench_world::chart(&rows, &title, &dir.join("landscape")))
+        .and_then(|()| look());
     if result.is_err() {
         if let Some(c) = created {
             let _ = std::fs::remove_dir_all(c);

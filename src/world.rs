@@ -69,6 +69,8 @@ pub struct WorldParams {
     pub no_water: bool,
     /// How the terrain is coloured and lit.
     pub palette: Palette,
+    /// No sun shadows (every slope facing the sun is lit).
+    pub no_shadows: bool,
 }
 
 impl Default for WorldParams {
@@ -91,6 +93,7 @@ impl Default for WorldParams {
             water_level: 1000.0,
             no_water: false,
             palette: Palette::SeedTemplate,
+            no_shadows: false,
         }
     }
 }
@@ -108,7 +111,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 15] = [
+pub static WORLD_PARAMS: [WorldParam; 16] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -358,6 +361,18 @@ pub static WORLD_PARAMS: [WorldParam; 15] = [
         set: |p, v| {
             if let Value::Choice(name) = v {
                 p.palette = Palette::from_name(name).unwrap_or_default();
+            }
+        },
+    },
+    Param {
+        key: "no_shadows",
+        doc: "no sun shadows: every slope facing the sun is lit",
+        kind: Kind::Bool,
+        control: Control::Checkbox,
+        get: |p| Value::Bool(p.no_shadows),
+        set: |p, v| {
+            if let Value::Bool(x) = v {
+                p.no_shadows = x;
             }
         },
     },

@@ -906,6 +906,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "water_level" => "1300",
             "no_water" => "1",
             "palette" => "blog",
+            "no_shadows" => "1",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
@@ -1171,15 +1172,27 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     ]);
     assert_eq!(code, 0, "{err}");
     let csv = std::fs::read_to_string(out.join("landscape.csv")).unwrap();
+    let look = std::fs::read_to_string(out.join("look.csv")).unwrap();
     assert_eq!(
-        csv,
+        format!("{csv}{look}"),
         stdout.split_once('\n').unwrap().1,
         "printed and written differ"
     );
     assert_eq!(
         files_in(&out),
-        ["landscape.csv", "landscape.png", "landscape.svg"]
+        ["landscape.csv", "landscape.png", "landscape.svg", "look.csv"]
     );
+    // The look's cost: each part off in turn on the first view, and the light bake.
+    let look: Vec<Vec<&str>> = look
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(look.len(), 7, "{look:?}");
+    assert_eq!(look[0][1], "everything on");
+    assert!(look[0][4].parse::<f64>().unwrap() > 0.0, "light bake: {look:?}");
+    assert!(look.iter().all(|r| r[2].parse::<f64>().unwrap() > 0.0), "{look:?}");
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
     // Three views at two knobs, the four ray casters on each view, and two flights.

@@ -44,7 +44,12 @@ fn params(azimuth: f32, elevation: f32) -> WorldParams {
 fn view(land: &Landscape) -> WorldView {
     let (x, z) = (300.0, -200.0);
     let eye = DVec3::new(x, land.height_at(x, z) + 30.0, z);
-    WorldView::look_at(eye, eye + DVec3::new(1.0, -0.2, 0.3), 50f32.to_radians(), SIZE)
+    WorldView::look_at(
+        eye,
+        eye + DVec3::new(1.0, -0.2, 0.3),
+        50f32.to_radians(),
+        SIZE,
+    )
 }
 
 fn baked(gpu: &Gpu, p: WorldParams) -> World {
@@ -192,7 +197,12 @@ fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
     wb.set_params(&gpu.device, params(b, elevation)).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     let texels_baked = wb
-        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view(&params(a, 0.0).land))
+        .encode_bake(
+            &gpu.device,
+            &gpu.queue,
+            &mut encoder,
+            &view(&params(a, 0.0).land),
+        )
         .unwrap();
     gpu.queue.submit([encoder.finish()]);
     assert_eq!(texels_baked, 0, "turning the sun re-baked heights");

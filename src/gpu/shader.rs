@@ -48,10 +48,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
     vec![
         ("noise", NOISE.to_owned()),
         ("blit", BLIT.to_owned()),
-        (
-            "world_light",
-            compose(&[NOISE, LANDSCAPE, WORLD_LIGHT]),
-        ),
+        ("world_light", compose(&[NOISE, LANDSCAPE, WORLD_LIGHT])),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),

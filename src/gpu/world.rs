@@ -6,9 +6,9 @@
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
-use super::world_light::{LightBake, LightRect, LightUniforms};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
+use super::world_light::{LightBake, LightRect, LightUniforms};
 use super::{scoped, shader, Targets};
 use crate::camera::View;
 use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
@@ -780,7 +780,7 @@ pub fn render_uniforms(
     u.ambient_color = u.ambient_color.map(|c| c * light.day);
     u.ambient_color[3] = 1.0;
     // The world casts shadows (its callers pass the horizon) in its palette.
-    u.look[0] = 1.0;
+    u.look[0] = if params.no_shadows { 0.0 } else { 1.0 };
     u.look[2] = params.palette.code();
     if params.sky.fog > 0.0 {
         let e = params.sky.extinction();
@@ -860,7 +860,12 @@ struct LevelLight {
 }
 
 impl LevelLight {
-    fn new(device: &wgpu::Device, bake: &LightBake, heights: &wgpu::Texture, map: &Clipmap) -> Self {
+    fn new(
+        device: &wgpu::Device,
+        bake: &LightBake,
+        heights: &wgpu::Texture,
+        map: &Clipmap,
+    ) -> Self {
         let side = map.side();
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("relief:world:light"),

@@ -78,7 +78,12 @@ pub struct LightRect {
 impl LightUniforms {
     /// The uniforms for `map` under a sun at `azimuth` degrees (clockwise from -z towards +x);
     /// `usable(l)` says whether level `l`'s texels may be read.
-    pub fn new(map: &Clipmap, azimuth: f32, land: &Landscape, usable: impl Fn(usize) -> bool) -> Self {
+    pub fn new(
+        map: &Clipmap,
+        azimuth: f32,
+        land: &Landscape,
+        usable: impl Fn(usize) -> bool,
+    ) -> Self {
         let side = map.side();
         let mut entries = [LightLevel::default(); MAX_LEVELS];
         for (l, level) in map.levels.iter().enumerate() {
