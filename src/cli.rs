@@ -1346,19 +1346,8 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
         options.width,
         options.height
     );
-    let rows = crate::bench_world::run(&gpu, params, knobs, &options, |what| {
-        eprint!("\r\x1b[K{what}");
-    })?;
-    eprint!("\r\x1b[K");
-    let csv = crate::bench_world::csv(&rows, &gpu.describe(), &options);
-    print!("{csv}");
     let created = create_dirs(dir)?;
-    let path = dir.join("landscape.csv");
-    let tmp = temp_name(&path);
-    let title = format!(
-        "relief: the endless world's LOD on {} (knob in px beside each point)",
-        gpu.describe()
-    );
+    // The look's cost first (it is short), then the LOD sweep.
     let look = || -> Result<()> {
         let rows = crate::bench_look::run(&gpu, params, &options, |what| {
             eprint!("\r\x1b[K{what}");
@@ -1366,22 +1355,36 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
         eprint!("\r\x1b[K");
         let csv = crate::bench_look::csv(&rows, &gpu.describe(), &options);
         print!("{csv}");
-        let path = dir.join("look.csv");
-        let tmp = temp_name(&path);
-        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e))
+        write_whole(&dir.join("look.csv"), &csv)
     };
-    let result = std::fs::write(&tmp, csv)
-        .map_err(|e| Error::io(&tmp, e))
-        .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e)))
-        .and_then(|()| crate::bench_world::chart(&rows, &title, &dir.join("landscape")))
-        .and_then(|()| look());
+    let sweep = || -> Result<()> {
+        let rows = crate::bench_world::run(&gpu, params, knobs, &options, |what| {
+            eprint!("\r\x1b[K{what}");
+        })?;
+        eprint!("\r\x1b[K");
+        let csv = crate::bench_world::csv(&rows, &gpu.describe(), &options);
+        print!("{csv}");
+        let title = format!(
+            "relief: the endless world's LOD on {} (knob in px beside each point)",
+            gpu.describe()
+        );
+        write_whole(&dir.join("landscape.csv"), &csv)?;
+        crate::bench_world::chart(&rows, &title, &dir.join("landscape"))
+    };
+    let result = look().and_then(|()| sweep());
     if result.is_err() {
         if let Some(c) = created {
             let _ = std::fs::remove_dir_all(c);
         }
     }
     result
+}
+
+/// Writes `text` to `path` whole or not at all (a temporary name, then a rename).
+fn write_whole(path: &Path, text: &str) -> Result<()> {
+    let tmp = temp_name(path);
+    std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
 }
 
 fn render(

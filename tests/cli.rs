@@ -1174,7 +1174,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     let csv = std::fs::read_to_string(out.join("landscape.csv")).unwrap();
     let look = std::fs::read_to_string(out.join("look.csv")).unwrap();
     assert_eq!(
-        format!("{csv}{look}"),
+        format!("{look}{csv}"),
         stdout.split_once('\n').unwrap().1,
         "printed and written differ"
     );

@@ -1,6 +1,7 @@
-//! Rendered images: a golden image of a fixed scene (FLIP against a committed reference), and
-//! snow and ambient occlusion responding to their parameters. Drawn through the same
-//! `Offscreen` path as `relief render`.
+//! Rendered images: golden images of a fixed tile scene and of the endless world's default view
+//! with its whole look (sky, fog, shadows, materials, water), FLIP against committed references
+//! with negative controls; snow and ambient occlusion responding to their parameters. Drawn
+//! through the same `Offscreen` path as `relief render`.
 //!
 //! Refresh references with `RELIEF_UPDATE_IMAGES=1 cargo test --test images`, then look at
 //! them before committing.
@@ -8,7 +9,7 @@
 mod common;
 
 use relief::gpu::headless::{Gpu, Offscreen};
-use relief::{OrbitCamera, Terrain, TerrainParams};
+use relief::{OrbitCamera, Terrain, TerrainParams, World, WorldParams, WorldView};
 use std::path::PathBuf;
 
 const W: u32 = 256;
@@ -109,11 +110,120 @@ fn golden_default_scene() {
     }
 }
 
+/// Size of the landscape's golden image.
+const LW: u32 = 256;
+const LH: u32 = 144;
+/// Largest FLIP mean accepted against the landscape's golden image. lavapipe reproduces it to
+/// the bit (mean 0.0000); another GPU's rounding (1 LSB over the tile's whole frame on an H100
+/// scored 0.025) must pass, while the negative controls below must fail: the sun turned 15
+/// degrees (the shadows move) 0.115, the water 200 m higher 0.095, the fog doubled 0.191, the
+/// blog palette 0.130 on lavapipe. 0.035 sits between, as for the tile.
+const LANDSCAPE_FLIP_MEAN: f32 = 0.035;
+
+/// The landscape's fixed scene: the endless world's defaults, a knob loose enough for
+/// lavapipe.
+fn landscape() -> WorldParams {
+    WorldParams {
+        pixel_error: 4.0,
+        ..WorldParams::default()
+    }
+}
+
+fn render_landscape(gpu: &Gpu, params: WorldParams) -> Vec<u8> {
+    let samples = relief::gpu::headless::RENDER_SAMPLES;
+    let target = Offscreen::new(&gpu.device, LW, LH, samples).unwrap();
+    let mut world =
+        World::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), params).unwrap();
+    let (eye, at) = relief::gpu::world::default_camera(&params.land);
+    let view = WorldView::look_at(eye, at, 45f32.to_radians(), (LW, LH));
+    rgb(&target.render_world(gpu, &mut world, &view, None).unwrap().0)
+}
+
+#[test]
+fn golden_landscape_with_its_look() {
+    let gpu = common::gpu();
+    let actual = render_landscape(&gpu, landscape());
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/images");
+    let reference = dir.join("landscape-256x144.png");
+    if std::env::var_os("RELIEF_UPDATE_IMAGES").is_some() {
+        image::save_buffer(&reference, &actual, LW, LH, image::ColorType::Rgb8).unwrap();
+        eprintln!("wrote {}", reference.display());
+        return;
+    }
+    let expected = image::open(&reference)
+        .unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (RELIEF_UPDATE_IMAGES=1 creates it)",
+                reference.display()
+            )
+        })
+        .into_rgb8();
+    assert_eq!((expected.width(), expected.height()), (LW, LH));
+    let (error, mean, p99) = flip_sized(expected.as_raw(), &actual, (LW, LH));
+    eprintln!("landscape golden image FLIP: mean {mean:.4}, p99 {p99:.4}");
+    let base = landscape();
+    let mut turned = base;
+    turned.sky.sun_azimuth += 15.0;
+    let mut flooded = base;
+    flooded.water_level += 200.0;
+    let mut hazy = base;
+    hazy.sky.fog *= 2.0;
+    let blog = WorldParams {
+        palette: relief::palette::Palette::Blog,
+        ..base
+    };
+    for (what, params) in [
+        ("the sun turned 15°", turned),
+        ("the water 200 m higher", flooded),
+        ("the fog doubled", hazy),
+        ("the blog palette", blog),
+    ] {
+        let (_, m, _) = flip_sized(
+            expected.as_raw(),
+            &render_landscape(&gpu, params),
+            (LW, LH),
+        );
+        eprintln!("control, {what}: FLIP mean {m:.4}");
+        assert!(
+            m > LANDSCAPE_FLIP_MEAN,
+            "the landscape's threshold cannot see {what} (FLIP mean {m})"
+        );
+    }
+    if mean > LANDSCAPE_FLIP_MEAN {
+        image::save_buffer(
+            dir.join("landscape-256x144-actual.png"),
+            &actual,
+            LW,
+            LH,
+            image::ColorType::Rgb8,
+        )
+        .unwrap();
+        let diff = error.apply_color_lut(&nv_flip::magma_lut());
+        image::save_buffer(
+            dir.join("landscape-256x144-difference.png"),
+            &diff.to_vec(),
+            LW,
+            LH,
+            image::ColorType::Rgb8,
+        )
+        .unwrap();
+        panic!("landscape golden image differs: FLIP mean {mean:.4} > {LANDSCAPE_FLIP_MEAN} (see tests/images/landscape-*-actual.png, *-difference.png)");
+    }
+}
+
 /// FLIP error map, mean and p99 of `test` against `reference` (both W x H RGB8).
 fn flip(reference: &[u8], test: &[u8]) -> (nv_flip::FlipImageFloat, f32, f32) {
+    flip_sized(reference, test, (W, H))
+}
+
+fn flip_sized(
+    reference: &[u8],
+    test: &[u8],
+    (w, h): (u32, u32),
+) -> (nv_flip::FlipImageFloat, f32, f32) {
     let error = nv_flip::flip(
-        nv_flip::FlipImageRgb8::with_data(W, H, reference),
-        nv_flip::FlipImageRgb8::with_data(W, H, test),
+        nv_flip::FlipImageRgb8::with_data(w, h, reference),
+        nv_flip::FlipImageRgb8::with_data(w, h, test),
         nv_flip::DEFAULT_PIXELS_PER_DEGREE,
     );
     let mut pool = nv_flip::FlipPool::from_image(&error);

@@ -129,22 +129,41 @@ fn sky_pixel(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
     return to_target(r, sky_light(r, dir, true));
 }
 
-// `lit` (linear) at `world` seen from the eye through the air: a part exp(-fog * d) of it
-// survives, the rest is the sky's light along the same direction flattened to the horizon; and
-// over the fade band it goes wholly into that light, so the drawn square's end is no edge.
-fn fog(r: RenderUniforms, lit: vec3<f32>, world: vec3<f32>) -> vec3<f32> {
+// What the air between the eye and `world` does to light from there: the colour seen is
+// lit * keep + light. A part exp(-fog * d) of the light survives, the rest is the sky's light
+// along the same direction flattened to the horizon; and over the fade band it goes wholly into
+// that light, so the drawn square's end is no edge. Smooth over the ground: the mesh computes it
+// per vertex (a fragment costs several times a vertex where triangles are pixel-sized), the ray
+// casters per pixel.
+struct Air {
+    keep: vec3<f32>,
+    light: vec3<f32>,
+}
+
+fn air_at(r: RenderUniforms, world: vec3<f32>) -> Air {
+    var out: Air;
+    out.keep = vec3<f32>(1.0);
+    out.light = vec3<f32>(0.0);
     if r.fade.y <= 0.0 && all(r.fog.rgb == vec3<f32>(0.0)) {
-        return lit;
+        return out;
     }
     let rel = world - r.camera_pos.xyz;
     let d = length(rel);
     let dir = rel / max(d, 1e-30);
     let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
-    var c = mix(air, lit, exp(-r.fog.rgb * d));
+    var keep = exp(-r.fog.rgb * d);
     if r.fade.y > 0.0 {
-        c = mix(c, air, smoothstep(r.fade.x, r.fade.y, length(rel.xz)));
+        keep *= 1.0 - smoothstep(r.fade.x, r.fade.y, length(rel.xz));
     }
-    return c;
+    out.keep = keep;
+    out.light = air * (1.0 - keep);
+    return out;
+}
+
+// `lit` (linear) at `world` seen from the eye through the air.
+fn fog(r: RenderUniforms, lit: vec3<f32>, world: vec3<f32>) -> vec3<f32> {
+    let a = air_at(r, world);
+    return lit * a.keep + a.light;
 }
 
 // Water (src/sky.rs documents the same constants): light left after a metre of clear water in
@@ -262,6 +281,12 @@ fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> vec3<f
 // `tint` and occlusion `occl` (x: of the sun, y: of the ambient light; see `occlusion`), ready
 // to store in the target (sRGB-encoded when the target is not an sRGB format).
 fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl: vec2<f32>) -> vec3<f32> {
+    return shade_through(r, world, n, h, tint, occl, air_at(r, world));
+}
+
+// `shade` with the air between the eye and `world` given (`air_at` there, or interpolated from
+// the vertices around it).
+fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl: vec2<f32>, air: Air) -> vec3<f32> {
     let blog = r.look.z == PALETTE_BLOG;
     var albedo: vec3<f32>;
     if blog {
@@ -307,5 +332,5 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, o
         let w = water_surface(r, world, lit, occl.x);
         return to_target(r, fog(r, w[0], w[1]));
     }
-    return to_target(r, fog(r, lit, world));
+    return to_target(r, lit * air.keep + air.light);
 }
