@@ -1180,7 +1180,12 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     assert_eq!(
         files_in(&out),
-        ["landscape.csv", "landscape.png", "landscape.svg", "look.csv"]
+        [
+            "landscape.csv",
+            "landscape.png",
+            "landscape.svg",
+            "look.csv"
+        ]
     );
     // The look's cost: each part off in turn on the first view, and the light bake.
     let look: Vec<Vec<&str>> = look
@@ -1191,8 +1196,14 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         .collect();
     assert_eq!(look.len(), 7, "{look:?}");
     assert_eq!(look[0][1], "everything on");
-    assert!(look[0][4].parse::<f64>().unwrap() > 0.0, "light bake: {look:?}");
-    assert!(look.iter().all(|r| r[2].parse::<f64>().unwrap() > 0.0), "{look:?}");
+    assert!(
+        look[0][4].parse::<f64>().unwrap() > 0.0,
+        "light bake: {look:?}"
+    );
+    assert!(
+        look.iter().all(|r| r[2].parse::<f64>().unwrap() > 0.0),
+        "{look:?}"
+    );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
     // Three views at two knobs, the four ray casters on each view, and two flights.

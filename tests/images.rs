@@ -178,11 +178,7 @@ fn golden_landscape_with_its_look() {
         ("the fog doubled", hazy),
         ("the blog palette", blog),
     ] {
-        let (_, m, _) = flip_sized(
-            expected.as_raw(),
-            &render_landscape(&gpu, params),
-            (LW, LH),
-        );
+        let (_, m, _) = flip_sized(expected.as_raw(), &render_landscape(&gpu, params), (LW, LH));
         eprintln!("control, {what}: FLIP mean {m:.4}");
         assert!(
             m > LANDSCAPE_FLIP_MEAN,

@@ -188,7 +188,7 @@ fn shadows_agree_with_f64_rays_towards_the_sun_for_high_low_and_grazing_suns() {
 #[test]
 fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
     let gpu = common::gpu();
-    let elevation = 8.0;
+    let elevation: f32 = 8.0;
     let (a, b) = (200.0, 290.0);
     let wa = baked(&gpu, params(a, elevation));
     let la = light(&gpu, &wa);
@@ -208,7 +208,7 @@ fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
     assert_eq!(texels_baked, 0, "turning the sun re-baked heights");
     let lb = light(&gpu, &wb);
     let first = wa.clipmap().first_drawn();
-    let e = (elevation as f32).to_radians();
+    let e = elevation.to_radians();
     let (pa, pb) = (texels(&wa, &la, first), texels(&wb, &lb, first));
     let moved = pa
         .iter()

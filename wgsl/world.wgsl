@@ -69,9 +69,6 @@ struct VertexOut {
     // The light bake's (horizon, valley), interpolated the same way: the horizon is continuous
     // over the ground, so the shadow's edge falls between vertices where it should.
     @location(2) light: vec2<f32>,
-    // The air between the eye and the vertex (shade.wgsl, air_at): smooth over the ground.
-    @location(3) air_keep: vec3<f32>,
-    @location(4) air_light: vec3<f32>,
 }
 
 // The level's texel `ij` (clamped to the level), of the heights (light false) or the light.
@@ -145,9 +142,6 @@ fn vs_main(
     out.rel = rel;
     out.sample = s;
     out.light = light;
-    let air = air_at(r, rel);
-    out.air_keep = air.keep;
-    out.air_light = air.light;
     return out;
 }
 
@@ -157,8 +151,5 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Gradient per metre of normalised height, to a unit normal in metres.
     let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));
     let occl = occlusion(r, s.x, in.light.x, in.light.y);
-    var air: Air;
-    air.keep = in.air_keep;
-    air.light = in.air_light;
-    return vec4<f32>(shade_through(r, in.rel, n, s.x, s.w, occl, air), 1.0);
+    return vec4<f32>(shade(r, in.rel, n, s.x, s.w, occl), 1.0);
 }
