@@ -24,7 +24,10 @@
 //! for a landscape in metres seen from inside: geometry clipmap levels ([`clipmap`]) baked by
 //! strips as the camera moves ([`World::encode_bake`] takes the view, and bakes within a
 //! per-frame budget, [`World::set_bake_budget`]), drawn as patch rings morphing into each other
-//! without cracks, sized by a screen-space error knob.
+//! without cracks, sized by a screen-space error knob. Its look is one shading path for every
+//! method: an analytic sky, sun and aerial perspective ([`sky`]), soft sun shadows and valley
+//! occlusion from a light bake beside the levels ([`light`]), water, and the palettes
+//! ([`palette`]).
 //!
 //! Every way of drawing a frame is a [`Method`] value from one list: the mesh, the seed's
 //! heightfield ray march (compute or fragment, optionally band-limited), and the reference ray

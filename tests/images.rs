@@ -45,18 +45,22 @@ fn rgb(rgba: &[u8]) -> Vec<u8> {
     rgba.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
 }
 
-fn save(path: &PathBuf, rgb: &[u8]) {
-    image::save_buffer(path, rgb, W, H, image::ColorType::Rgb8).unwrap();
-}
-
-#[test]
-fn golden_default_scene() {
-    let gpu = common::gpu();
-    let actual = rgb(&render(&gpu, scene()));
+/// A golden-image check: `actual` (RGB8 of `size`) against `tests/images/{name}.png` with
+/// FLIP mean at most `threshold`, each of `controls` (what changed, its image) above it; on
+/// failure `-actual.png` and `-difference.png` are written beside the reference.
+/// `RELIEF_UPDATE_IMAGES=1` writes the reference instead.
+fn golden(
+    name: &str,
+    actual: &[u8],
+    size: (u32, u32),
+    threshold: f32,
+    controls: &mut dyn Iterator<Item = (&'static str, Vec<u8>)>,
+) {
+    let (w, h) = size;
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/images");
-    let reference = dir.join("default-256x192.png");
+    let reference = dir.join(format!("{name}.png"));
     if std::env::var_os("RELIEF_UPDATE_IMAGES").is_some() {
-        save(&reference, &actual);
+        image::save_buffer(&reference, actual, w, h, image::ColorType::Rgb8).unwrap();
         eprintln!("wrote {}", reference.display());
         return;
     }
@@ -68,11 +72,37 @@ fn golden_default_scene() {
             )
         })
         .into_rgb8();
-    assert_eq!((expected.width(), expected.height()), (W, H));
-    let (error, mean, p99) = flip(expected.as_raw(), &actual);
-    eprintln!("golden image FLIP: mean {mean:.4}, p99 {p99:.4}");
-    // Negative controls: the threshold below must reject small real changes.
-    for (what, params) in [
+    assert_eq!((expected.width(), expected.height()), size);
+    let (error, mean, p99) = flip_sized(expected.as_raw(), actual, size);
+    eprintln!("{name}: FLIP mean {mean:.4}, p99 {p99:.4}");
+    // Negative controls: the threshold must reject small real changes.
+    for (what, image) in controls {
+        let (_, m, _) = flip_sized(expected.as_raw(), &image, size);
+        eprintln!("control, {what}: FLIP mean {m:.4}");
+        assert!(
+            m > threshold,
+            "{name}: the threshold cannot see {what} (FLIP mean {m})"
+        );
+    }
+    if mean > threshold {
+        let save = |suffix: &str, rgb: &[u8]| {
+            let path = dir.join(format!("{name}-{suffix}.png"));
+            image::save_buffer(path, rgb, w, h, image::ColorType::Rgb8).unwrap();
+        };
+        save("actual", actual);
+        save(
+            "difference",
+            &error.apply_color_lut(&nv_flip::magma_lut()).to_vec(),
+        );
+        panic!("{name} differs: FLIP mean {mean:.4} > {threshold} (see tests/images/{name}-actual.png, -difference.png)");
+    }
+}
+
+#[test]
+fn golden_default_scene() {
+    let gpu = common::gpu();
+    let actual = rgb(&render(&gpu, scene()));
+    let controls = [
         (
             "snow height 0.63 -> 0.60",
             TerrainParams {
@@ -87,27 +117,16 @@ fn golden_default_scene() {
                 ..scene()
             },
         ),
-    ] {
-        let (_, m, _) = flip(expected.as_raw(), &rgb(&render(&gpu, params)));
-        eprintln!("control, {what}: FLIP mean {m:.4}");
-        assert!(
-            m > GOLDEN_FLIP_MEAN,
-            "the golden threshold cannot see a change of {what} (FLIP mean {m})"
-        );
-    }
-    if mean > GOLDEN_FLIP_MEAN {
-        save(&dir.join("default-256x192-actual.png"), &actual);
-        let diff = error.apply_color_lut(&nv_flip::magma_lut());
-        image::save_buffer(
-            dir.join("default-256x192-difference.png"),
-            &diff.to_vec(),
-            W,
-            H,
-            image::ColorType::Rgb8,
-        )
-        .unwrap();
-        panic!("golden image differs: FLIP mean {mean:.4} > {GOLDEN_FLIP_MEAN} (see tests/images/*-actual.png, *-difference.png)");
-    }
+    ];
+    golden(
+        "default-256x192",
+        &actual,
+        (W, H),
+        GOLDEN_FLIP_MEAN,
+        &mut controls
+            .into_iter()
+            .map(|(what, p)| (what, rgb(&render(&gpu, p)))),
+    );
 }
 
 /// Size of the landscape's golden image.
@@ -143,24 +162,6 @@ fn render_landscape(gpu: &Gpu, params: WorldParams) -> Vec<u8> {
 fn golden_landscape_with_its_look() {
     let gpu = common::gpu();
     let actual = render_landscape(&gpu, landscape());
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/images");
-    let reference = dir.join("landscape-256x144.png");
-    if std::env::var_os("RELIEF_UPDATE_IMAGES").is_some() {
-        image::save_buffer(&reference, &actual, LW, LH, image::ColorType::Rgb8).unwrap();
-        eprintln!("wrote {}", reference.display());
-        return;
-    }
-    let expected = image::open(&reference)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{}: {e} (RELIEF_UPDATE_IMAGES=1 creates it)",
-                reference.display()
-            )
-        })
-        .into_rgb8();
-    assert_eq!((expected.width(), expected.height()), (LW, LH));
-    let (error, mean, p99) = flip_sized(expected.as_raw(), &actual, (LW, LH));
-    eprintln!("landscape golden image FLIP: mean {mean:.4}, p99 {p99:.4}");
     let base = landscape();
     let mut turned = base;
     turned.sky.sun_azimuth += 15.0;
@@ -172,46 +173,24 @@ fn golden_landscape_with_its_look() {
         palette: relief::palette::Palette::Blog,
         ..base
     };
-    for (what, params) in [
+    let controls = [
         ("the sun turned 15°", turned),
         ("the water 200 m higher", flooded),
         ("the fog doubled", hazy),
         ("the blog palette", blog),
-    ] {
-        let (_, m, _) = flip_sized(expected.as_raw(), &render_landscape(&gpu, params), (LW, LH));
-        eprintln!("control, {what}: FLIP mean {m:.4}");
-        assert!(
-            m > LANDSCAPE_FLIP_MEAN,
-            "the landscape's threshold cannot see {what} (FLIP mean {m})"
-        );
-    }
-    if mean > LANDSCAPE_FLIP_MEAN {
-        image::save_buffer(
-            dir.join("landscape-256x144-actual.png"),
-            &actual,
-            LW,
-            LH,
-            image::ColorType::Rgb8,
-        )
-        .unwrap();
-        let diff = error.apply_color_lut(&nv_flip::magma_lut());
-        image::save_buffer(
-            dir.join("landscape-256x144-difference.png"),
-            &diff.to_vec(),
-            LW,
-            LH,
-            image::ColorType::Rgb8,
-        )
-        .unwrap();
-        panic!("landscape golden image differs: FLIP mean {mean:.4} > {LANDSCAPE_FLIP_MEAN} (see tests/images/landscape-*-actual.png, *-difference.png)");
-    }
+    ];
+    golden(
+        "landscape-256x144",
+        &actual,
+        (LW, LH),
+        LANDSCAPE_FLIP_MEAN,
+        &mut controls
+            .into_iter()
+            .map(|(what, p)| (what, render_landscape(&gpu, p))),
+    );
 }
 
-/// FLIP error map, mean and p99 of `test` against `reference` (both W x H RGB8).
-fn flip(reference: &[u8], test: &[u8]) -> (nv_flip::FlipImageFloat, f32, f32) {
-    flip_sized(reference, test, (W, H))
-}
-
+/// FLIP error map, mean and p99 of `test` against `reference` (both RGB8 of the size).
 fn flip_sized(
     reference: &[u8],
     test: &[u8],

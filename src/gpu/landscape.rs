@@ -134,14 +134,11 @@ impl LandscapeBake {
             &module,
             "landscape_bake_main",
         );
-        let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
-        let stride = (std::mem::size_of::<LandscapeUniforms>() as u64).next_multiple_of(align);
-        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("relief:landscape-bake:uniforms"),
-            size: stride * MAX_RECTS as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let (uniforms, stride) = super::slot_buffer::<LandscapeUniforms>(
+            device,
+            "relief:landscape-bake:uniforms",
+            MAX_RECTS,
+        );
         Self {
             pipeline,
             layout,
@@ -228,14 +225,14 @@ impl LandscapeBake {
         if rects.is_empty() {
             return 0;
         }
-        let mut bytes = vec![0u8; self.stride as usize * rects.len()];
-        for (i, r) in rects.iter().enumerate() {
-            let u = LandscapeUniforms::new(land, r, target.wrap);
-            let at = i * self.stride as usize;
-            bytes[at..at + std::mem::size_of::<LandscapeUniforms>()]
-                .copy_from_slice(bytemuck::bytes_of(&u));
-        }
-        queue.write_buffer(&self.uniforms, 0, &bytes);
+        super::write_slots(
+            queue,
+            &self.uniforms,
+            self.stride,
+            rects
+                .iter()
+                .map(|r| LandscapeUniforms::new(land, r, target.wrap)),
+        );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:landscape-bake:pass"),
             timestamp_writes: timestamps,

@@ -552,6 +552,39 @@ pub(crate) fn render_pipeline(
     })
 }
 
+/// A uniform buffer of `count` slots of `T`, each at a multiple of the device's dynamic-offset
+/// alignment: one dispatch's uniforms per slot. Returns the buffer and the slot stride.
+pub(crate) fn slot_buffer<T>(
+    device: &wgpu::Device,
+    label: &str,
+    count: usize,
+) -> (wgpu::Buffer, u64) {
+    let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
+    let stride = (std::mem::size_of::<T>() as u64).next_multiple_of(align);
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: stride * count as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    (buffer, stride)
+}
+
+/// Writes `items` into the slots of a [`slot_buffer`] of `stride`, from the first.
+pub(crate) fn write_slots<T: bytemuck::Pod>(
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    stride: u64,
+    items: impl ExactSizeIterator<Item = T>,
+) {
+    let mut bytes = vec![0u8; stride as usize * items.len()];
+    for (i, item) in items.enumerate() {
+        let at = i * stride as usize;
+        bytes[at..at + std::mem::size_of::<T>()].copy_from_slice(bytemuck::bytes_of(&item));
+    }
+    queue.write_buffer(buffer, 0, &bytes);
+}
+
 pub(crate) fn compute_pipeline(
     device: &wgpu::Device,
     label: &str,

@@ -827,9 +827,23 @@ fn level_texture(
     bake: &LandscapeBake,
     map: &Clipmap,
 ) -> (wgpu::Texture, LevelTarget) {
+    let texture = level_array(device, "relief:world:levels", LandscapeBake::FORMAT, map);
+    let view = array_view(&texture);
+    let target = bake.bind(device, &view, map.side());
+    (texture, target)
+}
+
+/// A texture array of one side x side layer per level of `map`, written in compute and read
+/// by the render pass.
+fn level_array(
+    device: &wgpu::Device,
+    label: &str,
+    format: wgpu::TextureFormat,
+    map: &Clipmap,
+) -> wgpu::Texture {
     let side = map.side();
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("relief:world:levels"),
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
         size: wgpu::Extent3d {
             width: side,
             height: side,
@@ -838,15 +852,12 @@ fn level_texture(
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: LandscapeBake::FORMAT,
+        format,
         usage: wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
-    });
-    let view = array_view(&texture);
-    let target = bake.bind(device, &view, side);
-    (texture, target)
+    })
 }
 
 /// The light bake's texture array (one layer per level, as the heights) and what writes it.
@@ -866,23 +877,7 @@ impl LevelLight {
         heights: &wgpu::Texture,
         map: &Clipmap,
     ) -> Self {
-        let side = map.side();
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("relief:world:light"),
-            size: wgpu::Extent3d {
-                width: side,
-                height: side,
-                depth_or_array_layers: map.levels.len() as u32,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: LightBake::FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = level_array(device, "relief:world:light", LightBake::FORMAT, map);
         let bind_group = bake.bind(device, &array_view(heights), &array_view(&texture));
         Self {
             texture,

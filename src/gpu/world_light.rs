@@ -182,14 +182,8 @@ impl LightBake {
             super::compute_pipeline(device, "relief:world-light", &layout, &module, "light_main");
         let uniforms =
             super::uniform_buffer::<LightUniforms>(device, "relief:world-light:uniforms");
-        let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
-        let stride = (std::mem::size_of::<LightRect>() as u64).next_multiple_of(align);
-        let rects = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("relief:world-light:rects"),
-            size: stride * MAX_LIGHT_RECTS as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let (rects, stride) =
+            super::slot_buffer::<LightRect>(device, "relief:world-light:rects", MAX_LIGHT_RECTS);
         Self {
             pipeline,
             layout,
@@ -251,12 +245,7 @@ impl LightBake {
             return 0;
         }
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(uniforms));
-        let mut bytes = vec![0u8; self.stride as usize * rects.len()];
-        for (i, r) in rects.iter().enumerate() {
-            let at = i * self.stride as usize;
-            bytes[at..at + std::mem::size_of::<LightRect>()].copy_from_slice(bytemuck::bytes_of(r));
-        }
-        queue.write_buffer(&self.rects, 0, &bytes);
+        super::write_slots(queue, &self.rects, self.stride, rects.iter().copied());
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:world-light:pass"),
             timestamp_writes: timestamps,
