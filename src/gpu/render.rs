@@ -68,7 +68,7 @@ pub struct RenderUniforms {
     /// normalised height; w unused.
     pub water_origin: [f32; 4],
     /// The look: x, 1 when the terrain casts shadows (`shade`'s caller passes the horizon);
-    /// y, the sun's elevation in radians; z, the palette ([`crate::light::Palette::code`]: 0
+    /// y, the sun's elevation in radians; z, the palette ([`crate::palette::Palette::code`]: 0
     /// the blog's, 1 the seed template's materials and lighting, tone-mapped); w unused.
     pub look: [f32; 4],
 }
