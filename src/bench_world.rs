@@ -110,6 +110,11 @@ pub struct WorldRow {
     pub unresolved: Option<usize>,
     /// The reference's row: FLIP mean and 99th percentile of its 3x3 image against 8x8.
     pub converged: Option<(f64, f64)>,
+    /// Mean GPU time of the light pass (shadows and valley occlusion of the texels baked) per
+    /// timed frame (frames that lit nothing count as 0), and the largest, ms.
+    pub light_ms_mean: Option<f64>,
+    /// Largest light pass time, ms.
+    pub light_ms_max: Option<f64>,
 }
 
 impl WorldRow {
@@ -141,11 +146,13 @@ impl WorldRow {
             bake_max_ms: slot(Slot::Bake).reduce(f64::max),
             wall_ms: median(wall.to_vec()).unwrap_or(0.0),
             texels_mean: mean_texels(timed),
-            bake_ms_mean: mean_bake(times),
+            bake_ms_mean: mean_slot(times, Slot::Bake),
             flip: None,
             coverage: None,
             unresolved: None,
             converged: None,
+            light_ms_mean: mean_slot(times, Slot::Light),
+            light_ms_max: slot(Slot::Light).reduce(f64::max),
         }
     }
 
@@ -172,6 +179,8 @@ impl WorldRow {
             coverage: None,
             unresolved: None,
             converged: None,
+            light_ms_mean: None,
+            light_ms_max: None,
         }
     }
 
@@ -479,11 +488,11 @@ fn mean_texels(texels: &[u64]) -> f64 {
     texels.iter().sum::<u64>() as f64 / texels.len().max(1) as f64
 }
 
-fn mean_bake(times: &[crate::gpu::timing::Timings]) -> Option<f64> {
+fn mean_slot(times: &[crate::gpu::timing::Timings], slot: Slot) -> Option<f64> {
     (!times.is_empty()).then(|| {
         times
             .iter()
-            .map(|t| t[Slot::Bake as usize].unwrap_or(0.0))
+            .map(|t| t[slot as usize].unwrap_or(0.0))
             .sum::<f64>()
             / times.len() as f64
     })
@@ -499,7 +508,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         "# relief bench --world endless on {device}, {}x{}, {} timed frames after {} ms warm-up\n",
         options.width, options.height, options.frames, options.warmup_ms
     );
-    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99\n");
+    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max\n");
     for r in rows {
         let mesh = r.method == Method::Mesh;
         // Mesh-only columns are empty for the ray casters.
@@ -532,6 +541,8 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
             r.unresolved.map_or(String::new(), |u| u.to_string()),
             opt(r.converged.map(|f| f.0)),
             opt(r.converged.map(|f| f.1)),
+            opt(r.light_ms_mean),
+            opt(r.light_ms_max),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');
