@@ -149,11 +149,12 @@ fn light_main(@builtin(global_invocation_id) id: vec3<u32>) {
     u.feature_log2 = light.feature_log2;
     u.level_log2 = lk.spacing_log2;
     u.octaves = u32(clamp(light.feature_log2 - lk.spacing_log2, 0, i32(light.total_octaves)));
-    let h_own = light.peak * landscape_sample(s, u, CHANNEL_HEIGHT).x;
+    // The texel's own height (`h`) is this evaluation at offset 0, baked: read, not evaluated
+    // again.
     for (var i = 1u; i <= u32(2.0 * NEAR); i++) {
         let d = 0.5 * f32(i);
         let at = light.peak * landscape_sample_at(s, d * light.sun, u, CHANNEL_HEIGHT).x;
-        slope = max(slope, (at - h_own) / (d * spacing));
+        slope = max(slope, (at - h) / (d * spacing));
     }
     var t = NEAR * spacing;
     let growth = 1.0 / light.steps;
