@@ -223,8 +223,11 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         world = Some(w);
         (m, uniforms)
     } else {
-        let t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        let mut t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
         let view = OrbitCamera::default().view(width as f32 / height as f32);
+        // The screen-error bound's pixels, and one still frame: every level baked at once.
+        t.set_viewport((width, height));
+        t.set_bake_budget(u64::MAX);
         // The host's own geometry sits on the terrain: relief answers where the ground is.
         let ground = t.height_at(0.0, 0.0);
         terrain = Some((t, view));
@@ -264,7 +267,8 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
     // The host's frame: its encoder, its pass, its depth buffer; relief records into them.
     let mut encoder = device.create_command_encoder(&Default::default());
     if let Some((t, view)) = &mut terrain {
-        t.encode_bake(&mut encoder);
+        t.encode_bake(device, queue, &mut encoder, view)
+            .map_err(|e| e.to_string())?;
         t.prepare(queue, view);
     }
     queue.write_buffer(

@@ -349,9 +349,15 @@ fn mesh_row(
         config.params,
     )?;
     let color_view = target.color.create_view(&Default::default());
+    terrain.set_viewport((options.width, options.height));
+    headless::bake_whole(gpu, &mut terrain, view, None)?;
+    let mut failed = None;
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
+        // The tile's textures each frame, as the blog bakes; the mesh's levels stay baked.
         terrain.invalidate();
-        terrain.encode_bake_timed(encoder, timer);
+        if let Err(e) = terrain.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer) {
+            failed.get_or_insert(e);
+        }
         terrain.prepare(&gpu.queue, view);
         let clear = crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
         let mut pass = target.begin_pass(
@@ -362,6 +368,9 @@ fn mesh_row(
         );
         terrain.render(&mut pass);
     })?;
+    if let Some(e) = failed {
+        return Err(e);
+    }
     let slot = |s: Slot| {
         times
             .iter()

@@ -1400,6 +1400,7 @@ fn render(
     let gpu = Gpu::new()?;
     let timer = timer_if(timings, &gpu);
     let view = tile_view(camera, (width, height));
+    let mut drawn = None;
     let (pixels, t) = if method == crate::Method::Mesh {
         let mut terrain = Terrain::new(
             &gpu.device,
@@ -1407,14 +1408,16 @@ fn render(
             Offscreen::targets(RENDER_SAMPLES),
             *params,
         )?;
-        headless::render_image(
+        let frame = headless::render_image(
             &gpu,
             &mut terrain,
             &view,
             (width, height),
             TILE,
             timer.as_ref(),
-        )?
+        )?;
+        drawn = Some(terrain.world().stats());
+        frame
     } else {
         headless::render_rays(
             &gpu,
@@ -1430,19 +1433,11 @@ fn render(
         print_timings(&gpu, t);
     }
     if stats {
-        // The tile: one grid, baked whole once.
-        let mesh = method == crate::Method::Mesh;
-        let cells = u64::from(params.grid - 1);
-        println!("triangles {}", if mesh { 2 * cells * cells } else { 0 });
-        println!(
-            "texels_baked {}",
-            if mesh {
-                u64::from(params.size).pow(2)
-            } else {
-                0
-            }
-        );
-        println!("levels 1");
+        // The mesh's levels (the clipmap renderer's stats); the ray casters draw no triangles.
+        match drawn {
+            Some(s) => s.lines().iter().for_each(|l| println!("{l}")),
+            None => println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0"),
+        }
     }
     write_png(out, width, height, image::ColorType::Rgba8, &pixels)
 }

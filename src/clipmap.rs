@@ -601,6 +601,7 @@ mod tests {
             feature_log2: 10,
             peak_height: 600.0,
             terrain: TerrainFn::Fbm,
+            period: 0,
         }
     }
 

@@ -79,6 +79,10 @@ pub struct Landscape {
     pub peak_height: f64,
     /// How the octaves are summed.
     pub terrain: TerrainFn,
+    /// 0 for an endless landscape; otherwise octave 0's lattice cells per period: octave `o`'s
+    /// lattice wraps every `period << o` cells, so the terrain repeats every `period` cells of
+    /// octave 0 (the seed blog's tile is one period).
+    pub period: u32,
 }
 
 /// A normalised height with its gradient per metre, and its Hessian-free companions.
@@ -122,12 +126,30 @@ pub fn cell_noise_hessian(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64
 /// Gradient noise at lattice position `p` (any real value; corners hashed as wrapping 32-bit
 /// integers): value, gradient and Hessian in lattice units.
 pub fn noise(p: [f64; 2], stream: u32) -> (f64, [f64; 2], [f64; 3]) {
+    periodic_noise(p, stream, 0)
+}
+
+/// [`noise`] on a lattice that wraps every `period` cells (0: at 2^32, as [`noise`]).
+pub fn periodic_noise(p: [f64; 2], stream: u32, period: u32) -> (f64, [f64; 2], [f64; 3]) {
     let fl = [p[0].floor(), p[1].floor()];
     let f = [p[0] - fl[0], p[1] - fl[1]];
-    // Wrapping to u32 exactly as the GPU's bitcast of an i32 cell does.
-    let x0 = (fl[0] as i64) as u32;
-    let y0 = (fl[1] as i64) as u32;
-    let (x1, y1) = (x0.wrapping_add(1), y0.wrapping_add(1));
+    // Wrapping to u32 exactly as the GPU's bitcast of an i32 cell does, or into the period.
+    let wrap = |c: f64| {
+        if period == 0 {
+            (c as i64) as u32
+        } else {
+            (c as i64).rem_euclid(i64::from(period)) as u32
+        }
+    };
+    let (x0, y0) = (wrap(fl[0]), wrap(fl[1]));
+    let next = |c: u32| {
+        if period == 0 {
+            c.wrapping_add(1)
+        } else {
+            (c + 1) % period
+        }
+    };
+    let (x1, y1) = (next(x0), next(y0));
     let g = [
         gradient(lattice_hash(x0, y0, stream)),
         gradient(lattice_hash(x1, y0, stream)),
@@ -138,6 +160,16 @@ pub fn noise(p: [f64; 2], stream: u32) -> (f64, [f64; 2], [f64; 3]) {
 }
 
 impl Landscape {
+    /// Octave `o`'s lattice period in cells (0: endless).
+    pub fn period_of(&self, o: u32) -> u32 {
+        self.period.checked_shl(o).unwrap_or(0)
+    }
+
+    /// The length in metres after which the terrain repeats (`None`: endless).
+    pub fn period_metres(&self) -> Option<f64> {
+        (self.period != 0).then(|| f64::from(self.period) * self.cell(0))
+    }
+
     /// Octave `o`'s lattice cell in metres.
     pub fn cell(&self, o: u32) -> f64 {
         2f64.powi(self.feature_log2 - o as i32)
@@ -182,7 +214,11 @@ impl Landscape {
         let mut amplitude = 1.0;
         for o in 0..octaves.min(self.octaves) {
             let freq = 1.0 / self.cell(o);
-            let (n, g, h) = noise([x * freq, z * freq], noise_stream(self.seed, channel, o));
+            let (n, g, h) = periodic_noise(
+                [x * freq, z * freq],
+                noise_stream(self.seed, channel, o),
+                self.period_of(o),
+            );
             if eroded {
                 acc = [acc[0] + g[0], acc[1] + g[1]];
                 dacc = [
@@ -291,6 +327,7 @@ mod tests {
             feature_log2: 11,
             peak_height: 900.0,
             terrain,
+            period: 0,
         }
     }
 

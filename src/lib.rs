@@ -62,9 +62,11 @@
 //!     sample_count: 1,
 //! };
 //! let mut terrain = relief::Terrain::new(device, queue, targets, relief::TerrainParams::default())?;
+//! terrain.set_viewport((1280, 720)); // the target's pixels (the mesh's screen-error bound)
 //! // Each frame:
-//! terrain.encode_bake(encoder); // no-op unless parameters changed
-//! terrain.prepare(queue, &relief::OrbitCamera::default().view(16.0 / 9.0));
+//! let view = relief::OrbitCamera::default().view(1280.0 / 720.0);
+//! terrain.encode_bake(device, queue, encoder, &view)?; // what the camera uncovered, if anything
+//! terrain.prepare(queue, &view);
 //! terrain.render(pass); // inside the host's render pass
 //! # Ok(()) }
 //! ```
@@ -96,6 +98,7 @@ pub mod raycast;
 pub mod scene;
 pub mod sky;
 pub mod table;
+pub mod tile;
 pub mod world;
 
 pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};

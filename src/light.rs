@@ -116,6 +116,7 @@ mod tests {
             feature_log2: 8,
             peak_height: 150.0,
             terrain: TerrainFn::Fbm,
+            period: 0,
         };
         let slope = *land.slope_bounds().last().unwrap();
         let lit = |e: f64| {

@@ -47,7 +47,7 @@ pub fn mesh_height(texels: &[f64], size: u32, grid: u32, u: f64, v: f64) -> f64 
 }
 
 /// Bilinear, wrap-around read of a `size` x `size` texel grid at tile position (u, v), with
-/// texel centres at (i + 0.5) / size, as `wgsl/render.wgsl` reads the terrain texture.
+/// texel centres at (i + 0.5) / size, as the tile's bake writes them.
 pub fn bilinear_wrap(texels: &[f64], size: u32, u: f64, v: f64) -> f64 {
     let n = i64::from(size);
     let (x, y) = (u * n as f64 - 0.5, v * n as f64 - 0.5);

@@ -85,6 +85,7 @@ impl Default for WorldParams {
                 feature_log2: 12,
                 peak_height: 2400.0,
                 terrain: TerrainFn::Eroded,
+                period: 0,
             },
             pixel_error: 1.0,
             snow_height: 0.63,

@@ -276,7 +276,7 @@ fn rebakes_only_what_changed_and_height_at_agrees() {
     let (mut terrain, baked) = common::bake(&gpu, params);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     assert!(
-        !terrain.encode_bake(&mut encoder),
+        !terrain.encode_textures(&mut encoder, None),
         "nothing changed: nothing to record"
     );
     let dirty = terrain
@@ -290,7 +290,7 @@ fn rebakes_only_what_changed_and_height_at_agrees() {
         )
         .unwrap();
     assert!(
-        !dirty.any_gpu_work() && !terrain.encode_bake(&mut encoder),
+        !dirty.any_gpu_work() && !terrain.encode_textures(&mut encoder, None),
         "snow is shading only"
     );
     let dirty = terrain
@@ -307,7 +307,7 @@ fn rebakes_only_what_changed_and_height_at_agrees() {
         dirty.normals && !dirty.bake,
         "height scale re-runs only the normal pass"
     );
-    assert!(terrain.encode_bake(&mut encoder));
+    assert!(terrain.encode_textures(&mut encoder, None));
     // A refused change keeps the old parameters.
     let before = *terrain.params();
     assert!(terrain

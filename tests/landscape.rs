@@ -49,6 +49,7 @@ fn gpu_landscape_matches_the_twin_anywhere() {
             feature_log2: 11,
             peak_height: 1200.0,
             terrain,
+            period: 0,
         };
         // Near the origin (negative samples too), and 10^6 m out at a 0.25 m spacing.
         for (level_log2, origin) in [

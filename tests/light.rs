@@ -29,6 +29,7 @@ fn params(azimuth: f32, elevation: f32) -> WorldParams {
             feature_log2: 8,
             peak_height: 150.0,
             terrain: TerrainFn::Fbm,
+            period: 0,
         },
         pixel_error: 2.0,
         sky: Sky {

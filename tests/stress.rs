@@ -168,8 +168,12 @@ fn a_thousand_random_changes_leave_no_trace() {
     let frame = |terrain: &mut Terrain, camera: &OrbitCamera| {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&Default::default());
-        terrain.encode_bake(&mut encoder);
-        terrain.prepare(&queue, &camera.view(64.0 / 48.0));
+        let view = camera.view(64.0 / 48.0);
+        terrain.set_viewport((64, 48));
+        terrain
+            .encode_bake(&device, &queue, &mut encoder, &view)
+            .unwrap();
+        terrain.prepare(&queue, &view);
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("stress:pass"),

@@ -101,7 +101,7 @@ fn uniform_structs_match_wgsl() {
         offset_of!(NormalUniforms, texel_world)
     );
 
-    let render = parse("render", &shader::compose(&[shader::SHADE, shader::RENDER]));
+    let render = parse("world", &shader::compose(&[shader::SHADE, shader::WORLD]));
     let (size, m) = layout(&render, "RenderUniforms");
     assert_eq!(size as usize, size_of::<RenderUniforms>());
     assert_eq!(

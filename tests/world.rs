@@ -21,6 +21,7 @@ fn params() -> WorldParams {
             feature_log2: 8,
             peak_height: 150.0,
             terrain: TerrainFn::Fbm,
+            period: 0,
         },
         pixel_error: 16.0,
         ..WorldParams::default()

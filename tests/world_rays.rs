@@ -22,6 +22,7 @@ fn params(terrain: TerrainFn) -> WorldParams {
             feature_log2: 8,
             peak_height: 150.0,
             terrain,
+            period: 0,
         },
         pixel_error: 16.0,
         ..WorldParams::default()

@@ -25,11 +25,38 @@ struct LandscapeUniforms {
     gain: f32,
     feature_log2: i32,
     level_log2: i32,
-    _pad: u32,
+    // 0: endless; else octave 0's lattice cells per period (octave o wraps at period << o).
+    period: u32,
 }
 
-// Gradient noise at cell `cell` (wrapping) and offset `f`: value, gradient and, for the eroded
-// terrain, the Hessian (xx, xy, yy), all in lattice units.
+// A lattice coordinate wrapped into `period` cells (0: as a wrapping 32-bit integer).
+fn wrap_cell(c: i32, period: u32) -> u32 {
+    if period == 0u {
+        return bitcast<u32>(c);
+    }
+    let p = i32(period);
+    return u32(((c % p) + p) % p);
+}
+
+// The next lattice coordinate after the wrapped `c`.
+fn next_cell(c: u32, period: u32) -> u32 {
+    if period == 0u {
+        return c + 1u;
+    }
+    return select(c + 1u, 0u, c + 1u == period);
+}
+
+// Octave `o`'s period in cells (0: endless).
+fn octave_period(period: u32, o: u32) -> u32 {
+    if o >= 32u {
+        return 0u;
+    }
+    return period << o;
+}
+
+// Gradient noise at cell `cell` (wrapping at 2^32, or into `period` cells when it is not 0) and
+// offset `f`: value, gradient and, for the eroded terrain, the Hessian (xx, xy, yy), all in
+// lattice units.
 struct NoiseD {
     value: f32,
     grad: vec2<f32>,
@@ -40,11 +67,11 @@ fn fade2(t: vec2<f32>) -> vec2<f32> {
     return 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
 }
 
-fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32) -> NoiseD {
-    let x0 = bitcast<u32>(cell.x);
-    let y0 = bitcast<u32>(cell.y);
-    let x1 = x0 + 1u;
-    let y1 = y0 + 1u;
+fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32, period: u32) -> NoiseD {
+    let x0 = wrap_cell(cell.x, period);
+    let y0 = wrap_cell(cell.y, period);
+    let x1 = next_cell(x0, period);
+    let y1 = next_cell(y0, period);
     let ga = gradient(lattice_hash(x0, y0, stream));
     let gb = gradient(lattice_hash(x1, y0, stream));
     let gc = gradient(lattice_hash(x0, y1, stream));
@@ -141,7 +168,7 @@ fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel
             let split = lattice_split(s, shift);
             let frac = split.frac + f * ldexp(1.0, -i32(shift));
             let whole = floor(frac);
-            let n = cell_noise_d(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o));
+            let n = cell_noise_d(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o), octave_period(u.period, o));
             // Lattice units to metres: a power of two, so exact.
             st = add_octave(st, n, ldexp(1.0, -cell_log2), amplitude, eroded);
         }

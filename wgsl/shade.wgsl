@@ -1,4 +1,4 @@
-// Shading shared by every way relief draws terrain (the mesh in render.wgsl and world.wgsl, the
+// Shading shared by every way relief draws terrain (the mesh in world.wgsl, the
 // ray casters in raymarch.wgsl and world_rays.wgsl, the sky pass in sky.wgsl): Blinn-Phong under
 // a directional sun with a noise-jittered snow line, in one of two palettes (src/palette.rs):
 // the blog's two colours with height ambient occlusion h^k, or the seed template's rock, grass

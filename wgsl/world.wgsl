@@ -25,6 +25,9 @@ struct Level {
     has_coarse: u32,
     // The eye in this level's samples, from its first sample.
     eye_local: vec2<f32>,
+    // The drawn bounds in this level's samples, from its first sample (x0, z0, x1, z1): vertices
+    // are clamped into them (the tile's square; huge for the endless world).
+    clip: vec4<f32>,
 }
 
 struct WorldUniforms {
@@ -125,7 +128,7 @@ fn vs_main(
         }
     }
     let odd = vec2<f32>(local & vec2<u32>(1u));
-    let p = vec2<f32>(local) - alpha * odd;
+    let p = clamp(vec2<f32>(local) - alpha * odd, lv.clip.xy, lv.clip.zw);
     let clv = w.levels[lv.coarse];
     let q = (vec2<f32>(lv.delta) + p) * 0.5;
     var s = sample_level(lv, p, false);

@@ -41,7 +41,7 @@ struct LightUniforms {
     terrain: u32,
     gain: f32,
     feature_log2: i32,
-    _pad0: u32,
+    period: u32,
     _pad1: u32,
     _pad2: u32,
     entries: array<LightLevel, 24>,
@@ -147,6 +147,7 @@ fn light_main(@builtin(global_invocation_id) id: vec3<u32>) {
     u.terrain = light.terrain;
     u.gain = light.gain;
     u.feature_log2 = light.feature_log2;
+    u.period = light.period;
     u.level_log2 = lk.spacing_log2;
     u.octaves = u32(clamp(light.feature_log2 - lk.spacing_log2, 0, i32(light.total_octaves)));
     // The texel's own height (`h`) is this evaluation at offset 0, baked: read, not evaluated

@@ -345,7 +345,16 @@ impl State {
                 Some(&*world)
             }
             _ => {
-                self.terrain.encode_bake_timed(&mut encoder, timer);
+                self.terrain.set_viewport(size);
+                if let Err(e) = self.terrain.encode_bake_timed(
+                    &self.device,
+                    &self.queue,
+                    &mut encoder,
+                    view,
+                    timer,
+                ) {
+                    log::warn!("{e}");
+                }
                 self.terrain.prepare(&self.queue, view);
                 None
             }

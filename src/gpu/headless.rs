@@ -244,7 +244,7 @@ pub fn bake_blocking(
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("relief:headless:bake"),
             });
-        terrain.encode_bake_timed(&mut encoder, timer);
+        terrain.encode_textures(&mut encoder, timer);
         if let Some(t) = timer {
             t.resolve(&mut encoder);
         }
@@ -259,6 +259,33 @@ pub fn bake_blocking(
             Ok(None)
         }
     }
+}
+
+/// Bakes everything `terrain` owes for `view` and waits for nothing: its textures and every
+/// level of its mesh the view needs, whatever the per-frame budget (a still frame is drawn
+/// whole, as the endless world's are). `timer` times the first pass.
+pub fn bake_whole(
+    gpu: &Gpu,
+    terrain: &mut Terrain,
+    view: &View,
+    timer: Option<&GpuTimer>,
+) -> Result<()> {
+    let budget = terrain.bake_budget();
+    terrain.set_bake_budget(u64::MAX);
+    let mut baked = Ok(false);
+    // More than one pass only where more strips wait than one pass's uniform slots hold;
+    // each is submitted on its own, as the passes share those slots.
+    for pass in 0..crate::clipmap::MAX_LEVELS {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let timed = timer.filter(|_| pass == 0);
+        baked = terrain.encode_bake_timed(&gpu.device, &gpu.queue, &mut encoder, view, timed);
+        gpu.queue.submit([encoder.finish()]);
+        if baked.is_err() || terrain.pending_texels() == 0 {
+            break;
+        }
+    }
+    terrain.set_bake_budget(budget);
+    baked.map(|_| ())
 }
 
 /// MSAA samples of `relief render` images and the window.
@@ -543,6 +570,8 @@ impl Offscreen {
     ) -> Result<(Vec<u8>, Option<Timings>)> {
         self.check_targets(terrain.targets())?;
         let clear = super::clear_color(terrain.shading().sky_color, Self::COLOR_FORMAT);
+        terrain.set_viewport((self.width, self.height));
+        bake_whole(gpu, terrain, view, timer)?;
         let terrain = std::cell::RefCell::new(terrain);
         self.frame(
             gpu,
@@ -550,7 +579,7 @@ impl Offscreen {
             timer,
             |encoder| {
                 let mut t = terrain.borrow_mut();
-                t.encode_bake_timed(encoder, timer);
+                t.encode_bake(&gpu.device, &gpu.queue, encoder, view)?;
                 t.prepare(&gpu.queue, view);
                 Ok(())
             },

@@ -33,8 +33,8 @@ pub struct LandscapeUniforms {
     pub feature_log2: i32,
     /// log2 of the grid's sample spacing in metres.
     pub level_log2: i32,
-    /// Padding to the WGSL struct's size.
-    pub _pad: u32,
+    /// 0: endless; else octave 0's lattice cells per period ([`Landscape::period`]).
+    pub period: u32,
 }
 
 /// One rectangle to bake.
@@ -67,7 +67,7 @@ impl LandscapeUniforms {
             gain: land.gain as f32,
             feature_log2: land.feature_log2,
             level_log2: rect.level_log2,
-            _pad: 0,
+            period: land.period,
         }
     }
 }

@@ -103,19 +103,56 @@ impl Textures {
 /// its bake into the host's encoder ([`Terrain::encode_bake`]), write per-frame uniforms
 /// ([`Terrain::prepare`]) and draw into the host's render pass ([`Terrain::render`]).
 /// It never creates a surface, submits or presents.
+///
+/// The seed blog's tile. Its mesh is drawn by the clipmap renderer of the endless world
+/// ([`world::World`]) on the tile's periodic landscape ([`crate::tile`]), bounded to the tile's
+/// square: levels of detail from the screen-space error, never finer than the `grid`. The
+/// tile's own textures (`size` texels a side: heights, colour channel, normals) are baked beside
+/// it for [`Terrain::textures`], `relief bake` and the ray-march methods.
 pub struct Terrain {
     params: TerrainParams,
-    shading: Shading,
     targets: Targets,
     textures: Textures,
     bake: bake::BakePass,
     normals: normals::NormalPass,
-    mesh: render::MeshPass,
-    sky: sky::SkyPass,
+    /// The mesh: the clipmap renderer on the tile's landscape.
+    world: world::World,
     pending: Dirty,
     /// The offset shown: `params.offset` (where the textures were baked) moved by
     /// [`Terrain::scroll_to`].
     shown_offset: [f64; 2],
+    /// The target's size in pixels (the screen-error bound's pixels).
+    viewport: (u32, u32),
+}
+
+/// The target size a [`Terrain`] lays its levels out for until [`Terrain::set_viewport`].
+pub const DEFAULT_VIEWPORT: (u32, u32) = (1920, 1080);
+
+/// The endless world's parameters and tile setup that draw `params` scrolled to `offset`.
+fn tile_world(
+    params: &TerrainParams,
+    offset: [f64; 2],
+) -> (crate::world::WorldParams, world::TileSetup) {
+    let frame = crate::tile::TileFrame::new(params, offset);
+    let world = crate::world::WorldParams {
+        land: frame.land,
+        pixel_error: 1.0,
+        snow_height: params.snow_height,
+        ao_exponent: params.ao_exponent,
+        sky: crate::sky::Sky {
+            fog: 0.0,
+            ..Default::default()
+        },
+        water_level: 0.0,
+        no_water: true,
+        palette: crate::palette::Palette::Blog,
+        no_shadows: true,
+    };
+    let setup = world::TileSetup {
+        region: frame.region(),
+        finest_log2: frame.grid_spacing_log2(params.grid),
+    };
+    (world, setup)
 }
 
 impl Terrain {
@@ -128,20 +165,20 @@ impl Terrain {
     ) -> Result<Self> {
         targets.validate()?;
         params.validate_for(&device.limits())?;
+        let (wp, setup) = tile_world(&params, params.offset);
+        let world = world::World::new_tile(device, targets, wp, setup)?;
         let mut terrain = scoped(device, || {
             let textures = Textures::new(device, params.size);
-            let mesh = render::MeshPass::new(device, &targets);
             Terrain {
                 params,
-                shading: Shading::default(),
                 targets,
                 bake: bake::BakePass::new(device),
                 normals: normals::NormalPass::new(device),
-                sky: sky::SkyPass::new(device, &targets, mesh.uniforms()),
-                mesh,
+                world,
                 textures,
                 pending: Dirty::ALL,
                 shown_offset: params.offset,
+                viewport: DEFAULT_VIEWPORT,
             }
         })
         .map_err(|e| size_too_big(params.size, e))?;
@@ -154,7 +191,6 @@ impl Terrain {
     fn bind(&mut self, device: &wgpu::Device) {
         self.bake.bind(device, &self.textures);
         self.normals.bind(device, &self.textures);
-        self.mesh.bind(device, &self.textures);
     }
 
     /// The current parameters.
@@ -169,17 +205,44 @@ impl Terrain {
 
     /// The current shading.
     pub fn shading(&self) -> &Shading {
-        &self.shading
+        self.world.shading()
     }
 
     /// Replaces the shading (lights and colours); nothing is re-baked.
     pub fn set_shading(&mut self, shading: Shading) {
-        self.shading = shading;
+        self.world.set_shading(shading);
+    }
+
+    /// The size in pixels of the target drawn into: the pixels of the mesh's screen-error
+    /// bound ([`DEFAULT_VIEWPORT`] until told).
+    pub fn set_viewport(&mut self, size: (u32, u32)) {
+        self.viewport = (size.0.max(1), size.1.max(1));
+    }
+
+    /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see
+    /// [`world::World::set_bake_budget`]).
+    pub fn bake_budget(&self) -> u64 {
+        self.world.bake_budget()
+    }
+
+    /// Sets the per-frame bake budget of the mesh's levels, in texels (`u64::MAX`: whole).
+    pub fn set_bake_budget(&mut self, texels: u64) {
+        self.world.set_bake_budget(texels);
+    }
+
+    /// Texels of the mesh's levels uncovered but not baked yet.
+    pub fn pending_texels(&self) -> u64 {
+        self.world.pending_texels()
+    }
+
+    /// The renderer drawing the mesh: its [`world::World::stats`] are the mesh's.
+    pub fn world(&self) -> &world::World {
+        &self.world
     }
 
     /// Changes the parameters. Only what they invalidate is redone: a new size rebuilds the
     /// textures, a noise change re-bakes, a height-scale change re-runs only the normal pass,
-    /// a shading-only change (snow, AO, grid) bakes nothing. Returns what was invalidated.
+    /// a shading-only change (snow, AO) bakes nothing. Returns what was invalidated.
     /// On error the terrain keeps its previous parameters.
     pub fn set_params(
         &mut self,
@@ -194,6 +257,8 @@ impl Terrain {
                 .map_err(|e| size_too_big(params.size, e))?;
             self.bind(device);
         }
+        let (wp, setup) = tile_world(&params, params.offset);
+        self.world.set_tile(device, wp, setup)?;
         self.params = params;
         self.shown_offset = params.offset;
         if dirty.bake {
@@ -208,12 +273,11 @@ impl Terrain {
         Ok(dirty)
     }
 
-    /// Scrolls the terrain to `offset` (tiles) without baking: the textures are read that far on
-    /// from where they were baked (the tile is periodic, so nothing is lost). What the scroll
-    /// animation of the window and the page calls each frame; [`Terrain::set_params`] with the
-    /// same offset bakes it exactly (the textures then hold it, for readback or a paused frame).
-    /// Texel positions are interpolated, as the grid's vertices always are, so a scrolled frame
-    /// differs from a baked one by the textures' interpolation error only (a test bounds it).
+    /// Scrolls the terrain to `offset` (tiles) without baking the tile's textures: they are
+    /// read that far on from where they were baked (the tile is periodic, so nothing is lost).
+    /// What the scroll animation of the window and the page calls each frame. The mesh moves
+    /// over its periodic landscape: its next [`Terrain::encode_bake`] bakes only the strips the
+    /// tile uncovers. [`Terrain::set_params`] with the same offset bakes the textures there.
     pub fn scroll_to(&mut self, offset: [f64; 2]) -> Result<()> {
         let moved = TerrainParams {
             offset,
@@ -229,25 +293,80 @@ impl Terrain {
         self.shown_offset
     }
 
-    /// Marks every pass as owed, so the next [`Terrain::encode_bake`] redoes the whole bake
-    /// (for benchmarks, or after the host lost the textures' contents).
+    /// Marks every pass as owed, so the next [`Terrain::encode_bake`] redoes the tile's
+    /// textures (for benchmarks, or after the host lost the textures' contents).
     pub fn invalidate(&mut self) {
         self.pending = Dirty::ALL;
     }
 
-    /// Whether the next [`Terrain::encode_bake`] will record any work.
+    /// Whether the next [`Terrain::encode_bake`] will record work on the tile's textures.
     pub fn needs_bake(&self) -> bool {
         self.pending.any_gpu_work()
     }
 
-    /// Records whatever bake work is owed (none if nothing changed) into the host's encoder.
-    /// Returns whether anything was recorded.
-    pub fn encode_bake(&mut self, encoder: &mut wgpu::CommandEncoder) -> bool {
-        self.encode_bake_timed(encoder, None)
+    /// The mesh's view of `view`: the same camera in the landscape's metres, drawn through
+    /// `view`'s own projection (so the host's depth and relief's agree).
+    fn world_view(&self, view: &View) -> world::WorldView {
+        let frame = crate::tile::TileFrame::new(&self.params, self.shown_offset);
+        let eye = frame.to_world(view.eye.as_dvec3());
+        let inverse = view.view_proj.inverse();
+        let ahead = inverse.project_point3(glam::Vec3::new(0.0, 0.0, 0.5)) - view.eye;
+        // Row 1 of projection times a rotation has the length cot(fov / 2).
+        let cot = view.view_proj.row(1).truncate().length();
+        let fov_y = if cot.is_finite() && cot > 0.0 {
+            2.0 * (1.0 / cot).atan()
+        } else {
+            std::f32::consts::FRAC_PI_4
+        };
+        let unit = frame.unit as f32;
+        // Camera-relative metres to the host's clip space: back to tile units about the eye.
+        let projection = view.view_proj
+            * glam::Mat4::from_translation(view.eye)
+            * glam::Mat4::from_scale(glam::Vec3::splat(1.0 / unit));
+        world::WorldView {
+            eye,
+            forward: ahead.normalize_or(glam::Vec3::NEG_Z),
+            fov_y,
+            size: self.viewport,
+            crop: glam::Mat4::IDENTITY,
+            projection: Some(projection),
+        }
+    }
+
+    /// Records whatever bake work is owed into the host's encoder: the tile's textures when
+    /// the parameters changed, and the mesh's levels for `view` (the strips the camera or the
+    /// scroll uncovered; nothing when neither moved). Returns whether anything was recorded.
+    pub fn encode_bake(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &View,
+    ) -> Result<bool> {
+        self.encode_bake_timed(device, queue, encoder, view, None)
     }
 
     /// [`Terrain::encode_bake`], writing GPU timestamps for each pass into `timer`.
     pub fn encode_bake_timed(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &View,
+        timer: Option<&GpuTimer>,
+    ) -> Result<bool> {
+        let recorded = self.encode_textures(encoder, timer);
+        let (wp, setup) = tile_world(&self.params, self.shown_offset);
+        self.world.set_tile(device, wp, setup)?;
+        let wv = self.world_view(view);
+        let texels = self
+            .world
+            .encode_bake_timed(device, queue, encoder, &wv, timer)?;
+        Ok(recorded || texels > 0)
+    }
+
+    /// Records the tile's texture passes that are owed (none if nothing changed).
+    pub fn encode_textures(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timer: Option<&GpuTimer>,
@@ -272,22 +391,15 @@ impl Terrain {
     }
 
     /// Writes this frame's uniforms (camera, shading, snow, AO) through the queue.
-    pub fn prepare(&self, queue: &wgpu::Queue, view: &View) {
-        let encode = !self.targets.color_format.is_srgb();
-        let mut uniforms = RenderUniforms::new(&self.params, &self.shading, view, encode);
-        // Reduced in f64: offsets may be far from the origin (up to 10^6 tiles).
-        let (shown, baked) = (self.shown_params(), self.params.reduced_offset());
-        let shown = shown.reduced_offset();
-        uniforms.shift = [0, 1].map(|i| (shown[i] - baked[i]).rem_euclid(1.0) as f32);
-        self.mesh.write(queue, &uniforms);
+    pub fn prepare(&mut self, queue: &wgpu::Queue, view: &View) {
+        let wv = self.world_view(view);
+        self.world.prepare(queue, &wv);
     }
 
     /// Draws the terrain, and the sky behind it unless [`Shading::sky`] is off, into the
     /// host's pass, which must match [`Targets`]. With depth, the host clears it to 1.0.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let grid = self.params.grid;
-        self.sky
-            .around(pass, self.shading.sky, |pass| self.mesh.draw(pass, grid));
+        self.world.render(pass);
     }
 
     /// The baked textures, for reading or for the host's own passes.
@@ -297,10 +409,10 @@ impl Terrain {
 
     /// World height of the continuous terrain surface at world (x, z), from the CPU twin.
     ///
-    /// The tile spans x, z in [-WORLD_SIZE/2, WORLD_SIZE/2] and repeats beyond. The GPU draws
-    /// the baked texels interpolated bilinearly at the grid's vertices, then linearly across
-    /// triangles, so what is drawn differs from this by the mesh's sampling error (the tests
-    /// bound it); at texel centres the baked heights equal it to within 1e-5 of the range.
+    /// The tile spans x, z in [-WORLD_SIZE/2, WORLD_SIZE/2] and repeats beyond. The mesh
+    /// interpolates its levels' samples linearly across triangles, so what is drawn differs
+    /// from this by the mesh's sampling error (within the screen-error bound); at texel
+    /// centres the baked heights equal it to within 1e-5 of the range.
     pub fn height_at(&self, x: f32, z: f32) -> f32 {
         height_at(&self.shown_params(), x, z)
     }

@@ -1,11 +1,11 @@
-//! The render pass: the displaced grid, shaded with Blinn-Phong, snow and height AO.
+//! The render uniforms every renderer shares (the mesh, the sky, the ray casters), mirrored by
+//! `RenderUniforms` in `wgsl/shade.wgsl`.
 
-use super::{Targets, Textures};
 use crate::camera::View;
 use crate::params::{srgb_to_linear, Shading, TerrainParams};
 use crate::sky::SkyLight;
 
-/// Mirrors `RenderUniforms` in `wgsl/render.wgsl` field by field.
+/// Mirrors `RenderUniforms` in `wgsl/shade.wgsl` field by field.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct RenderUniforms {
@@ -158,107 +158,5 @@ impl RenderUniforms {
             sunset: self.sky_sunset,
             day: 1.0,
         }
-    }
-}
-
-pub(crate) struct MeshPass {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    uniforms: wgpu::Buffer,
-    sampler: wgpu::Sampler,
-    bind_group: Option<wgpu::BindGroup>,
-}
-
-impl MeshPass {
-    /// The render uniforms' buffer (the sky pass reads it too).
-    pub fn uniforms(&self) -> &wgpu::Buffer {
-        &self.uniforms
-    }
-
-    pub fn new(device: &wgpu::Device, targets: &Targets) -> Self {
-        let module = super::shader::module(
-            device,
-            "relief:render:shader",
-            &super::shader::compose(&[super::shader::SHADE, super::shader::RENDER]),
-        );
-        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("relief:render:bind-group-layout"),
-            entries: &[
-                super::uniform_entry::<RenderUniforms>(0, vf),
-                super::texture_entry(1, wgpu::ShaderStages::VERTEX_FRAGMENT, false),
-                super::texture_entry(2, wgpu::ShaderStages::FRAGMENT, true),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
-        // Terrain can be seen from below when the camera dips under it: both faces are drawn.
-        let pipeline = super::terrain_pipeline(
-            device,
-            "relief:render",
-            &layout,
-            &module,
-            targets,
-            wgpu::PrimitiveTopology::TriangleStrip,
-            &[],
-        );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("relief:render:normal-sampler"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        let uniforms = super::uniform_buffer::<RenderUniforms>(device, "relief:render:uniforms");
-        Self {
-            pipeline,
-            layout,
-            uniforms,
-            sampler,
-            bind_group: None,
-        }
-    }
-
-    pub fn bind(&mut self, device: &wgpu::Device, textures: &Textures) {
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("relief:render:bind-group"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.uniforms.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&textures.terrain_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&textures.normal_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-            ],
-        }));
-    }
-
-    pub fn write(&self, queue: &wgpu::Queue, uniforms: &RenderUniforms) {
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(uniforms));
-    }
-
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, grid: u32) {
-        pass.push_debug_group("relief:render");
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, self.bind_group.as_ref(), &[]);
-        // One triangle strip of 2G vertices per row of cells.
-        pass.draw(0..2 * grid, 0..grid - 1);
-        pass.pop_debug_group();
     }
 }

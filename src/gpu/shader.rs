@@ -18,8 +18,6 @@ pub const LANDSCAPE: &str = include_str!("../../wgsl/landscape.wgsl");
 pub const LANDSCAPE_BAKE: &str = include_str!("../../wgsl/landscape_bake.wgsl");
 /// `wgsl/shade.wgsl`: render uniforms and the shading every renderer shares.
 pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
-/// `wgsl/render.wgsl`: the mesh render pass (needs [`SHADE`]).
-pub const RENDER: &str = include_str!("../../wgsl/render.wgsl");
 /// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
@@ -52,7 +50,6 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),
-        ("render", compose(&[SHADE, RENDER])),
         ("world", compose(&[SHADE, WORLD])),
         ("sky", compose(&[SHADE, SKY])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),

@@ -31,6 +31,10 @@ pub struct WorldView {
     pub size: (u32, u32),
     /// Applied after the projection (a crop to a tile of the image; identity otherwise).
     pub crop: Mat4,
+    /// The host's own projection times view for camera-relative positions, used instead of
+    /// the lens (`fov_y` still sets the screen-error bound); `None`: the lens's, with near and
+    /// far planes that fit the world.
+    pub projection: Option<Mat4>,
 }
 
 /// The endless world's default camera (chosen by eye): 1200 m above the ground at
@@ -51,6 +55,7 @@ impl WorldView {
             fov_y,
             size,
             crop: Mat4::IDENTITY,
+            projection: None,
         }
     }
 
@@ -61,6 +66,9 @@ impl WorldView {
 
     /// Projection times view, with the camera at the origin (positions are camera-relative).
     pub fn relative_matrix(&self, near: f32, far: f32) -> Mat4 {
+        if let Some(m) = self.projection {
+            return self.crop * m;
+        }
         let up = if self.forward.y.abs() > 0.999 {
             Vec3::Z
         } else {
@@ -132,6 +140,9 @@ pub struct LevelUniforms {
     pub has_coarse: u32,
     /// The eye in this level's samples from its first sample.
     pub eye_local: [f32; 2],
+    /// The drawn bounds in this level's samples from its first sample (x0, z0, x1, z1):
+    /// vertices are clamped into them (huge for the endless world).
+    pub clip: [f32; 4],
 }
 
 /// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
@@ -198,6 +209,18 @@ pub struct World {
     bake_budget: u64,
     /// Seconds of animation (the water's ripples), from [`World::set_time`].
     time: f32,
+    /// Set when this world draws the seed blog's tile ([`crate::Terrain`]'s mesh).
+    tile: Option<TileSetup>,
+}
+
+/// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
+/// the [`Shading`]'s sun, in clear air, with a mesh no finer than the tile's grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TileSetup {
+    /// The square drawn, world metres: x0, z0, x1, z1.
+    pub region: [f64; 4],
+    /// log2 of the finest spacing the mesh may use.
+    pub finest_log2: i32,
 }
 
 /// Texels [`World::encode_bake`] bakes at most per frame unless told otherwise: about 0.4 ms
@@ -221,7 +244,27 @@ impl World {
     ) -> Result<Self> {
         let _ = queue;
         params.validate()?;
-        let errors = level_errors(&params.land);
+        Self::build(device, targets, params, None)
+    }
+
+    /// A world drawing the seed blog's tile: `params` come from validated tile parameters
+    /// (heights in metres may exceed the endless world's table).
+    pub(crate) fn new_tile(
+        device: &wgpu::Device,
+        targets: Targets,
+        params: WorldParams,
+        tile: TileSetup,
+    ) -> Result<Self> {
+        Self::build(device, targets, params, Some(tile))
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        targets: Targets,
+        params: WorldParams,
+        tile: Option<TileSetup>,
+    ) -> Result<Self> {
+        let errors = level_errors(&params.land, tile.map(|t| t.finest_log2));
         // Laid out for a 1080p, 45-degree view until the first frame says otherwise.
         let k = 1080.0 / (2.0 * (22.5f64).to_radians().tan());
         let map = layout(&params, &errors, k);
@@ -303,6 +346,7 @@ impl World {
                 matrix: Mat4::IDENTITY,
                 bake_budget: DEFAULT_BAKE_BUDGET,
                 time: 0.0,
+                tile,
             }
         })
     }
@@ -370,11 +414,32 @@ impl World {
     /// and the shading keys (snow, AO, the sun, fog) change nothing baked.
     pub fn set_params(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         params.validate()?;
+        self.apply(device, params)
+    }
+
+    /// Sets the tile's parameters and setup (see [`World::new_tile`]).
+    pub(crate) fn set_tile(
+        &mut self,
+        device: &wgpu::Device,
+        params: WorldParams,
+        tile: TileSetup,
+    ) -> Result<()> {
+        let floor_moved = self.tile.map(|t| t.finest_log2) != Some(tile.finest_log2);
+        self.tile = Some(tile);
+        if floor_moved && params.land == self.params.land {
+            self.errors = level_errors(&params.land, Some(tile.finest_log2));
+            self.params = params;
+            return self.relayout(device, self.map_k);
+        }
+        self.apply(device, params)
+    }
+
+    fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =
             params.land != self.params.land || params.pixel_error != self.params.pixel_error;
         if params.land != self.params.land {
-            self.errors = level_errors(&params.land);
+            self.errors = level_errors(&params.land, self.tile.map(|t| t.finest_log2));
             self.slopes = params.land.slope_bounds();
         }
         self.params = params;
@@ -538,6 +603,14 @@ impl World {
         timer: Option<&GpuTimer>,
     ) {
         let azimuth = self.params.sky.sun_azimuth;
+        if self.tile.is_some()
+            || (self.params.no_shadows && self.params.palette == crate::palette::Palette::Blog)
+        {
+            // Nothing reads the light: no shadows, and the blog palette's occlusion is by
+            // height. Lit whole once something does.
+            self.light.azimuth = None;
+            return;
+        }
         let n = self.map.levels.len();
         let usable: Vec<bool> = (0..n)
             .map(|l| self.map.levels[l].active && self.map.pending_texels_of(l) == 0)
@@ -604,7 +677,19 @@ impl World {
         self.matrix = matrix;
         let planes = frustum_planes(&matrix);
         let eye = view.eye;
+        let bounds = self.tile.map_or(
+            [
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::INFINITY,
+            ],
+            |t| t.region,
+        );
         let patches = self.map.patches([0.0, land.peak_height], |lo, hi| {
+            if hi[0] < bounds[0] || hi[2] < bounds[1] || lo[0] > bounds[2] || lo[2] > bounds[3] {
+                return false;
+            }
             let lo = (DVec3::from(lo) - eye).as_vec3();
             let hi = (DVec3::from(hi) - eye).as_vec3();
             planes.iter().all(|p| {
@@ -655,6 +740,17 @@ impl World {
                     (view.eye.x / level.spacing() - f64::from(level.origin[0])) as f32,
                     (view.eye.z / level.spacing() - f64::from(level.origin[1])) as f32,
                 ],
+                clip: {
+                    let local = |v: f64, o: i32| {
+                        (v / level.spacing() - f64::from(o)).clamp(-1e9, 1e9) as f32
+                    };
+                    [
+                        local(bounds[0], level.origin[0]),
+                        local(bounds[1], level.origin[1]),
+                        local(bounds[2], level.origin[0]),
+                        local(bounds[3], level.origin[1]),
+                    ]
+                },
             };
         }
         let world = WorldUniforms {
@@ -687,8 +783,11 @@ impl World {
 
         let encode = !self.targets.color_format.is_srgb();
         let region = self.map.drawn_region(eye.x, eye.z);
-        let mut uniforms =
-            render_uniforms(&self.params, &self.shading, (matrix, region, eye), encode);
+        let mut uniforms = match self.tile {
+            // The tile: the shading's own sun and sky, clear air, no water.
+            Some(_) => tile_uniforms(&self.params, &self.shading, matrix, encode),
+            None => render_uniforms(&self.params, &self.shading, (matrix, region, eye), encode),
+        };
         uniforms.water[2] = self.time;
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
@@ -806,13 +905,37 @@ pub fn render_uniforms(
     u
 }
 
+/// The tile's uniforms: the [`Shading`]'s sun and sky (as the tile always had), the blog
+/// palette's height occlusion, no shadows, fog or water.
+fn tile_uniforms(
+    params: &WorldParams,
+    shading: &Shading,
+    matrix: Mat4,
+    encode_srgb: bool,
+) -> RenderUniforms {
+    let tile = TerrainParams {
+        height_scale: params.land.peak_height as f32,
+        snow_height: params.snow_height,
+        ao_exponent: params.ao_exponent,
+        ..TerrainParams::default()
+    };
+    let relative = View {
+        view_proj: matrix,
+        eye: Vec3::ZERO,
+    };
+    let mut u = RenderUniforms::new(&tile, shading, &relative, encode_srgb);
+    u.look[2] = crate::palette::Palette::Blog.code();
+    u
+}
+
 /// Period in metres of the water's ripples (`RIPPLE_PERIOD` in `wgsl/shade.wgsl`).
 pub const RIPPLE_PERIOD: f32 = 256.0;
 /// Height in metres of the sand along the shore (jittered by the colour noise).
 pub const SAND_BAND: f64 = 12.0;
 
-fn level_errors(land: &Landscape) -> Vec<(i32, f64)> {
-    let finest = crate::clipmap::finest_log2(land);
+/// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
+fn level_errors(land: &Landscape, floor: Option<i32>) -> Vec<(i32, f64)> {
+    let finest = crate::clipmap::finest_log2(land).max(floor.unwrap_or(i32::MIN));
     (0..MAX_LEVELS as i32)
         .map(|l| (finest + l, crate::clipmap::level_error(land, finest + l)))
         .collect()

@@ -55,8 +55,10 @@ pub struct LightUniforms {
     pub gain: f32,
     /// log2 of octave 0's cell in metres.
     pub feature_log2: i32,
+    /// 0: endless; else octave 0's lattice cells per period.
+    pub period: u32,
     /// Padding.
-    pub _pad: [u32; 3],
+    pub _pad: [u32; 2],
     /// The levels.
     pub entries: [LightLevel; MAX_LEVELS],
 }
@@ -110,7 +112,8 @@ impl LightUniforms {
             terrain: land.terrain.code(),
             gain: land.gain as f32,
             feature_log2: land.feature_log2,
-            _pad: [0; 3],
+            period: land.period,
+            _pad: [0; 2],
             entries,
         }
     }
