@@ -47,9 +47,10 @@ struct WorldUniforms {
     // enough to drop it), and that level's index.
     fade: f32,
     first: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // The tile's: one over the tile's width (0: the endless world, which has no tile
+    // textures), and the eye less the tile's first corner (metres, x and z).
+    tile_inv: f32,
+    tile_eye: vec2<f32>,
     levels: array<Level, 24>,
 }
 
@@ -59,6 +60,11 @@ struct WorldUniforms {
 // Per level texel: the terrain's horizon towards the sun (radians) and the valley depth
 // (metres), from the light bake (world_light.wgsl).
 @group(0) @binding(3) var light_tex: texture_2d_array<f32>;
+// The tile's own textures (rg32float height and colour channel, rgba16float normals), read per
+// pixel as the tile always shaded: its `size` and `normals` keys shade the mesh.
+@group(0) @binding(4) var tile_terrain: texture_2d<f32>;
+@group(0) @binding(5) var tile_normals: texture_2d<f32>;
+@group(0) @binding(6) var tile_sampler: sampler;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -148,8 +154,37 @@ fn vs_main(
     return out;
 }
 
+fn wrap_texel(i: i32, n: i32) -> i32 {
+    return ((i % n) + n) % n;
+}
+
+// Bilinear, wrap-around read of the tile's rg32float texture by hand (32-bit floats are not
+// filterable in core WebGPU). Texel centres sit at (i + 0.5) / size, as the tile's bake writes.
+fn tile_terrain_at(uv: vec2<f32>) -> vec2<f32> {
+    let n = i32(r.tex_size);
+    let s = uv * f32(n) - 0.5;
+    let s0 = floor(s);
+    let t = s - s0;
+    let x0 = wrap_texel(i32(s0.x), n);
+    let y0 = wrap_texel(i32(s0.y), n);
+    let x1 = wrap_texel(x0 + 1, n);
+    let y1 = wrap_texel(y0 + 1, n);
+    let a = textureLoad(tile_terrain, vec2<i32>(x0, y0), 0).rg;
+    let b = textureLoad(tile_terrain, vec2<i32>(x1, y0), 0).rg;
+    let c = textureLoad(tile_terrain, vec2<i32>(x0, y1), 0).rg;
+    let d = textureLoad(tile_terrain, vec2<i32>(x1, y1), 0).rg;
+    return mix(mix(a, b, t.x), mix(c, d, t.x), t.y);
+}
+
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    if w.tile_inv != 0.0 {
+        // The tile: normals, height (snow, AO) and colour channel per pixel from its textures.
+        let uv = (in.rel.xz + w.tile_eye) * w.tile_inv + r.shift;
+        let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);
+        let t = tile_terrain_at(uv);
+        return vec4<f32>(shade(r, in.rel, n, t.x, t.y, unshadowed(r, t.x)), 1.0);
+    }
     let s = in.sample;
     // Gradient per metre of normalised height, to a unit normal in metres.
     let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));

@@ -133,6 +133,10 @@ fn tile_world(
     params: &TerrainParams,
     offset: [f64; 2],
 ) -> (crate::world::WorldParams, world::TileSetup) {
+    // Reduced in f64: offsets may be far from the origin (up to 10^12 tiles).
+    let shown = TerrainParams { offset, ..*params }.reduced_offset();
+    let baked = params.reduced_offset();
+    let shift = [0, 1].map(|i| (shown[i] - baked[i]).rem_euclid(1.0) as f32);
     let frame = crate::tile::TileFrame::new(params, offset);
     let world = crate::world::WorldParams {
         land: frame.land,
@@ -151,6 +155,8 @@ fn tile_world(
     let setup = world::TileSetup {
         region: frame.region(),
         finest_log2: frame.grid_spacing_log2(params.grid),
+        tex_size: params.size,
+        shift,
     };
     (world, setup)
 }
@@ -183,6 +189,7 @@ impl Terrain {
         })
         .map_err(|e| size_too_big(params.size, e))?;
         terrain.bind(device);
+        terrain.world.set_tile_textures(device, &terrain.textures);
         terrain.bake.write(queue, &terrain.params);
         terrain.normals.write(queue, &terrain.params);
         Ok(terrain)
@@ -256,6 +263,7 @@ impl Terrain {
             self.textures = scoped(device, || Textures::new(device, params.size))
                 .map_err(|e| size_too_big(params.size, e))?;
             self.bind(device);
+            self.world.set_tile_textures(device, &self.textures);
         }
         let (wp, setup) = tile_world(&params, params.offset);
         self.world.set_tile(device, wp, setup)?;

@@ -168,7 +168,10 @@ pub struct WorldUniforms {
     /// Index of the first active level.
     pub first: u32,
     /// Padding.
-    pub _pad: [u32; 3],
+    /// The tile's: one over its width in metres (0: the endless world, no tile textures).
+    pub tile_inv: f32,
+    /// The tile's: the eye less the tile's first corner, metres (x, z).
+    pub tile_eye: [f32; 2],
     /// The levels.
     pub levels: [LevelUniforms; MAX_LEVELS],
 }
@@ -211,6 +214,8 @@ pub struct World {
     time: f32,
     /// Set when this world draws the seed blog's tile ([`crate::Terrain`]'s mesh).
     tile: Option<TileSetup>,
+    /// The tile's textures, read per pixel (stand-ins for the endless world).
+    tile_textures: TileTextures,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -221,6 +226,11 @@ pub(crate) struct TileSetup {
     pub region: [f64; 4],
     /// log2 of the finest spacing the mesh may use.
     pub finest_log2: i32,
+    /// The tile's textures' side in texels: the fragment shader reads the tile's normals,
+    /// height and colour channel per pixel from them, as the tile always did.
+    pub tex_size: u32,
+    /// Where the textures are read, less where they were baked, in tiles (the scroll).
+    pub shift: [f32; 2],
 }
 
 /// Texels [`World::encode_bake`] bakes at most per frame unless told otherwise: about 0.4 ms
@@ -286,6 +296,14 @@ impl World {
                     super::uniform_entry::<WorldUniforms>(1, vf),
                     array_entry(2),
                     array_entry(3),
+                    super::texture_entry(4, wgpu::ShaderStages::FRAGMENT, false),
+                    super::texture_entry(5, wgpu::ShaderStages::FRAGMENT, true),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 6,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                        count: None,
+                    },
                 ],
             });
             let pipeline = super::terrain_pipeline(
@@ -305,11 +323,13 @@ impl World {
                 super::uniform_buffer::<RenderUniforms>(device, "relief:world:render-uniforms");
             let world_uniforms =
                 super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
+            let tile_textures = TileTextures::new(device, &super::Textures::new(device, 1));
             let bind_group = bind(
                 device,
                 &layout,
                 (&render_uniforms, &world_uniforms),
                 (&texture, &light.texture),
+                &tile_textures,
             );
             let (indices, index_count) = patch_indices(device, map.patch);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
@@ -347,6 +367,7 @@ impl World {
                 bake_budget: DEFAULT_BAKE_BUDGET,
                 time: 0.0,
                 tile,
+                tile_textures,
             }
         })
     }
@@ -434,6 +455,18 @@ impl World {
         self.apply(device, params)
     }
 
+    /// Binds the tile's textures (after they were made, or made again at a new size).
+    pub(crate) fn set_tile_textures(&mut self, device: &wgpu::Device, textures: &super::Textures) {
+        self.tile_textures = TileTextures::new(device, textures);
+        self.bind_group = bind(
+            device,
+            &self.layout,
+            (&self.render_uniforms, &self.world_uniforms),
+            (&self.texture, &self.light.texture),
+            &self.tile_textures,
+        );
+    }
+
     fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =
@@ -467,6 +500,7 @@ impl World {
             &self.layout,
             (&self.render_uniforms, &self.world_uniforms),
             (&texture, &light.texture),
+            &self.tile_textures,
         );
         self.light = light;
         self.texture = texture;
@@ -776,7 +810,12 @@ impl World {
                 0.0
             },
             first: first as u32,
-            _pad: [0; 3],
+            tile_eye: self.tile.map_or([0.0; 2], |t| {
+                [(eye.x - t.region[0]) as f32, (eye.z - t.region[1]) as f32]
+            }),
+            tile_inv: self
+                .tile
+                .map_or(0.0, |t| (1.0 / (t.region[2] - t.region[0])) as f32),
             levels,
         };
         queue.write_buffer(&self.world_uniforms, 0, bytemuck::bytes_of(&world));
@@ -785,7 +824,7 @@ impl World {
         let region = self.map.drawn_region(eye.x, eye.z);
         let mut uniforms = match self.tile {
             // The tile: the shading's own sun and sky, clear air, no water.
-            Some(_) => tile_uniforms(&self.params, &self.shading, matrix, encode),
+            Some(t) => tile_uniforms(&self.params, &self.shading, matrix, encode, &t),
             None => render_uniforms(&self.params, &self.shading, (matrix, region, eye), encode),
         };
         uniforms.water[2] = self.time;
@@ -912,11 +951,13 @@ fn tile_uniforms(
     shading: &Shading,
     matrix: Mat4,
     encode_srgb: bool,
+    setup: &TileSetup,
 ) -> RenderUniforms {
     let tile = TerrainParams {
         height_scale: params.land.peak_height as f32,
         snow_height: params.snow_height,
         ao_exponent: params.ao_exponent,
+        size: setup.tex_size,
         ..TerrainParams::default()
     };
     let relative = View {
@@ -925,6 +966,7 @@ fn tile_uniforms(
     };
     let mut u = RenderUniforms::new(&tile, shading, &relative, encode_srgb);
     u.look[2] = crate::palette::Palette::Blog.code();
+    u.shift = setup.shift;
     u
 }
 
@@ -1037,6 +1079,7 @@ fn bind(
     layout: &wgpu::BindGroupLayout,
     (render, world): (&wgpu::Buffer, &wgpu::Buffer),
     (texture, light): (&wgpu::Texture, &wgpu::Texture),
+    tile: &TileTextures,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("relief:world:bind-group"),
@@ -1058,8 +1101,45 @@ fn bind(
                 binding: 3,
                 resource: wgpu::BindingResource::TextureView(&array_view(light)),
             },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::TextureView(&tile.terrain),
+            },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: wgpu::BindingResource::TextureView(&tile.normals),
+            },
+            wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&tile.sampler),
+            },
         ],
     })
+}
+
+/// The tile's textures as the mesh reads them (1x1 stand-ins for the endless world).
+struct TileTextures {
+    terrain: wgpu::TextureView,
+    normals: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+}
+
+impl TileTextures {
+    fn new(device: &wgpu::Device, textures: &super::Textures) -> Self {
+        Self {
+            terrain: textures.terrain.create_view(&Default::default()),
+            normals: textures.normals.create_view(&Default::default()),
+            // The tile is periodic: its normal map wraps.
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("relief:world:tile-normal-sampler"),
+                address_mode_u: wgpu::AddressMode::Repeat,
+                address_mode_v: wgpu::AddressMode::Repeat,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
+        }
+    }
 }
 
 /// The index buffer of one patch: (patch + 1)^2 vertices, two triangles per cell, each cell
