@@ -152,7 +152,7 @@ pub static PARAMS: [(SceneParam, Redo); 11] = [
         MAX_GRID,
         slider(2.0, 1024.0, 1.0),
         Redo::Draw,
-        "mesh vertices per side (independent of size)"
+        "the finest mesh: about this many vertices across the tile (its spacing rounded to a power of two; levels of detail draw coarser where a pixel allows)"
     ),
     int_param!(
         "octaves",

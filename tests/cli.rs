@@ -597,6 +597,9 @@ fn other_value(
 ) -> String {
     use relief::table::{Kind, Value};
     match (p.kind, current) {
+        // The grid sets the mesh's finest spacing rounded to a power of two: the next integer
+        // may round to the same one, half the grid never does.
+        (Kind::Int { min, .. }, Value::Int(v)) if p.key == "grid" => (v / 2).max(min).to_string(),
         (Kind::Int { max, .. }, Value::Int(v)) if v < max => (v + 1).to_string(),
         (Kind::Int { min, .. }, Value::Int(v)) => (v.max(min + 1) - 1).to_string(),
         (Kind::Float { min, max }, Value::Float(v)) => {

@@ -343,7 +343,12 @@ impl World {
                 shading: Shading::default(),
                 targets,
                 errors,
-                slopes: params.land.slope_bounds(),
+                // The tile's ray casters are its own (`gpu::raymarch`): no slopes to measure.
+                slopes: if tile.is_some() {
+                    Vec::new()
+                } else {
+                    params.land.slope_bounds()
+                },
                 map,
                 map_k: k,
                 texture,
@@ -473,7 +478,9 @@ impl World {
             params.land != self.params.land || params.pixel_error != self.params.pixel_error;
         if params.land != self.params.land {
             self.errors = level_errors(&params.land, self.tile.map(|t| t.finest_log2));
-            self.slopes = params.land.slope_bounds();
+            if self.tile.is_none() {
+                self.slopes = params.land.slope_bounds();
+            }
         }
         self.params = params;
         if relayout {
@@ -597,6 +604,7 @@ impl World {
         let coarsest = self.map.levels.len() - 1;
         let budget = self.bake_budget.max(self.map.pending_texels_of(coarsest));
         let strips = self.map.take(budget, super::landscape::MAX_RECTS);
+        let bounds = self.tile.map(|t| t.region);
         let rects: Vec<Rect> = strips
             .iter()
             .map(|s| Rect {
@@ -604,6 +612,10 @@ impl World {
                 level_log2: self.map.levels[s.level].spacing_log2,
                 origin: s.origin,
                 extent: s.extent,
+            })
+            .filter_map(|r| match bounds {
+                Some(b) => crop(r, b),
+                None => Some(r),
             })
             .collect();
         if !rects.is_empty() {
@@ -974,6 +986,27 @@ fn tile_uniforms(
 pub const RIPPLE_PERIOD: f32 = 256.0;
 /// Height in metres of the sand along the shore (jittered by the colour noise).
 pub const SAND_BAND: f64 = 12.0;
+
+/// `rect` less what lies outside the square `bounds` (metres: x0, z0, x1, z1) by more than two
+/// samples: texels no clamped vertex, bilinear read or morph ever reaches. `None` when nothing
+/// is left. What is cut is never baked (the bounded tile's levels reach far beyond it).
+fn crop(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
+    let s = 2f64.powi(rect.level_log2);
+    let lo =
+        |v: f64| ((v / s).floor() - 2.0).clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i64;
+    let hi = |v: f64| ((v / s).ceil() + 3.0).clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i64;
+    let mut r = rect;
+    for (axis, (b0, b1)) in [(0, (bounds[0], bounds[2])), (1, (bounds[1], bounds[3]))] {
+        let start = i64::from(rect.origin[axis]).max(lo(b0));
+        let end = (i64::from(rect.origin[axis]) + i64::from(rect.extent[axis])).min(hi(b1));
+        if end <= start {
+            return None;
+        }
+        r.origin[axis] = start as i32;
+        r.extent[axis] = (end - start) as u32;
+    }
+    Some(r)
+}
 
 /// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
 fn level_errors(land: &Landscape, floor: Option<i32>) -> Vec<(i32, f64)> {
