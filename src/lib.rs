@@ -1,8 +1,10 @@
 //! # relief: procedural terrain on the GPU with wgpu
 //!
 //! relief bakes periodic gradient-noise (Perlin) fBm into textures with compute shaders,
-//! derives a wrap-around normal map, and draws a grid mesh displaced by the heights with
-//! Blinn-Phong shading, a noise-jittered snow line and height ambient occlusion.
+//! derives a wrap-around normal map, and draws a mesh displaced by the heights, with levels of
+//! detail from the screen-space error, with Blinn-Phong shading, a noise-jittered snow line and
+//! height ambient occlusion. One renderer ([`World`]) draws both the seed blog's tile
+//! ([`Terrain`], a bounded square of a periodic landscape: [`tile`]) and the endless world.
 //!
 //! ## Shape
 //!

@@ -216,6 +216,10 @@ pub struct World {
     tile: Option<TileSetup>,
     /// The tile's textures, read per pixel (stand-ins for the endless world).
     tile_textures: TileTextures,
+    /// The tile's square when its levels were last baked (what [`crop`] kept).
+    baked_region: Option<[f64; 4]>,
+    /// Rectangles the tile's square uncovered as it moved, still to bake.
+    region_pending: Vec<Rect>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -373,6 +377,8 @@ impl World {
                 time: 0.0,
                 tile,
                 tile_textures,
+                baked_region: None,
+                region_pending: Vec::new(),
             }
         })
     }
@@ -548,7 +554,12 @@ impl World {
     /// Texels uncovered but not baked yet: a level with some is not drawn (the next coarser
     /// level covers it) until later frames bake them.
     pub fn pending_texels(&self) -> u64 {
-        self.map.pending_texels()
+        let region: u64 = self
+            .region_pending
+            .iter()
+            .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
+            .sum();
+        self.map.pending_texels() + region
     }
 
     /// Moves the levels to `view` and records the bake of whatever they uncovered (nothing if
@@ -618,6 +629,8 @@ impl World {
                 None => Some(r),
             })
             .collect();
+        self.region_moved();
+        let rects = self.with_region_pending(rects);
         if !rects.is_empty() {
             self.bake.encode(
                 queue,
@@ -636,6 +649,60 @@ impl World {
         self.stats.texels_baked = texels;
         self.stats.texels_pending = self.map.pending_texels();
         Ok(texels)
+    }
+
+    /// The tile's: where its square moved (the scroll) since the last bake, the parts of every
+    /// level's window the new square reaches and the old one did not. Those texels were cut
+    /// from earlier bakes ([`crop`]), so the square's moving uncovers them as the camera's
+    /// moving uncovers a level's strips.
+    /// They join the world's pending rectangles, baked as the per-pass slots allow.
+    fn region_moved(&mut self) {
+        let Some(tile) = self.tile else {
+            return;
+        };
+        let old = self.baked_region.replace(tile.region);
+        let Some(old) = old.filter(|o| *o != tile.region) else {
+            return;
+        };
+        let side = self.map.side();
+        for level in self.map.levels.iter().filter(|l| l.active) {
+            let window = Rect {
+                layer: level.layer,
+                level_log2: level.spacing_log2,
+                origin: level.origin,
+                extent: [side; 2],
+            };
+            if let Some(new) = crop(window, tile.region) {
+                self.region_pending.extend(subtract(new, crop(window, old)));
+            }
+        }
+    }
+
+    /// `rects` and as many of the square's pending rectangles as one pass's slots still hold,
+    /// each cut to its level's window now (a level may have moved since: what left the window
+    /// is not its to bake any more).
+    fn with_region_pending(&mut self, mut rects: Vec<Rect>) -> Vec<Rect> {
+        let side = f64::from(self.map.side());
+        while rects.len() < super::landscape::MAX_RECTS {
+            let Some(r) = self.region_pending.pop() else {
+                break;
+            };
+            let Some(level) = self
+                .map
+                .levels
+                .iter()
+                .find(|l| l.active && l.layer == r.layer)
+            else {
+                continue;
+            };
+            let s = 2f64.powi(level.spacing_log2);
+            let (x, z) = (f64::from(level.origin[0]), f64::from(level.origin[1]));
+            let window = [x * s, z * s, (x + side - 1.0) * s, (z + side - 1.0) * s];
+            if let Some(kept) = crop_exact(r, window) {
+                rects.push(kept);
+            }
+        }
+        rects
     }
 
     /// Records the light bake after the levels' bake: the strips just baked, and every level
@@ -991,10 +1058,19 @@ pub const SAND_BAND: f64 = 12.0;
 /// samples: texels no clamped vertex, bilinear read or morph ever reaches. `None` when nothing
 /// is left. What is cut is never baked (the bounded tile's levels reach far beyond it).
 fn crop(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
+    cut(rect, bounds, 2.0)
+}
+
+/// `rect` less what lies outside the samples in `bounds` (metres, on the level's samples).
+fn crop_exact(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
+    cut(rect, bounds, 0.0)
+}
+
+fn cut(rect: Rect, bounds: [f64; 4], margin: f64) -> Option<Rect> {
     let s = 2f64.powi(rect.level_log2);
-    let lo =
-        |v: f64| ((v / s).floor() - 2.0).clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i64;
-    let hi = |v: f64| ((v / s).ceil() + 3.0).clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i64;
+    let (min, max) = (f64::from(i32::MIN), f64::from(i32::MAX));
+    let lo = |v: f64| ((v / s).floor() - margin).clamp(min, max) as i64;
+    let hi = |v: f64| ((v / s).ceil() + margin + 1.0).clamp(min, max) as i64;
     let mut r = rect;
     for (axis, (b0, b1)) in [(0, (bounds[0], bounds[2])), (1, (bounds[1], bounds[3]))] {
         let start = i64::from(rect.origin[axis]).max(lo(b0));
@@ -1006,6 +1082,38 @@ fn crop(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
         r.extent[axis] = (end - start) as u32;
     }
     Some(r)
+}
+
+/// `a` less `b`: up to four rectangles (bands below and above `b`, then left and right of it).
+fn subtract(a: Rect, b: Option<Rect>) -> Vec<Rect> {
+    let Some(b) = b else {
+        return vec![a];
+    };
+    let span = |r: &Rect, i: usize| {
+        let o = i64::from(r.origin[i]);
+        (o, o + i64::from(r.extent[i]))
+    };
+    let ((ax0, ax1), (az0, az1)) = (span(&a, 0), span(&a, 1));
+    let ((bx0, bx1), (bz0, bz1)) = (span(&b, 0), span(&b, 1));
+    let (ix0, ix1, iz0, iz1) = (ax0.max(bx0), ax1.min(bx1), az0.max(bz0), az1.min(bz1));
+    if ix0 >= ix1 || iz0 >= iz1 {
+        return vec![a];
+    }
+    let rect = |x0: i64, x1: i64, z0: i64, z1: i64| Rect {
+        origin: [x0 as i32, z0 as i32],
+        extent: [(x1 - x0) as u32, (z1 - z0) as u32],
+        ..a
+    };
+    [
+        (ax0, ax1, az0, iz0),
+        (ax0, ax1, iz1, az1),
+        (ax0, ix0, iz0, iz1),
+        (ix1, ax1, iz0, iz1),
+    ]
+    .into_iter()
+    .filter(|&(x0, x1, z0, z1)| x0 < x1 && z0 < z1)
+    .map(|(x0, x1, z0, z1)| rect(x0, x1, z0, z1))
+    .collect()
 }
 
 /// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
