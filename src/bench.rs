@@ -413,11 +413,12 @@ fn mesh_row(
         .collect();
 
     let baked = headless::read_baked(&gpu.device, &gpu.queue, &terrain)?;
-    let texels: Vec<f64> = baked.heights.iter().map(|&h| f64::from(h)).collect();
-    let mesh = metrics::mesh_error(
+    // The mesh as drawn (levels of detail and all), from the single-sampled depth.
+    let mesh = metrics::drawn_mesh_error(
         &config.params,
-        &texels,
-        Some((view, options.width, options.height)),
+        view,
+        (options.width, options.height),
+        &depth,
         options.mesh_samples,
     );
     let normal_error = metrics::normal_error(&config.params, &baked.normals);

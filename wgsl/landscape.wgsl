@@ -29,21 +29,21 @@ struct LandscapeUniforms {
     period: u32,
 }
 
-// A lattice coordinate wrapped into `period` cells (0: as a wrapping 32-bit integer).
-fn wrap_cell(c: i32, period: u32) -> u32 {
-    if period == 0u {
-        return bitcast<u32>(c);
-    }
-    let p = i32(period);
-    return u32(((c % p) + p) % p);
-}
-
-// The next lattice coordinate after the wrapped `c`.
-fn next_cell(c: u32, period: u32) -> u32 {
-    if period == 0u {
-        return c + 1u;
-    }
-    return select(c + 1u, 0u, c + 1u == period);
+// The cell's corners (x0, y0, x1, y1) as hashed: wrapping 32-bit integers, or wrapped into
+// `period` cells when it is not 0 (the tile). Without a branch or an integer division (both
+// slow on CPU rasterisers such as lavapipe, even where the period is uniform): the quotient
+// comes from a float division, off by at most one for the tile's cells (a few periods from
+// the origin), and is corrected.
+fn lattice_corners(cell: vec2<i32>, period: u32) -> vec4<u32> {
+    let p = i32(max(period, 1u));
+    let q = vec2<i32>(floor(vec2<f32>(cell) / f32(p)));
+    var r = cell - q * p;
+    r = select(r, r + p, r < vec2<i32>(0));
+    r = select(r, r - p, r >= vec2<i32>(p));
+    let c = select(bitcast<vec2<u32>>(cell), vec2<u32>(r), vec2<bool>(period != 0u));
+    // Past the period's last cell comes its first; for period 0 (2^32) the same is the
+    // wrapping sum.
+    return vec4<u32>(c, select(c + 1u, vec2<u32>(0u), c + 1u == vec2<u32>(period)));
 }
 
 // Octave `o`'s period in cells (0: endless).
@@ -54,8 +54,7 @@ fn octave_period(period: u32, o: u32) -> u32 {
     return period << o;
 }
 
-// Gradient noise at cell `cell` (wrapping at 2^32, or into `period` cells when it is not 0) and
-// offset `f`: value, gradient and, for the eroded terrain, the Hessian (xx, xy, yy), all in
+// Gradient noise's value, gradient and, for the eroded terrain, Hessian (xx, xy, yy), all in
 // lattice units.
 struct NoiseD {
     value: f32,
@@ -67,11 +66,23 @@ fn fade2(t: vec2<f32>) -> vec2<f32> {
     return 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
 }
 
-fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32, period: u32) -> NoiseD {
-    let x0 = wrap_cell(cell.x, period);
-    let y0 = wrap_cell(cell.y, period);
-    let x1 = next_cell(x0, period);
-    let y1 = next_cell(y0, period);
+// Gradient noise at cell `cell` (wrapping at 2^32) and offset `f`.
+fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32) -> NoiseD {
+    let c = bitcast<vec2<u32>>(cell);
+    return corner_noise_d(vec4<u32>(c, c + 1u), f, stream);
+}
+
+// cell_noise_d on a lattice that wraps every `period` cells (0: at 2^32, as cell_noise_d).
+fn cell_noise_wrapped(cell: vec2<i32>, f: vec2<f32>, stream: u32, period: u32) -> NoiseD {
+    return corner_noise_d(lattice_corners(cell, period), f, stream);
+}
+
+// The noise in the cell whose corners hash as (x0, y0, x1, y1).
+fn corner_noise_d(corners: vec4<u32>, f: vec2<f32>, stream: u32) -> NoiseD {
+    let x0 = corners.x;
+    let y0 = corners.y;
+    let x1 = corners.z;
+    let y1 = corners.w;
     let ga = gradient(lattice_hash(x0, y0, stream));
     let gb = gradient(lattice_hash(x1, y0, stream));
     let gc = gradient(lattice_hash(x0, y1, stream));
@@ -168,7 +179,7 @@ fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel
             let split = lattice_split(s, shift);
             let frac = split.frac + f * ldexp(1.0, -i32(shift));
             let whole = floor(frac);
-            let n = cell_noise_d(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o), octave_period(u.period, o));
+            let n = cell_noise_wrapped(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o), octave_period(u.period, o));
             // Lattice units to metres: a power of two, so exact.
             st = add_octave(st, n, ldexp(1.0, -cell_log2), amplitude, eroded);
         }

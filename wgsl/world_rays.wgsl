@@ -52,11 +52,6 @@ struct WorldRayUniforms {
     pixel_angle: f32,
     // 1: the march fades octaves finer than the pixel's footprint out of its shading.
     band_limit: u32,
-    // 0: endless; else octave 0's lattice cells per period (see LandscapeUniforms).
-    period: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
     // The region drawn, relative to the reference sample: x0, z0, x1, z1 in metres.
     bounds: vec4<f32>,
     // Entry k: x, Lipschitz bound (metres per metre) of the height of the first k+1 octaves;
@@ -95,7 +90,7 @@ fn ray_split(p: vec2<f32>, o: u32) -> Split {
 
 fn octave_noise(p: vec2<f32>, o: u32, channel: u32) -> NoiseD {
     let split = ray_split(p, o);
-    return cell_noise_d(split.cell, split.frac, noise_stream(ray.seed, channel, o), octave_period(ray.period, o));
+    return cell_noise_d(split.cell, split.frac, noise_stream(ray.seed, channel, o));
 }
 
 fn octave_freq(o: u32) -> f32 {

@@ -65,10 +65,6 @@ pub struct WorldRayUniforms {
     pub pixel_angle: f32,
     /// 1 where the march fades octaves finer than the pixel's footprint out of its shading.
     pub band_limit: u32,
-    /// 0: endless; else octave 0's lattice cells per period ([`crate::landscape::Landscape::period`]).
-    pub period: u32,
-    /// Padding.
-    pub _pad: [u32; 3],
     /// The region drawn relative to the reference sample: x0, z0, x1, z1 in metres.
     pub bounds: [f32; 4],
     /// Per octave count k+1: (Lipschitz bound of the partial sum, bound on the rest, 0, 0).
@@ -99,6 +95,14 @@ impl WorldRayUniforms {
         slopes: &[f64],
     ) -> Result<Self> {
         let land = &params.land;
+        if land.period != 0 {
+            // The tile's ray casters are `gpu::raymarch`, on the tile's own terms.
+            return Err(Error::invalid(
+                "period",
+                land.period,
+                "0: these ray casters draw the endless world",
+            ));
+        }
         let limit = max_eye(land);
         if !(view.eye.x.abs() <= limit && view.eye.z.abs() <= limit) {
             return Err(Error::invalid(
@@ -157,8 +161,6 @@ impl WorldRayUniforms {
             hit_k: seed.hit_k,
             pixel_angle,
             band_limit: u32::from(method_id == 1 && seed.band_limit),
-            period: land.period,
-            _pad: [0; 3],
             bounds: [
                 (region[0] - origin.x) as f32,
                 (region[1] - origin.z) as f32,
