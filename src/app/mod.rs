@@ -330,11 +330,10 @@ impl App {
     /// Whether frames must keep coming: the tile scrolling, or the fly camera moving.
     fn animating(&self) -> bool {
         // Levels still waiting on a bake (over the per-frame budget) need more frames.
-        let baking = self
-            .state
-            .as_ref()
-            .and_then(|s| s.world.as_ref())
-            .is_some_and(|w| w.pending_texels() > 0);
+        let baking = self.state.as_ref().is_some_and(|s| match &s.world {
+            Some(w) => w.pending_texels() > 0,
+            None => s.terrain.pending_texels() > 0,
+        });
         baking
             || match self.fly {
                 Some(_) => !self.held.is_empty() || self.path.is_some(),
@@ -561,7 +560,10 @@ impl App {
         let animating = match self.fly {
             Some(_) => !self.held.is_empty() || self.path.is_some(),
             None => self.options.animating(),
-        } || s.world.as_ref().is_some_and(|w| w.pending_texels() > 0);
+        } || match &s.world {
+            Some(w) => w.pending_texels() > 0,
+            None => s.terrain.pending_texels() > 0,
+        };
         if animating && !s.minimised() {
             s.window.request_redraw();
         }
