@@ -172,7 +172,10 @@ impl Terrain {
         targets.validate()?;
         params.validate_for(&device.limits())?;
         let (wp, setup) = tile_world(&params, params.offset);
-        let world = world::World::new_tile(device, targets, wp, setup)?;
+        let mut world = world::World::new_tile(device, targets, wp, setup)?;
+        // The tile is small and its bakes are cut to it: a change is baked whole in one frame,
+        // as the tile's textures always were (no frame shows it half-baked).
+        world.set_bake_budget(u64::MAX);
         let mut terrain = scoped(device, || {
             let textures = Textures::new(device, params.size);
             Terrain {
@@ -227,7 +230,7 @@ impl Terrain {
     }
 
     /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see
-    /// [`world::World::set_bake_budget`]).
+    /// [`world::World::set_bake_budget`]; everything, to start).
     pub fn bake_budget(&self) -> u64 {
         self.world.bake_budget()
     }

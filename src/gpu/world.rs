@@ -286,7 +286,7 @@ impl World {
             let bake = LandscapeBake::new(device);
             let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
-            let light = LevelLight::new(device, &light_bake, &texture, &map);
+            let light = LevelLight::new(device, &light_bake, &texture, &map, tile.is_none());
             let module = shader::module(
                 device,
                 "relief:world:shader",
@@ -500,7 +500,13 @@ impl World {
         let map = layout(&self.params, &self.errors, k);
         let (texture, target, light) = scoped(device, || {
             let (texture, target) = level_texture(device, &self.bake, &map);
-            let light = LevelLight::new(device, &self.light_bake, &texture, &map);
+            let light = LevelLight::new(
+                device,
+                &self.light_bake,
+                &texture,
+                &map,
+                self.tile.is_none(),
+            );
             (texture, target, light)
         })?;
         if map.patch != self.map.patch {
@@ -1147,13 +1153,22 @@ fn level_array(
     format: wgpu::TextureFormat,
     map: &Clipmap,
 ) -> wgpu::Texture {
-    let side = map.side();
+    texture_array(device, label, format, (map.side(), map.levels.len() as u32))
+}
+
+/// A `side` x `side` texture array of `layers` layers, written by compute and read by the mesh.
+fn texture_array(
+    device: &wgpu::Device,
+    label: &str,
+    format: wgpu::TextureFormat,
+    (side, layers): (u32, u32),
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
             width: side,
             height: side,
-            depth_or_array_layers: map.levels.len() as u32,
+            depth_or_array_layers: layers,
         },
         mip_level_count: 1,
         sample_count: 1,
@@ -1182,8 +1197,20 @@ impl LevelLight {
         bake: &LightBake,
         heights: &wgpu::Texture,
         map: &Clipmap,
+        lit: bool,
     ) -> Self {
-        let texture = level_array(device, "relief:world:light", LightBake::FORMAT, map);
+        // A world that never casts shadows (the tile) keeps a one-texel stand-in: nothing reads
+        // it (the light bake is not run; the tile's shading ignores the horizon).
+        let texture = if lit {
+            level_array(device, "relief:world:light", LightBake::FORMAT, map)
+        } else {
+            texture_array(
+                device,
+                "relief:world:light-unused",
+                LightBake::FORMAT,
+                (1, 1),
+            )
+        };
         let bind_group = bake.bind(device, &array_view(heights), &array_view(&texture));
         Self {
             texture,
