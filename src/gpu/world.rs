@@ -286,7 +286,7 @@ impl World {
             let bake = LandscapeBake::new(device);
             let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
-            let light = LevelLight::new(device, &light_bake, &texture, &map, tile.is_none());
+            let light = LevelLight::new(device, &light_bake, &texture, &map);
             let module = shader::module(
                 device,
                 "relief:world:shader",
@@ -500,13 +500,7 @@ impl World {
         let map = layout(&self.params, &self.errors, k);
         let (texture, target, light) = scoped(device, || {
             let (texture, target) = level_texture(device, &self.bake, &map);
-            let light = LevelLight::new(
-                device,
-                &self.light_bake,
-                &texture,
-                &map,
-                self.tile.is_none(),
-            );
+            let light = LevelLight::new(device, &self.light_bake, &texture, &map);
             (texture, target, light)
         })?;
         if map.patch != self.map.patch {
@@ -1153,22 +1147,13 @@ fn level_array(
     format: wgpu::TextureFormat,
     map: &Clipmap,
 ) -> wgpu::Texture {
-    texture_array(device, label, format, (map.side(), map.levels.len() as u32))
-}
-
-/// A `side` x `side` texture array of `layers` layers, written by compute and read by the mesh.
-fn texture_array(
-    device: &wgpu::Device,
-    label: &str,
-    format: wgpu::TextureFormat,
-    (side, layers): (u32, u32),
-) -> wgpu::Texture {
+    let side = map.side();
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
             width: side,
             height: side,
-            depth_or_array_layers: layers,
+            depth_or_array_layers: map.levels.len() as u32,
         },
         mip_level_count: 1,
         sample_count: 1,
@@ -1197,20 +1182,8 @@ impl LevelLight {
         bake: &LightBake,
         heights: &wgpu::Texture,
         map: &Clipmap,
-        lit: bool,
     ) -> Self {
-        // A world that never casts shadows (the tile) keeps a one-texel stand-in: nothing reads
-        // it (the light bake is not run; the tile's shading ignores the horizon).
-        let texture = if lit {
-            level_array(device, "relief:world:light", LightBake::FORMAT, map)
-        } else {
-            texture_array(
-                device,
-                "relief:world:light-unused",
-                LightBake::FORMAT,
-                (1, 1),
-            )
-        };
+        let texture = level_array(device, "relief:world:light", LightBake::FORMAT, map);
         let bind_group = bake.bind(device, &array_view(heights), &array_view(&texture));
         Self {
             texture,
