@@ -21,6 +21,46 @@ pub struct MeshError {
     pub samples: usize,
 }
 
+/// Running sums of vertical errors, in world units and (where on screen) pixels.
+#[derive(Default)]
+struct ErrorSums {
+    sum2: f64,
+    max: f64,
+    sum2_px: f64,
+    max_px: f64,
+    visible: usize,
+}
+
+impl ErrorSums {
+    fn add(&mut self, e: f64, px: Option<f64>) {
+        self.sum2 += e * e;
+        self.max = self.max.max(e);
+        if let Some(px) = px {
+            self.sum2_px += px * px;
+            self.max_px = self.max_px.max(px);
+            self.visible += 1;
+        }
+    }
+
+    /// The summary over `samples` points.
+    fn finish(self, samples: usize) -> MeshError {
+        let rms = |sum2: f64, n: usize| {
+            if n > 0 {
+                (sum2 / n as f64).sqrt()
+            } else {
+                0.0
+            }
+        };
+        MeshError {
+            rms: rms(self.sum2, samples),
+            max: self.max,
+            rms_px: rms(self.sum2_px, self.visible),
+            max_px: self.max_px,
+            samples,
+        }
+    }
+}
+
 /// Normalised height of the mesh as the GPU rasterises it at tile position (u, v): vertices
 /// take the baked texels bilinearly (wrapping), triangles interpolate linearly, split along the
 /// diagonal from (i, j+1) to (i+1, j) as the triangle strips are.
@@ -71,40 +111,22 @@ pub fn mesh_error(
 ) -> MeshError {
     let fbm = Fbm::from_params(params);
     let hs = f64::from(params.height_scale);
-    let (mut sum2, mut max, mut sum2_px, mut max_px, mut visible) =
-        (0.0, 0.0f64, 0.0, 0.0f64, 0usize);
+    let mut sums = ErrorSums::default();
     for k in 0..max_samples {
         let (u, v) = (unit(2 * k as u32), unit(2 * k as u32 + 1));
         let truth = hs * fbm.sample(Channel::Height, [u, v]).0;
         let drawn = hs * mesh_height(texels, params.size, params.grid, u, v);
-        let e = (drawn - truth).abs();
-        sum2 += e * e;
-        max = max.max(e);
-        if let Some((view, w, h)) = camera {
+        let px = camera.and_then(|(view, w, h)| {
             let world = DVec3::new(
                 (u - 0.5) * crate::WORLD_SIZE,
                 truth,
                 (v - 0.5) * crate::WORLD_SIZE,
             );
-            if let Some(px) = vertical_pixels(view, w, h, world, drawn - truth) {
-                sum2_px += px * px;
-                max_px = max_px.max(px);
-                visible += 1;
-            }
-        }
+            vertical_pixels(view, w, h, world, drawn - truth)
+        });
+        sums.add((drawn - truth).abs(), px);
     }
-    let n = max_samples.max(1) as f64;
-    MeshError {
-        rms: (sum2 / n).sqrt(),
-        max,
-        rms_px: if visible > 0 {
-            (sum2_px / visible as f64).sqrt()
-        } else {
-            0.0
-        },
-        max_px,
-        samples: max_samples,
-    }
+    sums.finish(max_samples)
 }
 
 /// The drawn mesh's vertical error against the twin's surface, measured where it was drawn:
@@ -126,35 +148,18 @@ pub fn drawn_mesh_error(
     let vp = view.view_proj.as_dmat4();
     let drawn: Vec<usize> = (0..depth.len()).filter(|&i| depth[i] < 1.0).collect();
     let stride = drawn.len().div_ceil(max_samples.max(1)).max(1);
-    let (mut sum2, mut max, mut sum2_px, mut max_px, mut n, mut visible) =
-        (0.0, 0.0f64, 0.0, 0.0f64, 0usize, 0usize);
+    let (mut sums, mut n) = (ErrorSums::default(), 0);
     for &i in drawn.iter().step_by(stride) {
         let (x, y) = (i as u32 % width, i as u32 / width);
         let p = crate::raycast::unproject(vp, width, height, x, y, f64::from(depth[i]));
         let (u, v) = (p.x / crate::WORLD_SIZE + 0.5, p.z / crate::WORLD_SIZE + 0.5);
         let truth = hs * fbm.sample(Channel::Height, [u, v]).0;
-        let e = (p.y - truth).abs();
-        sum2 += e * e;
-        max = max.max(e);
-        n += 1;
         let at = DVec3::new(p.x, truth, p.z);
-        if let Some(px) = vertical_pixels(view, width, height, at, p.y - truth) {
-            sum2_px += px * px;
-            max_px = max_px.max(px);
-            visible += 1;
-        }
+        let px = vertical_pixels(view, width, height, at, p.y - truth);
+        sums.add((p.y - truth).abs(), px);
+        n += 1;
     }
-    MeshError {
-        rms: if n > 0 { (sum2 / n as f64).sqrt() } else { 0.0 },
-        max,
-        rms_px: if visible > 0 {
-            (sum2_px / visible as f64).sqrt()
-        } else {
-            0.0
-        },
-        max_px,
-        samples: n,
-    }
+    sums.finish(n)
 }
 
 /// Length in pixels of the vertical segment from `world` to `world + dy` on screen, or `None`

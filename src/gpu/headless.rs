@@ -272,20 +272,31 @@ pub fn bake_whole(
 ) -> Result<()> {
     let budget = terrain.bake_budget();
     terrain.set_bake_budget(u64::MAX);
-    let mut baked = Ok(false);
-    // More than one pass only where more strips wait than one pass's uniform slots hold;
-    // each is submitted on its own, as the passes share those slots.
+    let baked = bake_in_passes(gpu, timer, |encoder, timer| {
+        terrain.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
+        Ok(terrain.pending_texels())
+    });
+    terrain.set_bake_budget(budget);
+    baked
+}
+
+/// Runs `step` (which records a bake and says how many texels still wait) in passes until
+/// nothing waits: more than one pass only where more strips wait than one pass's uniform slots
+/// hold; each is submitted on its own, as the passes share those slots. `timer` times the first.
+fn bake_in_passes(
+    gpu: &Gpu,
+    timer: Option<&GpuTimer>,
+    mut step: impl FnMut(&mut wgpu::CommandEncoder, Option<&GpuTimer>) -> Result<u64>,
+) -> Result<()> {
     for pass in 0..crate::clipmap::MAX_LEVELS {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        let timed = timer.filter(|_| pass == 0);
-        baked = terrain.encode_bake_timed(&gpu.device, &gpu.queue, &mut encoder, view, timed);
+        let waiting = step(&mut encoder, timer.filter(|_| pass == 0));
         gpu.queue.submit([encoder.finish()]);
-        if baked.is_err() || terrain.pending_texels() == 0 {
+        if waiting? == 0 {
             break;
         }
     }
-    terrain.set_bake_budget(budget);
-    baked.map(|_| ())
+    Ok(())
 }
 
 /// MSAA samples of `relief render` images and the window.
@@ -622,21 +633,13 @@ impl Offscreen {
         self.check_targets(world.targets())?;
         let clear = super::clear_color(world.shading().sky_color, Self::COLOR_FORMAT);
         if whole {
-            // A still frame is drawn whole: everything the view uncovered is baked first. More
-            // than one pass only where more strips wait than one pass's uniform slots hold;
-            // each is submitted on its own, as the passes share those slots.
+            // A still frame is drawn whole: everything the view uncovered is baked first.
             let budget = world.bake_budget();
             world.set_bake_budget(u64::MAX);
-            let mut baked = Ok(0);
-            for pass in 0..crate::clipmap::MAX_LEVELS {
-                let mut encoder = gpu.device.create_command_encoder(&Default::default());
-                let timed = timer.filter(|_| pass == 0);
-                baked = world.encode_bake_timed(&gpu.device, &gpu.queue, &mut encoder, view, timed);
-                gpu.queue.submit([encoder.finish()]);
-                if baked.is_err() || world.pending_texels() == 0 {
-                    break;
-                }
-            }
+            let baked = bake_in_passes(gpu, timer, |encoder, timer| {
+                world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
+                Ok(world.pending_texels())
+            });
             world.set_bake_budget(budget);
             baked?;
         }
