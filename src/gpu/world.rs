@@ -976,21 +976,7 @@ pub fn render_uniforms(
     encode_srgb: bool,
 ) -> RenderUniforms {
     let horizon = horizon(region, eye);
-    let tile = TerrainParams {
-        height_scale: params.land.peak_height as f32,
-        snow_height: params.snow_height,
-        ao_exponent: params.ao_exponent,
-        ..TerrainParams::default()
-    };
-    let relative = View {
-        view_proj: matrix,
-        eye: Vec3::ZERO,
-    };
-    let mut u = RenderUniforms {
-        grid: 0,
-        tex_size: 0,
-        ..RenderUniforms::new(&tile, shading, &relative, encode_srgb)
-    };
+    let mut u = base_uniforms(params, shading, matrix, encode_srgb, 0);
     let sun = glam::Vec4::from(u.sun_color).truncate().to_array();
     let light = SkyLight::new(params.sky.sun_direction(), sun);
     u.set_sky(shading, &light);
@@ -1032,21 +1018,36 @@ fn tile_uniforms(
     encode_srgb: bool,
     setup: &TileSetup,
 ) -> RenderUniforms {
-    let tile = TerrainParams {
+    let mut u = base_uniforms(params, shading, matrix, encode_srgb, setup.tex_size);
+    u.look[2] = crate::palette::Palette::Blog.code();
+    u.shift = setup.shift;
+    u
+}
+
+/// What every world's uniforms start from: the shading's sun and sky, clear air, the heights
+/// in metres, camera-relative `matrix`, and the tile's textures' side (0: none).
+fn base_uniforms(
+    params: &WorldParams,
+    shading: &Shading,
+    matrix: Mat4,
+    encode_srgb: bool,
+    tex_size: u32,
+) -> RenderUniforms {
+    let heights = TerrainParams {
         height_scale: params.land.peak_height as f32,
         snow_height: params.snow_height,
         ao_exponent: params.ao_exponent,
-        size: setup.tex_size,
         ..TerrainParams::default()
     };
     let relative = View {
         view_proj: matrix,
         eye: Vec3::ZERO,
     };
-    let mut u = RenderUniforms::new(&tile, shading, &relative, encode_srgb);
-    u.look[2] = crate::palette::Palette::Blog.code();
-    u.shift = setup.shift;
-    u
+    RenderUniforms {
+        grid: 0,
+        tex_size,
+        ..RenderUniforms::new(&heights, shading, &relative, encode_srgb)
+    }
 }
 
 /// Period in metres of the water's ripples (`RIPPLE_PERIOD` in `wgsl/shade.wgsl`).
