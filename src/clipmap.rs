@@ -80,7 +80,8 @@ pub struct Strip {
     pub extent: [u32; 2],
 }
 
-/// One patch to draw: a level and the patch's column and row in it.
+/// One patch to draw: a level and the patch's column and row in it (or one of its
+/// sub-patches, [`Clipmap::trim`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct Patch {
@@ -88,9 +89,13 @@ pub struct Patch {
     pub level: u32,
     /// Column and row of the patch within the level, 0..PATCHES.
     pub at: [u32; 2],
-    /// Padding (the instance attribute is four u32s).
-    pub _pad: u32,
+    /// For a sub-patch, its first cell within the patch: column in the low 16 bits, row in
+    /// the high 16 bits (0 for a whole patch).
+    pub sub: u32,
 }
+
+/// Sub-patches per patch side where a bounded world's edge crosses a patch ([`Clipmap::trim`]).
+pub const SUB_PATCHES: u32 = 8;
 
 /// The camera as the clipmap needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -537,13 +542,58 @@ impl Clipmap {
                         out.push(Patch {
                             level: l as u32,
                             at: [px as u32, py as u32],
-                            _pad: 0,
+                            sub: 0,
                         });
                     }
                 }
             }
         }
         out
+    }
+
+    /// Cells per sub-patch side ([`Clipmap::trim`]).
+    pub fn sub_cells(&self) -> u32 {
+        (self.patch / SUB_PATCHES).max(1)
+    }
+
+    /// Splits `patches` at the edge of `region` (x0, z0, x1, z1 in metres), for a bounded
+    /// world whose vertices are clamped onto that edge: a patch inside it stays whole (the
+    /// first list); a patch the edge crosses becomes the sub-patches of
+    /// [`Clipmap::sub_cells`] that overlap it (the second list), so the cells outside, which
+    /// clamping would flatten into degenerate triangles, are mostly not drawn at all.
+    pub fn trim(&self, patches: &[Patch], region: [f64; 4]) -> (Vec<Patch>, Vec<Patch>) {
+        let (mut whole, mut subs) = (Vec::new(), Vec::new());
+        let b = self.patch as i32;
+        let n = self.sub_cells() as i32;
+        // Whether [lo, lo + size) (metres) lies inside [r0, r1], or meets it.
+        let inside = |lo: f64, size: f64, r0: f64, r1: f64| lo >= r0 && lo + size <= r1;
+        let overlaps = |lo: f64, size: f64, r0: f64, r1: f64| lo < r1 && lo + size > r0;
+        for p in patches {
+            let level = &self.levels[p.level as usize];
+            let s = level.spacing();
+            let x0 = f64::from(level.origin[0] + p.at[0] as i32 * b) * s;
+            let z0 = f64::from(level.origin[1] + p.at[1] as i32 * b) * s;
+            let size = f64::from(b) * s;
+            if inside(x0, size, region[0], region[2]) && inside(z0, size, region[1], region[3]) {
+                whole.push(*p);
+                continue;
+            }
+            let step = f64::from(n) * s;
+            for j in 0..b / n {
+                for i in 0..b / n {
+                    let (x, z) = (x0 + f64::from(i) * step, z0 + f64::from(j) * step);
+                    if overlaps(x, step, region[0], region[2])
+                        && overlaps(z, step, region[1], region[3])
+                    {
+                        subs.push(Patch {
+                            sub: (i * n) as u32 | ((j * n) as u32) << 16,
+                            ..*p
+                        });
+                    }
+                }
+            }
+        }
+        (whole, subs)
     }
 
     /// The screen error, in pixels, that this layout keeps under for a view with
@@ -655,6 +705,60 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn trimmed_patches_draw_every_cell_of_a_region_once_and_few_outside() {
+        let mut map = Clipmap::new(&land(), 1.0, 300.0);
+        settle(&mut map, &eye(1000.0, -300.0), 1.0);
+        let patches = map.patches([0.0, 600.0], |_, _| true);
+        // A square that cuts patches of several levels, on and off cell boundaries.
+        let region = [-2000.0, -3100.5, 3700.25, 2600.0];
+        let (whole, subs) = map.trim(&patches, region);
+        assert!(!whole.is_empty() && !subs.is_empty());
+        let b = map.patch as i32;
+        let n = map.sub_cells() as i32;
+        // Each drawn cell, by level: (level, column, row) in the level's cells.
+        let mut drawn = std::collections::HashMap::new();
+        let mut add = |p: &Patch, side: i32| {
+            let (sx, sy) = ((p.sub & 0xffff) as i32, (p.sub >> 16) as i32);
+            for j in 0..side {
+                for i in 0..side {
+                    let c = (p.at[0] as i32 * b + sx + i, p.at[1] as i32 * b + sy + j);
+                    *drawn.entry((p.level, c.0, c.1)).or_insert(0) += 1;
+                }
+            }
+        };
+        whole.iter().for_each(|p| add(p, b));
+        subs.iter().for_each(|p| add(p, n));
+        let (mut outside, mut total) = (0, 0);
+        for p in &patches {
+            let level = &map.levels[p.level as usize];
+            let s = level.spacing();
+            for j in 0..b {
+                for i in 0..b {
+                    let (ci, cj) = (p.at[0] as i32 * b + i, p.at[1] as i32 * b + j);
+                    let x = f64::from(level.origin[0] + ci) * s;
+                    let z = f64::from(level.origin[1] + cj) * s;
+                    let meets =
+                        x < region[2] && x + s > region[0] && z < region[3] && z + s > region[1];
+                    let times = drawn.get(&(p.level, ci, cj)).copied().unwrap_or(0);
+                    assert!(times <= 1, "cell ({ci}, {cj}) of level {} twice", p.level);
+                    if meets {
+                        assert_eq!(times, 1, "cell ({ci}, {cj}) of level {} not drawn", p.level);
+                    } else {
+                        outside += times;
+                    }
+                    total += times;
+                }
+            }
+        }
+        // Before trimming, every cell of a crossed patch was drawn; now a sub-patch's width
+        // along the edge at most.
+        assert!(
+            outside * 5 < total,
+            "{outside} of {total} drawn cells outside"
+        );
     }
 
     #[test]

@@ -60,6 +60,8 @@ fn timings_are_fresh_measurements() {
 
 #[test]
 fn a_paused_untouched_window_stops_drawing_and_says_so() {
+    // A coarse mesh and small textures: the test counts frames, and on a slow software GPU a
+    // default frame can take most of a second.
     let (code, stdout, err) = window(&[
         "--paused",
         "--timings",
@@ -67,6 +69,8 @@ fn a_paused_untouched_window_stops_drawing_and_says_so() {
         "4",
         "--size",
         "128",
+        "--grid",
+        "64",
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("idle after frame"), "{stdout}");
@@ -74,7 +78,15 @@ fn a_paused_untouched_window_stops_drawing_and_says_so() {
     let n = frames_drawn(&stdout);
     assert!(n <= 3, "{n} frames drawn by an idle window: {stdout}");
     // Animating, the same window draws continuously.
-    let (code, stdout, err) = window(&["--timings", "--exit-after", "4", "--size", "128"]);
+    let (code, stdout, err) = window(&[
+        "--timings",
+        "--exit-after",
+        "4",
+        "--size",
+        "128",
+        "--grid",
+        "64",
+    ]);
     assert_eq!(code, 0, "{err}");
     assert!(frames_drawn(&stdout) > 4, "{stdout}");
     assert!(!stdout.contains("idle"), "{stdout}");

@@ -597,12 +597,12 @@ pub(crate) fn uniform_buffer<T>(device: &wgpu::Device, label: &str) -> wgpu::Buf
     })
 }
 
-/// The render pipeline every terrain pass draws with: depth-tested and written (`Less`) when
-/// the host's pass has depth, both faces (the camera can see terrain from below), the host's
-/// sample count, opaque colour.
+/// The render pipeline every terrain pass draws with (`vs_main` and the fragment entry point
+/// `fragment`): depth-tested and written (`Less`) when the host's pass has depth, both faces
+/// (the camera can see terrain from below), the host's sample count, opaque colour.
 pub(crate) fn terrain_pipeline(
     device: &wgpu::Device,
-    label: &str,
+    (label, fragment): (&str, &str),
     layout: &wgpu::BindGroupLayout,
     module: &wgpu::ShaderModule,
     targets: &Targets,
@@ -612,7 +612,7 @@ pub(crate) fn terrain_pipeline(
     let depth = (true, wgpu::CompareFunction::Less);
     render_pipeline(
         device,
-        (label, layout, module),
+        (label, layout, module, fragment),
         targets,
         topology,
         buffers,
@@ -620,11 +620,12 @@ pub(crate) fn terrain_pipeline(
     )
 }
 
-/// A render pipeline of `vs_main` and `fs_main` into the host's targets (opaque colour, both
-/// faces), with the depth test and write of `depth` where the host's pass has depth.
+/// A render pipeline of `vs_main` and the fragment entry point `fragment` into the host's
+/// targets (opaque colour, both faces), with the depth test and write of `depth` where the
+/// host's pass has depth.
 pub(crate) fn render_pipeline(
     device: &wgpu::Device,
-    (label, layout, module): (&str, &wgpu::BindGroupLayout, &wgpu::ShaderModule),
+    (label, layout, module, fragment): (&str, &wgpu::BindGroupLayout, &wgpu::ShaderModule, &str),
     targets: &Targets,
     topology: wgpu::PrimitiveTopology,
     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
@@ -662,7 +663,7 @@ pub(crate) fn render_pipeline(
         },
         fragment: Some(wgpu::FragmentState {
             module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.color_format,

@@ -200,9 +200,11 @@ pub struct World {
     render_uniforms: wgpu::Buffer,
     world_uniforms: wgpu::Buffer,
     indices: wgpu::Buffer,
-    index_count: u32,
+    /// Indices of a whole patch, then of a sub-patch ([`Clipmap::trim`]), in `indices`.
+    index_counts: [u32; 2],
     instances: wgpu::Buffer,
-    instance_count: u32,
+    /// Whole patches, then sub-patches, in `instances`.
+    instance_counts: [u32; 2],
     stats: WorldStats,
     /// The reference sample of the last `prepare` (finest-level samples).
     reference: [i64; 2],
@@ -246,6 +248,17 @@ pub const DEFAULT_BAKE_BUDGET: u64 = 1 << 21;
 
 /// Instances the patch buffer holds: every patch of every level.
 const MAX_PATCHES: usize = MAX_LEVELS * (PATCHES * PATCHES) as usize;
+
+/// Instances a world's patch buffer holds: every patch of every level, and for the tile room
+/// for sub-patches along its edge ([`Clipmap::trim`]; a few hundred at the views tried, and
+/// past this the crossed patches are drawn whole).
+fn instance_capacity(tile: bool) -> usize {
+    if tile {
+        4 * MAX_PATCHES
+    } else {
+        MAX_PATCHES
+    }
+}
 
 impl World {
     /// Builds the pipelines and the level textures for `params`, drawn into `targets`; the
@@ -312,7 +325,10 @@ impl World {
             });
             let pipeline = super::terrain_pipeline(
                 device,
-                "relief:world",
+                (
+                    "relief:world",
+                    if tile.is_some() { "fs_tile" } else { "fs_main" },
+                ),
                 &layout,
                 &module,
                 &targets,
@@ -335,10 +351,10 @@ impl World {
                 (&texture, &light.texture),
                 &tile_textures,
             );
-            let (indices, index_count) = patch_indices(device, map.patch);
+            let (indices, index_counts) = patch_indices(device, &map);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:world:patches"),
-                size: (MAX_PATCHES * std::mem::size_of::<Patch>()) as u64,
+                size: (instance_capacity(tile.is_some()) * std::mem::size_of::<Patch>()) as u64,
                 usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -367,9 +383,9 @@ impl World {
                 render_uniforms,
                 world_uniforms,
                 indices,
-                index_count,
+                index_counts,
                 instances,
-                instance_count: 0,
+                instance_counts: [0; 2],
                 stats: WorldStats::default(),
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
@@ -504,9 +520,7 @@ impl World {
             (texture, target, light)
         })?;
         if map.patch != self.map.patch {
-            let (indices, count) = patch_indices(device, map.patch);
-            self.indices = indices;
-            self.index_count = count;
+            (self.indices, self.index_counts) = patch_indices(device, &map);
         }
         self.bind_group = bind(
             device,
@@ -814,8 +828,18 @@ impl World {
                 p.truncate().dot(v) + p.w >= 0.0
             })
         });
-        queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&patches));
-        self.instance_count = patches.len() as u32;
+        // The tile's edge crosses patches: only their sub-patches inside it are drawn (or, in
+        // the unlikely case that they overflow the buffer, the crossed patches whole).
+        let (whole, subs) = match self.tile {
+            Some(t) => Some(self.map.trim(&patches, t.region))
+                .filter(|(w, s)| w.len() + s.len() <= instance_capacity(true))
+                .unwrap_or((patches, Vec::new())),
+            None => (patches, Vec::new()),
+        };
+        queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&whole));
+        let at = std::mem::size_of_val(whole.as_slice()) as u64;
+        queue.write_buffer(&self.instances, at, bytemuck::cast_slice(&subs));
+        self.instance_counts = [whole.len() as u32, subs.len() as u32];
 
         let first = self.map.first_drawn();
         let mut levels = [LevelUniforms::default(); MAX_LEVELS];
@@ -913,10 +937,11 @@ impl World {
             .iter()
             .filter(|l| l.active)
             .collect();
-        let b = u64::from(self.map.patch);
+        let cells = |n: usize, side: u32| n as u64 * u64::from(side).pow(2);
         self.stats = WorldStats {
-            triangles: patches.len() as u64 * 2 * b * b,
-            patches: patches.len() as u32,
+            triangles: 2
+                * (cells(whole.len(), self.map.patch) + cells(subs.len(), self.map.sub_cells())),
+            patches: (whole.len() + subs.len()) as u32,
             texels_baked: self.stats.texels_baked,
             levels: active.len() as u32,
             levels_total: n as u32,
@@ -938,7 +963,8 @@ impl World {
     /// 1.0).
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         self.sky.around(pass, self.shading.sky, |pass| {
-            if self.instance_count == 0 {
+            let [whole, subs] = self.instance_counts;
+            if whole + subs == 0 {
                 return;
             }
             pass.push_debug_group("relief:world");
@@ -946,7 +972,13 @@ impl World {
             pass.set_bind_group(0, &self.bind_group, &[]);
             pass.set_vertex_buffer(0, self.instances.slice(..));
             pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..self.index_count, 0, 0..self.instance_count);
+            let [patch, sub] = self.index_counts;
+            if whole > 0 {
+                pass.draw_indexed(0..patch, 0, 0..whole);
+            }
+            if subs > 0 {
+                pass.draw_indexed(patch..patch + sub, 0, whole..whole + subs);
+            }
             pass.pop_debug_group();
         });
     }
@@ -1285,17 +1317,23 @@ impl TileTextures {
 }
 
 /// The index buffer of one patch: (patch + 1)^2 vertices, two triangles per cell, each cell
-/// split along the diagonal from its (0, 0) to its (1, 1) corner (as `level_error` assumes).
-fn patch_indices(device: &wgpu::Device, patch: u32) -> (wgpu::Buffer, u32) {
-    let row = patch + 1;
-    let mut indices = Vec::with_capacity((patch * patch * 6) as usize);
-    for j in 0..patch {
-        for i in 0..patch {
-            let a = j * row + i;
-            let (b, c, d) = (a + 1, a + row, a + row + 1);
-            indices.extend_from_slice(&[a, b, d, a, d, c]);
+/// split along the diagonal from its (0, 0) to its (1, 1) corner (as `level_error` assumes);
+/// then that of a sub-patch's first cells, in the same vertex numbering. Returns the buffer
+/// and the two index counts.
+fn patch_indices(device: &wgpu::Device, map: &Clipmap) -> (wgpu::Buffer, [u32; 2]) {
+    let row = map.patch + 1;
+    let mut indices = Vec::new();
+    let mut cells = |side: u32| {
+        for j in 0..side {
+            for i in 0..side {
+                let a = j * row + i;
+                let (b, c, d) = (a + 1, a + row, a + row + 1);
+                indices.extend_from_slice(&[a, b, d, a, d, c]);
+            }
         }
-    }
+        side * side * 6
+    };
+    let counts = [cells(map.patch), cells(map.sub_cells())];
     let buffer = wgpu::util::DeviceExt::create_buffer_init(
         device,
         &wgpu::util::BufferInitDescriptor {
@@ -1304,7 +1342,7 @@ fn patch_indices(device: &wgpu::Device, patch: u32) -> (wgpu::Buffer, u32) {
             usage: wgpu::BufferUsages::INDEX,
         },
     );
-    (buffer, indices.len() as u32)
+    (buffer, counts)
 }
 
 /// The six planes (a x + b y + c z + d >= 0 inside) of a wgpu clip-space frustum (depth 0..1).
