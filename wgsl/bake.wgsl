@@ -20,7 +20,6 @@ fn bake_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= bake.size || id.y >= bake.size {
         return;
     }
-    let h = fbm_texel(id.xy, bake.size, bake.frequency, bake.octaves, bake.gain, bake.offset, bake.seed, CHANNEL_HEIGHT);
-    let c = fbm_texel(id.xy, bake.size, bake.frequency, bake.octaves, bake.gain, bake.offset, bake.seed, CHANNEL_COLOR);
-    textureStore(terrain_out, vec2<i32>(id.xy), vec4<f32>(h, c, 0.0, 1.0));
+    let t = fbm_texel(id.xy, bake.size, bake.frequency, bake.octaves, bake.gain, bake.offset, bake.seed);
+    textureStore(terrain_out, vec2<i32>(id.xy), vec4<f32>(t, 0.0, 1.0));
 }

@@ -35,6 +35,10 @@ struct LandscapeUniforms {
 // comes from a float division, off by at most one for the tile's cells (a few periods from
 // the origin), and is corrected.
 fn lattice_corners(cell: vec2<i32>, period: u32) -> vec4<u32> {
+    if period == 0u {
+        let c = bitcast<vec2<u32>>(cell);
+        return vec4<u32>(c, c + 1u);
+    }
     let p = i32(max(period, 1u));
     let q = vec2<i32>(floor(vec2<f32>(cell) / f32(p)));
     var r = cell - q * p;

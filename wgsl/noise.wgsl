@@ -51,8 +51,9 @@ fn fade(t: vec2<f32>) -> vec2<f32> {
 
 // Gradient noise at lattice cell `cell` (already in 0..period) and offset `f` in [0,1)^2.
 fn periodic_noise(cell: vec2<u32>, f: vec2<f32>, period: u32, stream: u32) -> f32 {
-    let x1 = (cell.x + 1u) % period;
-    let y1 = (cell.y + 1u) % period;
+    // The corner past the period's last cell is its first (no integer division).
+    let x1 = select(cell.x + 1u, 0u, cell.x + 1u == period);
+    let y1 = select(cell.y + 1u, 0u, cell.y + 1u == period);
     let n00 = dot(gradient(lattice_hash(cell.x, cell.y, stream)), f);
     let n10 = dot(gradient(lattice_hash(x1, cell.y, stream)), f - vec2<f32>(1.0, 0.0));
     let n01 = dot(gradient(lattice_hash(cell.x, y1, stream)), f - vec2<f32>(0.0, 1.0));
@@ -61,12 +62,16 @@ fn periodic_noise(cell: vec2<u32>, f: vec2<f32>, period: u32, stream: u32) -> f3
     return mix(mix(n00, n10, u.x), mix(n01, n11, u.x), u.y);
 }
 
-// fBm at the centre of texel `texel` of a `size` x `size` tile, normalised to [0, 1].
+// fBm of both channels (height, colour) at the centre of texel `texel` of a `size` x `size`
+// tile, each normalised to [0, 1].
 //
 // The texel's lattice position (2x+1) * period / (2 size) is split into an integer cell and a
-// fraction with integer arithmetic, so it is exact at any octave; `offset` (in tiles, already
-// reduced to [0,1) on the CPU in f64) is added in lattice units with one rounding.
-// Parameter validation keeps (2 size) * period below 2^32.
+// fraction with integer arithmetic, so it is exact at any octave. Only octave 0 divides: each
+// octave doubles the numerator, so the quotient doubles and takes the carry of the doubled
+// remainder (integer division per octave and texel was the bake's largest cost). `offset` (in
+// tiles, already reduced to [0,1) on the CPU in f64) is added in lattice units with one
+// rounding. The channels share the split. Parameter validation keeps (2 size) * period below
+// 2^32.
 fn fbm_texel(
     texel: vec2<u32>,
     size: u32,
@@ -75,27 +80,35 @@ fn fbm_texel(
     gain: f32,
     offset: vec2<f32>,
     seed: u32,
-    channel: u32,
-) -> f32 {
-    var sum = 0.0;
+) -> vec2<f32> {
+    var sum = vec2<f32>(0.0);
     var amplitude = 1.0;
     var norm = 0.0;
     let den = 2u * size;
+    let num = (2u * texel + vec2<u32>(1u)) * frequency;
+    var quotient = num / den;
+    var rem = num % den;
     for (var o = 0u; o < octaves; o++) {
         let period = frequency << o;
-        let num = (2u * texel + vec2<u32>(1u)) * period;
-        var cell = num / den;
-        var f = vec2<f32>(num % den) / f32(den);
+        var f = vec2<f32>(rem) / f32(den);
         let shift = offset * f32(period);
         let whole = floor(shift);
         f += shift - whole;
         let carry = f >= vec2<f32>(1.0);
         f -= select(vec2<f32>(0.0), vec2<f32>(1.0), carry);
-        cell += vec2<u32>(whole) + select(vec2<u32>(0u), vec2<u32>(1u), carry);
-        cell %= vec2<u32>(period);
-        sum += amplitude * periodic_noise(cell, f, period, noise_stream(seed, channel, o));
+        // quotient < period and whole <= period, so the sum is under 2 period + 1: two
+        // subtractions wrap it into the period, as `%` would.
+        var cell = quotient + vec2<u32>(whole) + select(vec2<u32>(0u), vec2<u32>(1u), carry);
+        cell = select(cell, cell - period, cell >= vec2<u32>(period));
+        cell = select(cell, cell - period, cell >= vec2<u32>(period));
+        sum.x += amplitude * periodic_noise(cell, f, period, noise_stream(seed, CHANNEL_HEIGHT, o));
+        sum.y += amplitude * periodic_noise(cell, f, period, noise_stream(seed, CHANNEL_COLOR, o));
         norm += amplitude;
         amplitude *= gain;
+        let twice = 2u * rem;
+        let over = twice >= vec2<u32>(den);
+        quotient = 2u * quotient + select(vec2<u32>(0u), vec2<u32>(1u), over);
+        rem = twice - select(vec2<u32>(0u), vec2<u32>(den), over);
     }
     return 0.5 + 0.5 * sum / (norm * NOISE_MAX_ABS);
 }
