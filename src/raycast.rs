@@ -35,17 +35,7 @@ impl Surface {
     /// Distance along the unit ray `rd` from `ro` to the surface within the tile's bounding box,
     /// or `None` if it leaves the box without hitting.
     pub fn intersect(&self, ro: DVec3, rd: DVec3) -> Option<f64> {
-        let half = 0.5 * crate::WORLD_SIZE;
-        let lo = DVec3::new(-half, 0.0, -half);
-        let hi = DVec3::new(half, self.height_scale + 1e-4, half);
-        let inv = rd.recip();
-        let (a, b) = ((lo - ro) * inv, (hi - ro) * inv);
-        let (tmin, tmax) = (a.min(b), a.max(b));
-        let t0 = tmin.max_element().max(0.0);
-        let t1 = tmax.min_element();
-        if t0 > t1 {
-            return None;
-        }
+        let (t0, t1) = self.span(ro, rd)?;
         let clearance = |t: f64| {
             let p = ro + t * rd;
             p.y - self.height(p.x, p.z)
@@ -81,6 +71,73 @@ impl Surface {
         }
         None
     }
+}
+
+impl Surface {
+    /// Where the ray enters and leaves the tile's bounding box (as `clip_box` in
+    /// `wgsl/raymarch.wgsl`), or `None` if it misses it.
+    fn span(&self, ro: DVec3, rd: DVec3) -> Option<(f64, f64)> {
+        let half = 0.5 * crate::WORLD_SIZE;
+        let lo = DVec3::new(-half, 0.0, -half);
+        let hi = DVec3::new(half, self.height_scale + 1e-4, half);
+        let inv = rd.recip();
+        let (a, b) = ((lo - ro) * inv, (hi - ro) * inv);
+        let t0 = a.min(b).max_element().max(0.0);
+        let t1 = a.max(b).min_element();
+        (t0 <= t1).then_some((t0, t1))
+    }
+
+    /// The seed's march (`seed_march` in `wgsl/rays.wgsl`) in f64: from the ray's entry into
+    /// the tile's box, `t += step_factor * f`, where `f` is the clearance above the first
+    /// `march_octaves` octaves (normalised by all of them, as on the GPU); a hit when
+    /// `|f| < hit_k * t`. Returns how it ended and the steps it took.
+    pub fn seed_march(
+        &self,
+        ro: DVec3,
+        rd: DVec3,
+        (step_factor, hit_k): (f64, f64),
+        march_octaves: u32,
+        max_steps: u32,
+    ) -> (March, u32) {
+        let Some((t0, t1)) = self.span(ro, rd) else {
+            return (March::Miss, 0);
+        };
+        let fbm = Fbm {
+            octaves: march_octaves.min(self.fbm.octaves),
+            ..self.fbm
+        };
+        let norm = |octaves: u32| (0..octaves).map(|o| fbm.gain.powi(o as i32)).sum::<f64>();
+        let scale = norm(fbm.octaves) / norm(self.fbm.octaves);
+        let clearance = |t: f64| {
+            let p = ro + t * rd;
+            let u = [p.x / crate::WORLD_SIZE + 0.5, p.z / crate::WORLD_SIZE + 0.5];
+            let h = 0.5 + (fbm.sample(Channel::Height, u).0 - 0.5) * scale;
+            p.y - self.height_scale * h
+        };
+        let mut t = t0;
+        for step in 1..=max_steps {
+            let f = clearance(t);
+            if f.abs() < hit_k * t {
+                return (March::Hit(t), step);
+            }
+            t += step_factor * f;
+            if t > t1 || t < t0 {
+                return (March::Miss, step);
+            }
+        }
+        (March::Cap, max_steps)
+    }
+}
+
+/// How a march along a ray ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum March {
+    /// It hit the surface at this distance.
+    Hit(f64),
+    /// It left the tile's box.
+    Miss,
+    /// It took every step it was allowed without deciding.
+    Cap,
 }
 
 trait XzLen {
@@ -129,6 +186,44 @@ mod tests {
             s.intersect(ro, DVec3::Y).is_none(),
             "straight up never hits"
         );
+    }
+
+    /// The seed's step rule `t += c * f` has a two-cycle wherever the clearance falls at
+    /// 2 / c per unit of ray: the march jumps back and forth across the surface for ever,
+    /// and where |f| on the cycle stays just above the hit threshold it runs to the step cap.
+    /// At c = 0.8 with 8 octaves one pixel of the default 1080p view does so (one ray in a
+    /// million, found by marching every pixel in f64). It explains the bench's slow case: the
+    /// compute march took 18.2 ms there against 0.9 ms with 6 octaves, and the fragment march
+    /// the same ~17 ms more than its trend, about what one thread needs for 4096 serial steps
+    /// of 8 octaves while the rest of the frame waits. The seed's own step rule, not our bug;
+    /// a smaller step factor resolves the same ray.
+    #[test]
+    fn the_seeds_march_at_step_factor_0_8_cycles_on_one_pixel_until_the_cap() {
+        let params = TerrainParams::default();
+        let s = Surface::new(&params);
+        let view = OrbitCamera::default().view(1920.0 / 1080.0);
+        let (ro, rd) = pixel_ray(&view, 1920, 1080, 1374, 403);
+        let cap = crate::gpu::raymarch::MAX_STEPS;
+        let (end, steps) = s.seed_march(ro, rd, (0.8, 0.0015), 8, cap);
+        assert_eq!(
+            (end, steps),
+            (March::Cap, cap),
+            "step factor 0.8, 8 octaves"
+        );
+        let (end, steps) = s.seed_march(ro, rd, (0.5, 0.0015), 8, cap);
+        assert!(
+            matches!(end, March::Hit(_)) && steps < 64,
+            "0.5: {end:?} in {steps} steps"
+        );
+        // With 6 marching octaves the slope there is gentler and the same ray hits.
+        let (end, _) = s.seed_march(ro, rd, (0.8, 0.0015), 6, cap);
+        assert!(matches!(end, March::Hit(_)), "6 octaves: {end:?}");
+        // The neighbouring pixels hit in a few steps: the cycle is a point, not a region.
+        for (x, y) in [(1373, 403), (1375, 403), (1374, 402), (1374, 404)] {
+            let (ro, rd) = pixel_ray(&view, 1920, 1080, x, y);
+            let (end, steps) = s.seed_march(ro, rd, (0.8, 0.0015), 8, cap);
+            assert!(steps < 64, "pixel ({x}, {y}): {end:?} in {steps} steps");
+        }
     }
 
     #[test]
