@@ -261,7 +261,7 @@ pub fn command() -> Command {
             .long("stats")
             .global(true)
             .action(ArgAction::SetTrue)
-            .help("render: print what the frame drew as `key value` lines (triangles, texels baked, levels, screen-error bound)"),
+            .help("render: print what the frame drew as `key value` lines (triangles, texels baked, levels, screen-error bound, texture memory)"),
     )
     .arg(
         Arg::new("scene")
@@ -1419,7 +1419,7 @@ fn render(
             TILE,
             timer.as_ref(),
         )?;
-        drawn = Some(terrain.world().stats());
+        drawn = Some((terrain.world().stats(), params.size));
         frame
     } else {
         headless::render_rays(
@@ -1437,8 +1437,17 @@ fn render(
     }
     if stats {
         // The mesh's levels (the clipmap renderer's stats); the ray casters draw no triangles.
+        // The tile's own textures (its heights, colour and normals) come on top of the levels'.
         match drawn {
-            Some(s) => s.lines().iter().for_each(|l| println!("{l}")),
+            Some((s, size)) => {
+                s.lines().iter().for_each(|l| println!("{l}"));
+                let tile = crate::gpu::Textures::bytes(size);
+                println!("tile_texture_mib {:.1}", crate::gpu::world::mib(tile));
+                println!(
+                    "total_texture_mib {:.1}",
+                    crate::gpu::world::mib(tile + s.texture_bytes)
+                );
+            }
             None => println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0"),
         }
     }

@@ -882,9 +882,18 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         "levels",
         "error_bound_px",
         "patch_cells",
+        "texture_mib_per_level",
+        "texture_mib",
     ] {
         assert!(stat(&stats, key) >= 0.0);
     }
+    assert!(
+        (stat(&stats, "texture_mib")
+            - stat(&stats, "texture_mib_per_level") * stat(&stats, "levels_total"))
+        .abs()
+            < 0.1,
+        "{stats:?}"
+    );
     assert!(
         stat(&stats, "triangles") > 0.0 && stat(&stats, "levels") >= 3.0,
         "{stats:?}"

@@ -77,6 +77,12 @@ pub struct Textures {
 }
 
 impl Textures {
+    /// GPU memory of both textures at `size` x `size`, bytes.
+    pub fn bytes(size: u32) -> u64 {
+        let texel = |f: wgpu::TextureFormat| u64::from(f.block_copy_size(None).unwrap_or(0));
+        u64::from(size).pow(2) * (texel(Self::TERRAIN_FORMAT) + texel(Self::NORMAL_FORMAT))
+    }
+
     /// Heights need 32-bit precision; rg32float is a core WebGPU storage format (write-only)
     /// and is read with textureLoad, so float32-filterable is never needed.
     pub const TERRAIN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;

@@ -101,6 +101,11 @@ pub struct WorldStats {
     pub error_bound_px: f64,
     /// Texels uncovered but not baked yet (over the per-frame budget).
     pub texels_pending: u64,
+    /// GPU memory of one level's textures (its samples and its light), bytes.
+    pub level_bytes: u64,
+    /// GPU memory of every level's textures, bytes (the clipmap's arrays hold every level,
+    /// drawn or not).
+    pub texture_bytes: u64,
 }
 
 impl WorldStats {
@@ -116,8 +121,22 @@ impl WorldStats {
             format!("patch_cells {}", self.patch_cells),
             format!("finest_spacing_m {}", self.finest_spacing),
             format!("error_bound_px {:.3}", self.error_bound_px),
+            format!("texture_mib_per_level {:.2}", mib(self.level_bytes)),
+            format!("texture_mib {:.1}", mib(self.texture_bytes)),
         ]
     }
+}
+
+/// Bytes to MiB.
+pub fn mib(bytes: u64) -> f64 {
+    bytes as f64 / f64::from(1u32 << 20)
+}
+
+/// GPU memory of one level's textures (samples and light) in a layout of `map`, bytes.
+fn level_bytes(map: &Clipmap) -> u64 {
+    let texel = |f: wgpu::TextureFormat| u64::from(f.block_copy_size(None).unwrap_or(0));
+    u64::from(map.side()).pow(2)
+        * (texel(super::landscape::LandscapeBake::FORMAT) + texel(LightBake::FORMAT))
 }
 
 /// Mirrors `Level` in `wgsl/world.wgsl`.
@@ -949,6 +968,8 @@ impl World {
             finest_spacing: active.first().map_or(0.0, |l| l.spacing()),
             error_bound_px: self.map.error_bound(view.pixels_per_radian()),
             texels_pending: self.map.pending_texels(),
+            level_bytes: level_bytes(&self.map),
+            texture_bytes: level_bytes(&self.map) * n as u64,
         };
     }
 
