@@ -62,8 +62,7 @@ fn timings_are_fresh_measurements() {
 fn a_paused_untouched_window_stops_drawing_and_says_so() {
     // A coarse mesh and small textures: the test counts frames, and on a slow software GPU a
     // default frame can take most of a second.
-    let (code, stdout, err) = window(&[
-        "--paused",
+    let coarse = [
         "--timings",
         "--exit-after",
         "4",
@@ -71,22 +70,15 @@ fn a_paused_untouched_window_stops_drawing_and_says_so() {
         "128",
         "--grid",
         "64",
-    ]);
+    ];
+    let (code, stdout, err) = window(&[&["--paused"][..], &coarse].concat());
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("idle after frame"), "{stdout}");
     // The first frame, perhaps one for the first resize or expose; then nothing.
     let n = frames_drawn(&stdout);
     assert!(n <= 3, "{n} frames drawn by an idle window: {stdout}");
     // Animating, the same window draws continuously.
-    let (code, stdout, err) = window(&[
-        "--timings",
-        "--exit-after",
-        "4",
-        "--size",
-        "128",
-        "--grid",
-        "64",
-    ]);
+    let (code, stdout, err) = window(&coarse);
     assert_eq!(code, 0, "{err}");
     assert!(frames_drawn(&stdout) > 4, "{stdout}");
     assert!(!stdout.contains("idle"), "{stdout}");
