@@ -76,11 +76,6 @@ fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32) -> NoiseD {
     return corner_noise_d(vec4<u32>(c, c + 1u), f, stream);
 }
 
-// cell_noise_d on a lattice that wraps every `period` cells (0: at 2^32, as cell_noise_d).
-fn cell_noise_wrapped(cell: vec2<i32>, f: vec2<f32>, stream: u32, period: u32) -> NoiseD {
-    return corner_noise_d(lattice_corners(cell, period), f, stream);
-}
-
 // The noise in the cell whose corners hash as (x0, y0, x1, y1).
 fn corner_noise_d(corners: vec4<u32>, f: vec2<f32>, stream: u32) -> NoiseD {
     let x0 = corners.x;
@@ -163,14 +158,32 @@ fn add_octave(st: Octaves, n: NoiseD, freq: f32, amplitude: f32, eroded: bool) -
     return out;
 }
 
-// The channel at world sample `s` of grid `level_log2`: (value in [0,1], d/dx, d/dz per metre).
-fn landscape_sample(s: vec2<i32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
-    return landscape_sample_at(s, vec2<f32>(0.0), u, channel);
+// Octave `o`'s cell at sample `s` of grid `level_log2` offset by `f` samples: its corners as
+// hashed, the fraction within it, and the octave's lattice frequency per metre (a power of
+// two, so exact).
+struct OctaveCell {
+    corners: vec4<u32>,
+    frac: vec2<f32>,
+    freq: f32,
 }
 
-// The same `f` samples of the grid (a small offset, either sign) from sample `s`. Each octave's
-// cell comes from the integer sample and only the fraction takes the offset, so the point is
-// exact far from the origin; an offset of 0 gives landscape_sample's value bit for bit.
+fn octave_cell(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, o: u32) -> OctaveCell {
+    let cell_log2 = u.feature_log2 - i32(o);
+    let shift = u32(cell_log2 - u.level_log2);
+    let split = lattice_split(s, shift);
+    let frac = split.frac + f * ldexp(1.0, -i32(shift));
+    let whole = floor(frac);
+    var out: OctaveCell;
+    out.corners = lattice_corners(split.cell + vec2<i32>(whole), octave_period(u.period, o));
+    out.frac = frac - whole;
+    out.freq = ldexp(1.0, -cell_log2);
+    return out;
+}
+
+// The channel `f` samples of grid `level_log2` (a small offset, either sign) from world sample
+// `s`: (value in [0,1], d/dx, d/dz per metre). Each octave's cell comes from the integer sample
+// and only the fraction takes the offset, so the point is exact far from the origin; an
+// offset of 0 gives the bake's value (landscape_samples) bit for bit.
 fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel: u32) -> vec3<f32> {
     let eroded = u.terrain == 1u && channel == CHANNEL_HEIGHT;
     var st = Octaves();
@@ -178,18 +191,38 @@ fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel
     var norm = 0.0;
     for (var o = 0u; o < u.total_octaves; o++) {
         if o < u.octaves {
-            let cell_log2 = u.feature_log2 - i32(o);
-            let shift = u32(cell_log2 - u.level_log2);
-            let split = lattice_split(s, shift);
-            let frac = split.frac + f * ldexp(1.0, -i32(shift));
-            let whole = floor(frac);
-            let n = cell_noise_wrapped(split.cell + vec2<i32>(whole), frac - whole, noise_stream(u.seed, channel, o), octave_period(u.period, o));
-            // Lattice units to metres: a power of two, so exact.
-            st = add_octave(st, n, ldexp(1.0, -cell_log2), amplitude, eroded);
+            let c = octave_cell(s, f, u, o);
+            let n = corner_noise_d(c.corners, c.frac, noise_stream(u.seed, channel, o));
+            st = add_octave(st, n, c.freq, amplitude, eroded);
         }
         norm += amplitude;
         amplitude *= u.gain;
     }
     let scale = 0.5 / (norm * NOISE_MAX_ABS);
     return vec3<f32>(0.5 + scale * st.sum, scale * st.grad);
+}
+
+// Both channels at sample `s` (height with its gradient, then the colour value) in one pass
+// over the octaves. They share each octave's cell and corners, the lattice work that is most
+// of an octave's cost (docs/bench/README.md), and each channel takes the operations
+// landscape_sample_at takes at offset 0, so the values are the same bit for bit.
+fn landscape_samples(s: vec2<i32>, u: LandscapeUniforms) -> vec4<f32> {
+    let eroded = u.terrain == 1u;
+    var height = Octaves();
+    var color = Octaves();
+    var amplitude = 1.0;
+    var norm = 0.0;
+    for (var o = 0u; o < u.total_octaves; o++) {
+        if o < u.octaves {
+            let c = octave_cell(s, vec2<f32>(0.0), u, o);
+            let h = corner_noise_d(c.corners, c.frac, noise_stream(u.seed, CHANNEL_HEIGHT, o));
+            height = add_octave(height, h, c.freq, amplitude, eroded);
+            let t = corner_noise_d(c.corners, c.frac, noise_stream(u.seed, CHANNEL_COLOR, o));
+            color = add_octave(color, t, c.freq, amplitude, false);
+        }
+        norm += amplitude;
+        amplitude *= u.gain;
+    }
+    let scale = 0.5 / (norm * NOISE_MAX_ABS);
+    return vec4<f32>(0.5 + scale * height.sum, scale * height.grad, 0.5 + scale * color.sum);
 }

@@ -12,8 +12,6 @@ fn landscape_bake_main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let s = land.origin + vec2<i32>(id.xy);
-    let h = landscape_sample(s, land, CHANNEL_HEIGHT);
-    let c = landscape_sample(s, land, CHANNEL_COLOR);
     let dest = (land.dest_origin + id.xy) % vec2<u32>(land.wrap);
-    textureStore(level_out, vec2<i32>(dest), i32(land.layer), vec4<f32>(h, c.x));
+    textureStore(level_out, vec2<i32>(dest), i32(land.layer), landscape_samples(s, land));
 }
