@@ -1445,7 +1445,7 @@ fn render(
                 println!("tile_texture_mib {:.1}", crate::gpu::world::mib(tile));
                 println!(
                     "total_texture_mib {:.1}",
-                    crate::gpu::world::mib(tile + s.texture_bytes)
+                    crate::gpu::world::mib(tile + s.texture_bytes())
                 );
             }
             None => println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0"),

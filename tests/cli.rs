@@ -712,6 +712,54 @@ fn a_flat_bake_says_what_its_range_means() {
 }
 
 #[test]
+fn the_tiles_stats_count_its_own_textures_and_bake_timings_say_how_they_were_taken() {
+    let dir = scratch("tile-stats");
+    let mib = |size: &str| {
+        let out = dir.join(format!("{size}.png"));
+        let args = [
+            "render",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ];
+        let (code, stdout, err) = relief(&[&args[..], &["--size", size, "--stats"]].concat());
+        assert_eq!(code, 0, "{err}");
+        let value = |key: &str| -> f64 {
+            stdout
+                .lines()
+                .find_map(|l| l.strip_prefix(key)?.strip_prefix(' ')?.parse().ok())
+                .unwrap_or_else(|| panic!("no {key} in {stdout}"))
+        };
+        let (tile, levels) = (value("tile_texture_mib"), value("texture_mib"));
+        assert!(
+            (value("total_texture_mib") - tile - levels).abs() <= 0.1,
+            "{stdout}"
+        );
+        tile
+    };
+    // rg32float heights and colour, rgba16float normals: 16 bytes a texel.
+    assert_eq!(mib("512"), 4.0);
+    assert_eq!(mib("256"), 1.0);
+    let out = dir.join("bake");
+    let (code, stdout, err) = relief(&[
+        "bake",
+        "--out-dir",
+        out.to_str().unwrap(),
+        "--size",
+        "32",
+        "--timings",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("no timestamp queries") || stdout.contains("(each the median of 9 bakes"),
+        "{stdout}"
+    );
+}
+
+#[test]
 fn the_readme_lists_every_option_as_the_code_has_it() {
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();

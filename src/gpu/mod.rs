@@ -79,8 +79,8 @@ pub struct Textures {
 impl Textures {
     /// GPU memory of both textures at `size` x `size`, bytes.
     pub fn bytes(size: u32) -> u64 {
-        let texel = |f: wgpu::TextureFormat| u64::from(f.block_copy_size(None).unwrap_or(0));
-        u64::from(size).pow(2) * (texel(Self::TERRAIN_FORMAT) + texel(Self::NORMAL_FORMAT))
+        u64::from(size).pow(2)
+            * (texel_bytes(Self::TERRAIN_FORMAT) + texel_bytes(Self::NORMAL_FORMAT))
     }
 
     /// Heights need 32-bit precision; rg32float is a core WebGPU storage format (write-only)
@@ -592,6 +592,11 @@ pub(crate) fn texture_entry(
         },
         count: None,
     }
+}
+
+/// Bytes of one texel of an uncompressed `format`.
+pub(crate) fn texel_bytes(format: wgpu::TextureFormat) -> u64 {
+    u64::from(format.block_copy_size(None).unwrap_or(0))
 }
 
 pub(crate) fn uniform_buffer<T>(device: &wgpu::Device, label: &str) -> wgpu::Buffer {

@@ -103,12 +103,15 @@ pub struct WorldStats {
     pub texels_pending: u64,
     /// GPU memory of one level's textures (its samples and its light), bytes.
     pub level_bytes: u64,
-    /// GPU memory of every level's textures, bytes (the clipmap's arrays hold every level,
-    /// drawn or not).
-    pub texture_bytes: u64,
 }
 
 impl WorldStats {
+    /// GPU memory of every level's textures, bytes (the clipmap's arrays hold every level,
+    /// drawn or not).
+    pub fn texture_bytes(&self) -> u64 {
+        self.level_bytes * u64::from(self.levels_total)
+    }
+
     /// `key value` lines.
     pub fn lines(&self) -> Vec<String> {
         vec![
@@ -122,7 +125,7 @@ impl WorldStats {
             format!("finest_spacing_m {}", self.finest_spacing),
             format!("error_bound_px {:.3}", self.error_bound_px),
             format!("texture_mib_per_level {:.2}", mib(self.level_bytes)),
-            format!("texture_mib {:.1}", mib(self.texture_bytes)),
+            format!("texture_mib {:.1}", mib(self.texture_bytes())),
         ]
     }
 }
@@ -134,9 +137,9 @@ pub fn mib(bytes: u64) -> f64 {
 
 /// GPU memory of one level's textures (samples and light) in a layout of `map`, bytes.
 fn level_bytes(map: &Clipmap) -> u64 {
-    let texel = |f: wgpu::TextureFormat| u64::from(f.block_copy_size(None).unwrap_or(0));
     u64::from(map.side()).pow(2)
-        * (texel(super::landscape::LandscapeBake::FORMAT) + texel(LightBake::FORMAT))
+        * (super::texel_bytes(super::landscape::LandscapeBake::FORMAT)
+            + super::texel_bytes(LightBake::FORMAT))
 }
 
 /// Mirrors `Level` in `wgsl/world.wgsl`.
@@ -969,7 +972,6 @@ impl World {
             error_bound_px: self.map.error_bound(view.pixels_per_radian()),
             texels_pending: self.map.pending_texels(),
             level_bytes: level_bytes(&self.map),
-            texture_bytes: level_bytes(&self.map) * n as u64,
         };
     }
 
