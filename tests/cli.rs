@@ -727,16 +727,12 @@ fn the_tiles_stats_count_its_own_textures_and_bake_timings_say_how_they_were_tak
         ];
         let (code, stdout, err) = relief(&[&args[..], &["--size", size, "--stats"]].concat());
         assert_eq!(code, 0, "{err}");
-        let value = |key: &str| -> f64 {
-            stdout
-                .lines()
-                .find_map(|l| l.strip_prefix(key)?.strip_prefix(' ')?.parse().ok())
-                .unwrap_or_else(|| panic!("no {key} in {stdout}"))
-        };
-        let (tile, levels) = (value("tile_texture_mib"), value("texture_mib"));
+        let stats = stats_of(&stdout);
+        let tile = stat(&stats, "tile_texture_mib");
+        let total = stat(&stats, "total_texture_mib");
         assert!(
-            (value("total_texture_mib") - tile - levels).abs() <= 0.1,
-            "{stdout}"
+            (total - tile - stat(&stats, "texture_mib")).abs() <= 0.1,
+            "{stats:?}"
         );
         tile
     };
@@ -902,14 +898,21 @@ fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(Stri
     let (code, stdout, err) = relief(&args);
     assert_eq!(code, 0, "{extra:?}: {err}");
     assert_eq!(err, "", "{extra:?}: stderr not clean");
-    let stats = stdout
+    (
+        image::open(&out).unwrap().into_rgb8().into_raw(),
+        stats_of(&stdout),
+    )
+}
+
+/// The `key value` lines of `--stats` whose value is a number.
+fn stats_of(stdout: &str) -> Vec<(String, f64)> {
+    stdout
         .lines()
         .filter_map(|l| {
             let (k, v) = l.split_once(' ')?;
             Some((k.to_owned(), v.parse().ok()?))
         })
-        .collect();
-    (image::open(&out).unwrap().into_rgb8().into_raw(), stats)
+        .collect()
 }
 
 fn stat(stats: &[(String, f64)], key: &str) -> f64 {
