@@ -38,9 +38,6 @@ pub const HEIGHT_REFUSES: [&str; 6] = [
 /// `--method`'s names: the one method list.
 const METHODS: Kind = Kind::Choice(crate::Method::NAMES);
 
-/// Scene keys that only the mesh reads; a ray-cast `--method` refuses them.
-pub const MESH_ONLY: [&str; 3] = ["size", "grid", "normals"];
-
 /// A world point for `relief height`.
 const POINT: Kind = Kind::Pair { max: 1e12 };
 
@@ -877,14 +874,17 @@ fn run(top: &ArgMatches) -> Result<()> {
         )?;
     }
     if let Run::Render { method, .. } = run {
-        if method != crate::Method::Mesh {
-            refuse_flags(
-                m,
-                &format!("render --method {method}"),
-                &MESH_ONLY,
-                "the ray casters draw the continuous surface, not a baked mesh",
-            )?;
-        }
+        let why = if method == crate::Method::Blog {
+            "the blog's pipeline bakes its own noise into its own texture and grid"
+        } else {
+            "the ray casters draw the continuous surface, not a baked mesh"
+        };
+        refuse_flags(
+            m,
+            &format!("render --method {method}"),
+            method.unread_keys(),
+            why,
+        )?;
     }
     if matches!(run, Run::Height { .. }) {
         refuse_flags(
@@ -991,6 +991,13 @@ fn run(top: &ArgMatches) -> Result<()> {
             if let Run::Bake { out_dir } = &run {
                 let region = region(m)?;
                 return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
+            }
+            if let Run::Render { method, .. } = run {
+                if !method.in_world() {
+                    return Err(Error::Usage(format!(
+                        "--method {method} draws the tile world only (its own terrain)"
+                    )));
+                }
             }
             return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
         }
@@ -1421,6 +1428,10 @@ fn render(
         )?;
         drawn = Some((terrain.world().stats(), params.size));
         frame
+    } else if method == crate::Method::Blog {
+        let scene = (params, &Shading::default());
+        let image = headless::BlogImage::Pipeline;
+        headless::render_blog(&gpu, scene, &view, (width, height), image, timer.as_ref())?
     } else {
         headless::render_rays(
             &gpu,
@@ -1447,6 +1458,15 @@ fn render(
                     "total_texture_mib {:.1}",
                     crate::gpu::world::mib(tile + s.texture_bytes())
                 );
+            }
+            None if method == crate::Method::Blog => {
+                // The blog's grid, and its two 8-bit maps baked whole every frame.
+                let side = u64::from(crate::gpu::blog::BLOG_SIZE);
+                let bytes =
+                    2 * side * side * crate::gpu::texel_bytes(crate::gpu::blog::BLOG_FORMAT);
+                println!("triangles {}", (side - 1).pow(2) * 2);
+                println!("texels_baked {}\ntexels_pending 0\nlevels 0", side * side);
+                println!("total_texture_mib {:.1}", crate::gpu::world::mib(bytes));
             }
             None => println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0"),
         }

@@ -17,6 +17,10 @@ pub enum Method {
     /// relief's own march: the seed's, in compute, with octaves finer than the pixel's
     /// footprint faded out of its shading (the endless world only so far).
     RaymarchBandlimited,
+    /// The seed blog's per-frame pipeline, written again as a peer: an 8-bit bake of its own
+    /// sine-hash noise and normals every frame, a 1024²-vertex grid, no anti-aliasing
+    /// ([`crate::gpu::blog`]; the tile only).
+    Blog,
     /// relief's conservative ray cast of the continuous surface (every octave, Lipschitz
     /// steps, bisection), supersampled 3x3: the ground truth.
     Reference,
@@ -24,11 +28,12 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order of docs, charts and tables.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Mesh,
         Method::Raymarch,
         Method::RaymarchFragment,
         Method::RaymarchBandlimited,
+        Method::Blog,
         Method::Reference,
     ];
 
@@ -38,12 +43,23 @@ impl Method {
         "raymarch",
         "raymarch-fragment",
         "raymarch-bandlimited",
+        "blog",
         "reference",
     ];
 
     /// The names of the methods the tile draws ([`Method::in_tile`]), in the same order.
     pub const TILE_NAMES: &'static [&'static str] =
-        &["mesh", "raymarch", "raymarch-fragment", "reference"];
+        &["mesh", "raymarch", "raymarch-fragment", "blog", "reference"];
+
+    /// The names of the methods the endless world draws ([`Method::in_world`]), in the same
+    /// order.
+    pub const WORLD_NAMES: &'static [&'static str] = &[
+        "mesh",
+        "raymarch",
+        "raymarch-fragment",
+        "raymarch-bandlimited",
+        "reference",
+    ];
 
     /// Its name on the command line, in the CSV and on the chart.
     pub fn name(self) -> &'static str {
@@ -62,6 +78,7 @@ impl Method {
             Method::Raymarch => "the seed template's heightfield ray march, in compute",
             Method::RaymarchFragment => "the same march in a fragment shader, as the seed does it",
             Method::RaymarchBandlimited => "the march in compute, octaves finer than a pixel faded from its shading (endless world)",
+            Method::Blog => "the seed blog's pipeline: its own noise baked to 8 bits with its normals every frame, a 1024² grid, no anti-aliasing (tile)",
             Method::Reference => "the conservative ray cast of the continuous surface, 3x3 supersampled: the ground truth",
         }
     }
@@ -69,7 +86,7 @@ impl Method {
     /// Where a ray-cast method runs (`None` for the mesh).
     pub fn ray_path(self) -> Option<RayPath> {
         match self {
-            Method::Mesh => None,
+            Method::Mesh | Method::Blog => None,
             Method::Raymarch | Method::RaymarchBandlimited | Method::Reference => {
                 Some(RayPath::Compute)
             }
@@ -80,6 +97,38 @@ impl Method {
     /// Whether the tile world draws it (band-limiting is the endless world's only so far).
     pub fn in_tile(self) -> bool {
         self != Method::RaymarchBandlimited
+    }
+
+    /// Whether the endless world draws it (the blog's pipeline draws its own tile).
+    pub fn in_world(self) -> bool {
+        self != Method::Blog
+    }
+
+    /// Whether it draws a terrain of its own rather than the scene's (the blog's pipeline bakes
+    /// the blog's noise): its picture is not the scene's and is scored against its own surface.
+    pub fn own_terrain(self) -> bool {
+        self == Method::Blog
+    }
+
+    /// The scene keys this method does not read, which a front end refuses with it: the ray
+    /// casters draw the continuous surface (no texture size, grid or normal map); the blog has
+    /// its own noise, texture and grid and reads only the height scale and the snow line.
+    pub fn unread_keys(self) -> &'static [&'static str] {
+        match self {
+            Method::Mesh => &[],
+            Method::Blog => &[
+                "seed",
+                "size",
+                "grid",
+                "octaves",
+                "frequency",
+                "gain",
+                "ao_exponent",
+                "offset",
+                "normals",
+            ],
+            _ => &["size", "grid", "normals"],
+        }
     }
 
     /// Supersampling per axis of the image this method draws.
@@ -94,7 +143,7 @@ impl Method {
     pub fn ray_method(self, octaves: u32) -> Option<crate::gpu::raymarch::RayMethod> {
         use crate::gpu::raymarch::RayMethod;
         match self {
-            Method::Mesh => None,
+            Method::Mesh | Method::Blog => None,
             Method::Reference => Some(RayMethod::Reference),
             Method::Raymarch | Method::RaymarchFragment | Method::RaymarchBandlimited => {
                 Some(RayMethod::SeedMarch(SeedMarch {
@@ -130,6 +179,12 @@ mod tests {
             .map(|m| m.name())
             .collect();
         assert_eq!(tile, Method::TILE_NAMES);
+        let world: Vec<&str> = Method::ALL
+            .iter()
+            .filter(|m| m.in_world())
+            .map(|m| m.name())
+            .collect();
+        assert_eq!(world, Method::WORLD_NAMES);
         assert_eq!(Method::from_name("raymarch-compute"), None);
     }
 }

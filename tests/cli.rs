@@ -480,8 +480,8 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     }
     assert_eq!(
         lines.len(),
-        1 + 7,
-        "seven configurations in the quick sweep"
+        1 + 8,
+        "eight configurations in the quick sweep"
     );
     let rows: Vec<Vec<String>> = lines[1..].iter().map(|l| csv_fields(l)).collect();
     for row in &rows {
@@ -489,10 +489,23 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     }
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
-    for m in ["mesh", "raymarch-fragment", "raymarch"] {
+    for m in ["mesh", "raymarch-fragment", "raymarch", "blog"] {
         assert!(methods.contains(&m), "no {m} row");
     }
     for row in &rows {
+        let flip: f64 = row[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
+        if row[col("method")] == "blog" {
+            // The blog's own terrain, texture and grid, baked and drawn every frame.
+            assert_eq!(row[col("octaves")], "5", "{row:?}");
+            assert_eq!(row[col("seed")], "", "{row:?}");
+            assert_eq!(row[col("size")], "1024", "{row:?}");
+            assert_eq!(row[col("grid")], "1024", "{row:?}");
+            let ms = |c: &str| row[col(c)].parse::<f64>().unwrap();
+            let parts = ms("bake_ms") + ms("normals_ms") + ms("render_ms");
+            assert!((ms("frame_gpu_ms") - parts).abs() < 1e-3, "{row:?}");
+            continue;
+        }
         assert_eq!(row[col("octaves")], "3", "{row:?}");
         assert_eq!(row[col("seed")], "99", "{row:?}");
         let flip: f64 = row[col("flip_mean")].parse().unwrap();
@@ -833,9 +846,10 @@ fn every_method_draws_the_same_frame(
 
 #[test]
 fn render_draws_the_same_frame_with_every_method() {
+    // The blog draws its own terrain (tests/blog.rs scores it against its own surface).
     let tile: Vec<&str> = relief::Method::ALL
         .iter()
-        .filter(|m| m.in_tile())
+        .filter(|m| m.in_tile() && !m.own_terrain())
         .map(|m| m.name())
         .collect();
     every_method_draws_the_same_frame("methods", (160, 100), &tile, &[]);
@@ -867,7 +881,7 @@ fn render_draws_the_same_endless_frame_with_every_method() {
     let stats = every_method_draws_the_same_frame(
         "world-methods",
         (120, 68),
-        relief::Method::NAMES,
+        relief::Method::WORLD_NAMES,
         &["--world", "endless", "--pixel-error", "4", "--stats"],
     );
     // The ray casters draw no mesh and say how many rays ran out of steps.
@@ -1577,5 +1591,73 @@ fn endless_scene_files_and_camera_tables_round_trip() {
     assert_eq!(
         render_tile("tile-scene", &["--scene", tile.to_str().unwrap()]),
         render_tile("tile-flags", &["--seed", "3", "--eye", "0,2,2.5"])
+    );
+}
+
+#[test]
+fn render_draws_the_blogs_pipeline_and_refuses_what_it_does_not_read() {
+    let dir = scratch("blog");
+    let out = dir.join("blog.png");
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "render",
+            "--method",
+            "blog",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "96",
+            "--height",
+            "64",
+            "--stats",
+            "--timings",
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let (code, stdout, err) = relief(&args(&[]));
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    // Its 1024²-vertex grid and two 8-bit 1024² maps, baked whole every frame, each timed.
+    let stats = stats_of(&stdout);
+    assert_eq!(stat(&stats, "triangles"), 2.0 * 1023.0 * 1023.0, "{stdout}");
+    assert_eq!(stat(&stats, "texels_baked"), 1024.0 * 1024.0, "{stdout}");
+    assert_eq!(stat(&stats, "total_texture_mib"), 8.0, "{stdout}");
+    assert!(
+        stdout.contains("no timestamp queries")
+            || ["bake", "normals", "render"]
+                .iter()
+                .all(|p| stdout.contains(&format!("{p} "))),
+        "{stdout}"
+    );
+    let blog = image::open(&out).unwrap().to_rgba8();
+    // The scene's height scale is the blog's too: a flatter terrain draws another picture.
+    let (code, _, err) = relief(&args(&["--height-scale", "0.1"]));
+    assert_eq!(code, 0, "{err}");
+    let flat = image::open(&out).unwrap().to_rgba8();
+    assert_ne!(
+        blog.as_raw(),
+        flat.as_raw(),
+        "--height-scale changed nothing"
+    );
+    // ... and its snow line.
+    let (code, _, err) = relief(&args(&["--snow-height", "0.3"]));
+    assert_eq!(code, 0, "{err}");
+    let snowy = image::open(&out).unwrap().to_rgba8();
+    assert_ne!(
+        blog.as_raw(),
+        snowy.as_raw(),
+        "--snow-height changed nothing"
+    );
+    // The scene's noise, texture and grid are not the blog's: refused, not ignored.
+    for flag in ["--seed", "--octaves", "--grid", "--size", "--gain"] {
+        rejects(&args(&[flag, "3"]), &[flag, "blog"]);
+    }
+    // The blog draws its own tile, not the endless world.
+    rejects(
+        &[
+            "render", "--world", "endless", "--method", "blog", "--out", "x.png",
+        ],
+        &["blog", "tile"],
     );
 }

@@ -876,7 +876,13 @@ impl ApplicationHandler<UserEvent> for App {
                             .unwrap_or(0);
                         let next = (1..=all.len())
                             .map(|k| all[(at + k) % all.len()])
-                            .find(|m| self.fly.is_some() || m.in_tile())
+                            .find(|m| {
+                                if self.fly.is_some() {
+                                    m.in_world()
+                                } else {
+                                    m.in_tile()
+                                }
+                            })
                             .unwrap_or_default();
                         if let Err(e) = self.set("method", next.name()) {
                             self.report.warn(&e.to_string());

@@ -52,8 +52,12 @@ impl Default for AppOptions {
 }
 
 /// The `method` key of the window and the page (not a CLI flag of the window: `relief render
-/// --method` has its own), in both worlds: [`crate::Method`]'s one list of names.
-pub static METHOD: Param<AppOptions> = METHOD_ROW;
+/// --method` has its own) in the endless world: the methods it draws, from [`crate::Method`]'s
+/// one list.
+pub static METHOD: Param<AppOptions> = Param {
+    kind: Kind::Choice(crate::Method::WORLD_NAMES),
+    ..METHOD_ROW
+};
 
 /// [`METHOD`] as the tile's page offers it: the methods the tile draws.
 pub static TILE_METHOD: Param<AppOptions> = Param {

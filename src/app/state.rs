@@ -75,6 +75,8 @@ pub struct State {
     /// world), and the pass that shows its image.
     rays: Option<RayCast>,
     blit: Option<crate::gpu::blit::Blit>,
+    /// The blog's pipeline, once the method `blog` has been drawn.
+    blog: Option<crate::gpu::blog::Blog>,
 }
 
 /// A ray caster sized for the window: its scene, its cast size, rays per pixel each way.
@@ -203,6 +205,7 @@ impl State {
             describe,
             rays: None,
             blit: None,
+            blog: None,
         };
         state.resize(size.width, size.height);
         Ok(state)
@@ -273,6 +276,13 @@ impl State {
         timed: bool,
         method: Method,
     ) -> Drawn {
+        if method == Method::Blog && fly.is_none() && self.blog.is_none() {
+            // Built on first use, for the window's targets.
+            match crate::gpu::blog::Blog::new(&self.device, *self.terrain.targets()) {
+                Ok(blog) => self.blog = Some(blog),
+                Err(e) => log::warn!("{e}"),
+            }
+        }
         let Some(depth) = &self.depth else {
             return Drawn::Skipped; // minimised
         };
@@ -308,7 +318,7 @@ impl State {
                 label: Some("relief:window:frame"),
             });
         let size = (self.config.width, self.config.height);
-        if method != Method::Mesh {
+        if method.ray_path().is_some() {
             if let Err(e) = self.cast(&mut encoder, view, fly, timed, method, &target_view) {
                 log::warn!("{e}");
                 // Nothing was cast: show the sky, not whatever the surface texture held.
@@ -343,6 +353,10 @@ impl State {
                 }
                 world.prepare(&self.queue, &view);
                 Some(&*world)
+            }
+            _ if method == Method::Blog => {
+                self.blog_frame(&mut encoder, view, timer);
+                None
             }
             _ => {
                 self.terrain.set_viewport(size);
@@ -390,9 +404,10 @@ impl State {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            match world {
-                Some(world) => world.render(&mut pass),
-                None => self.terrain.render(&mut pass),
+            match (world, &self.blog) {
+                (Some(world), _) => world.render(&mut pass),
+                (None, Some(blog)) if method == Method::Blog => blog.render(&mut pass),
+                _ => self.terrain.render(&mut pass),
             }
         }
         self.finish(encoder, frame, timed)
@@ -415,6 +430,23 @@ impl State {
         #[cfg(not(target_arch = "wasm32"))]
         let _ = self.device.poll(wgpu::PollType::Poll);
         Drawn::Frame
+    }
+
+    /// Records the blog's bake and normal passes for a frame of the method `blog`, scrolled
+    /// along x as the tile is (nothing if the blog's pipeline could not be built).
+    fn blog_frame(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &View,
+        timer: Option<&GpuTimer>,
+    ) {
+        let Some(blog) = &self.blog else {
+            return;
+        };
+        let params = self.terrain.shown_params();
+        let progress = self.terrain.shown_offset()[0] as f32;
+        blog.prepare(&self.queue, &params, self.terrain.shading(), view, progress);
+        blog.encode_bake(encoder, timer);
     }
 
     /// Records a ray-cast frame with `method` (timed as the render pass) and shows it in

@@ -1,6 +1,7 @@
 //! Blocking conveniences on top of the core (native only): a device without a window, an
 //! offscreen target drawn through the same [`Terrain`] calls as the window, and readback.
 
+use super::blog::Blog;
 use super::raymarch::{RayMarcher, RayScene};
 use super::timing::{GpuTimer, Slot, Timings};
 use super::world::{World, WorldView};
@@ -737,6 +738,78 @@ impl Offscreen {
         let timings = timer.map(|t| t.read(device)).transpose()?;
         Ok((unpad(&bytes, pitch, &self.color), timings))
     }
+}
+
+impl Offscreen {
+    /// One frame of `blog` seen through `view`: its bake and normal passes (as the blog runs
+    /// them every frame) and its draw, with the light and sky of `shading`. Returns the image as
+    /// [`Offscreen::render`] does.
+    pub fn render_blog(
+        &self,
+        gpu: &Gpu,
+        blog: &Blog,
+        (params, shading): (&crate::TerrainParams, &crate::Shading),
+        view: &View,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(Vec<u8>, Option<Timings>)> {
+        self.check_targets(blog.targets())?;
+        let clear = super::clear_color(shading.sky_color, Self::COLOR_FORMAT);
+        self.frame(
+            gpu,
+            clear,
+            timer,
+            |encoder| {
+                blog.prepare(&gpu.queue, params, shading, view, 0.0);
+                blog.encode_bake(encoder, timer);
+                Ok(())
+            },
+            |pass| blog.render(pass),
+        )
+    }
+}
+
+/// What [`render_blog`] draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlogImage {
+    /// The blog's pipeline, single-sampled as the blog draws.
+    Pipeline,
+    /// Its exact surface on a `grid`-vertex grid, `supersample` x `supersample` per pixel (where
+    /// the device allows).
+    Exact { grid: u32, supersample: u32 },
+}
+
+/// Draws the seed blog's terrain (the method `blog`, [`Blog`]) into a `size` image, sRGB RGBA8,
+/// with the GPU time of its passes when `timer` is given.
+pub fn render_blog(
+    gpu: &Gpu,
+    scene: (&crate::TerrainParams, &crate::Shading),
+    view: &View,
+    (width, height): (u32, u32),
+    what: BlogImage,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    let targets = Offscreen::targets(1);
+    let (blog, ss) = match what {
+        BlogImage::Pipeline => (Blog::new(&gpu.device, targets)?, 1),
+        BlogImage::Exact { grid, supersample } => {
+            let max = gpu.device.limits().max_texture_dimension_2d;
+            let ss = supersample.max(1);
+            let ss = if width * ss <= max && height * ss <= max {
+                ss
+            } else {
+                1
+            };
+            (Blog::exact(&gpu.device, targets, grid)?, ss)
+        }
+    };
+    let target = Offscreen::new(&gpu.device, width * ss, height * ss, 1)?;
+    let (rgba, timings) = target.render_blog(gpu, &blog, scene, view, timer)?;
+    let rgba = if ss > 1 {
+        downsample_srgb(&rgba, width * ss, height * ss, ss)
+    } else {
+        rgba
+    };
+    Ok((rgba, timings))
 }
 
 impl Offscreen {

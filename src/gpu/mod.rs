@@ -3,6 +3,7 @@
 
 pub(crate) mod bake;
 pub mod blit;
+pub mod blog;
 #[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
 pub mod landscape;
@@ -623,7 +624,7 @@ pub(crate) fn terrain_pipeline(
     let depth = (true, wgpu::CompareFunction::Less);
     render_pipeline(
         device,
-        (label, layout, module, fragment),
+        (label, layout, module, ("vs_main", fragment)),
         targets,
         topology,
         buffers,
@@ -631,12 +632,17 @@ pub(crate) fn terrain_pipeline(
     )
 }
 
-/// A render pipeline of `vs_main` and the fragment entry point `fragment` into the host's
-/// targets (opaque colour, both faces), with the depth test and write of `depth` where the
-/// host's pass has depth.
+/// A render pipeline of the entry points `(vertex, fragment)` into the host's targets (opaque
+/// colour, both faces), with the depth test and write of `depth` where the host's pass has
+/// depth.
 pub(crate) fn render_pipeline(
     device: &wgpu::Device,
-    (label, layout, module, fragment): (&str, &wgpu::BindGroupLayout, &wgpu::ShaderModule, &str),
+    (label, layout, module, (vertex, fragment)): (
+        &str,
+        &wgpu::BindGroupLayout,
+        &wgpu::ShaderModule,
+        (&str, &str),
+    ),
     targets: &Targets,
     topology: wgpu::PrimitiveTopology,
     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
@@ -652,7 +658,7 @@ pub(crate) fn render_pipeline(
         layout: Some(&pipeline_layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(vertex),
             compilation_options: Default::default(),
             buffers,
         },

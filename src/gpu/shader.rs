@@ -33,6 +33,8 @@ pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
 pub const WORLD_LIGHT: &str = include_str!("../../wgsl/world_light.wgsl");
 /// `wgsl/blit.wgsl`: shows a ray-cast image in a window (stands alone).
 pub const BLIT: &str = include_str!("../../wgsl/blit.wgsl");
+/// `wgsl/blog.wgsl`: the seed blog's pipeline, the benchmark peer `blog` (stands alone).
+pub const BLOG: &str = include_str!("../../wgsl/blog.wgsl");
 /// `wgsl/rays.wgsl`: the ray casters' entry points, composed after a caster's file.
 pub const RAYS: &str = include_str!("../../wgsl/rays.wgsl");
 
@@ -46,6 +48,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
     vec![
         ("noise", NOISE.to_owned()),
         ("blit", BLIT.to_owned()),
+        ("blog", BLOG.to_owned()),
         ("world_light", compose(&[NOISE, LANDSCAPE, WORLD_LIGHT])),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),

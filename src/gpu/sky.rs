@@ -31,7 +31,7 @@ impl SkyPass {
         // Depth 1 passes only where the depth buffer still holds its clear value.
         let pipeline = super::render_pipeline(
             device,
-            ("relief:sky", &layout, &module, "fs_main"),
+            ("relief:sky", &layout, &module, ("vs_main", "fs_main")),
             targets,
             wgpu::PrimitiveTopology::TriangleList,
             &[],
