@@ -56,6 +56,13 @@ fn timings_are_fresh_measurements() {
         .collect();
     assert!(frames.windows(2).all(|w| w[0] < w[1]), "{frames:?}");
     assert!(lines.windows(2).all(|w| w[0] != w[1]), "{stdout}");
+    // After the first half second, each line also gives the app's CPU time a frame.
+    let cpu: Vec<f64> = lines
+        .iter()
+        .filter_map(|l| l.split(" · cpu ").nth(1))
+        .map(|c| c.trim_end_matches(" ms/frame").parse().unwrap())
+        .collect();
+    assert!(!cpu.is_empty() && cpu.iter().all(|&c| c > 0.0), "{stdout}");
 }
 
 #[test]

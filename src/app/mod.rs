@@ -103,6 +103,10 @@ pub struct Stats {
     pub idle: bool,
     /// How the last frame was drawn.
     pub method: crate::Method,
+    /// CPU time of a frame on the app's side (input, animation, recording and submitting the
+    /// GPU work; not the GPU's time, nor the wait for the surface's next texture and its
+    /// present), mean over the frames of the last half second, ms.
+    pub cpu_ms: Option<f64>,
 }
 
 /// What the app tells its user, one way per platform: native prints lines, the page writes
@@ -154,8 +158,12 @@ impl Report for Terminal {
                     crate::Method::Mesh => String::new(),
                     m => format!(", {m}"),
                 };
+                // The app's own CPU time a frame, beside the GPU's passes.
+                let cpu = stats
+                    .cpu_ms
+                    .map_or(String::new(), |ms| format!(" · cpu {ms:.2} ms/frame"));
                 println!(
-                    "timings on {describe} (frame {frame}{method}): {}",
+                    "timings on {describe} (frame {frame}{method}): {}{cpu}",
                     format_timings(&t)
                 );
             }
@@ -215,6 +223,8 @@ pub struct App {
     last_timed: Option<Instant>,
     timing_in_flight: bool,
     fps_window: (Instant, u64),
+    /// CPU milliseconds and frames drawn since the last readout ([`Stats::cpu_ms`]).
+    cpu_window: (f64, u64),
     started: Instant,
     stats: Stats,
     state: Option<State>,
@@ -256,6 +266,7 @@ impl App {
             last_timed: None,
             timing_in_flight: false,
             fps_window: (now, 0),
+            cpu_window: (0.0, 0),
             started: now,
             stats: Stats::default(),
             state: None,
@@ -531,6 +542,10 @@ impl App {
             return;
         }
         if drawn == Drawn::Frame {
+            // Waiting on the surface is the GPU's pace, not the app's work.
+            let busy = now.elapsed().saturating_sub(s.waited);
+            self.cpu_window.0 += busy.as_secs_f64() * 1e3;
+            self.cpu_window.1 += 1;
             self.surface_losses = 0;
             self.stats.frames += 1;
             self.last_frame = now;
@@ -572,6 +587,10 @@ impl App {
         if span >= 0.5 {
             self.stats.fps = (self.stats.frames - f0) as f64 / span;
             self.fps_window = (now, self.stats.frames);
+            let (cpu, drawn) = std::mem::take(&mut self.cpu_window);
+            if drawn > 0 {
+                self.stats.cpu_ms = Some(cpu / drawn as f64);
+            }
             let describe = s.describe.clone();
             self.report.stats(&describe, &self.stats, false);
             if let (Some(fly), Some((_, camera))) = (&self.fly, &mut self.options.world) {

@@ -66,6 +66,9 @@ pub struct State {
     /// The endless world, when the window shows it instead of the tile.
     pub(crate) world: Option<World>,
     pub(crate) timer: Option<GpuTimer>,
+    /// Time the last [`State::draw`] spent waiting on the surface (acquiring its texture and
+    /// presenting), which is the GPU's pace, not CPU work.
+    pub(crate) waited: web_time::Duration,
     // The instance and adapter the surface and device came from, kept for the window's life.
     _instance: wgpu::Instance,
     _adapter: wgpu::Adapter,
@@ -206,6 +209,7 @@ impl State {
             rays: None,
             blit: None,
             blog: None,
+            waited: web_time::Duration::ZERO,
         };
         state.resize(size.width, size.height);
         Ok(state)
@@ -286,7 +290,10 @@ impl State {
         let Some(depth) = &self.depth else {
             return Drawn::Skipped; // minimised
         };
-        let frame = match self.surface.get_current_texture() {
+        let acquire = web_time::Instant::now();
+        let acquired = self.surface.get_current_texture();
+        self.waited = acquire.elapsed();
+        let frame = match acquired {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             wgpu::CurrentSurfaceTexture::Outdated => {
@@ -415,7 +422,7 @@ impl State {
 
     /// Submits the frame's work and presents it.
     fn finish(
-        &self,
+        &mut self,
         mut encoder: wgpu::CommandEncoder,
         frame: wgpu::SurfaceTexture,
         timed: bool,
@@ -425,7 +432,9 @@ impl State {
         }
         self.queue.submit([encoder.finish()]);
         self.window.pre_present_notify();
+        let present = web_time::Instant::now();
         self.queue.present(frame);
+        self.waited += present.elapsed();
         // Natively, callbacks (timestamp reads, device loss) run inside poll.
         #[cfg(not(target_arch = "wasm32"))]
         let _ = self.device.poll(wgpu::PollType::Poll);

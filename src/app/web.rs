@@ -203,10 +203,17 @@ impl Report for Page {
             crate::Method::Mesh => String::new(),
             m => format!("{m} · "),
         };
+        // The wasm's own time per frame (recording and submitting), beside the GPU's.
+        let cpu = stats
+            .cpu_ms
+            .map_or(String::new(), |ms| format!(" · CPU {ms:.2} ms/frame"));
+        if let Some(ms) = stats.cpu_ms {
+            set_body_data("cpu_ms", &format!("{ms:.3}"));
+        }
         let text = if stats.idle {
-            format!("{method}idle: drawn only on change · last frame {gpu}")
+            format!("{method}idle: drawn only on change · last frame {gpu}{cpu}")
         } else {
-            format!("{method}{:.0} fps · {gpu}", stats.fps)
+            format!("{method}{:.0} fps · {gpu}{cpu}", stats.fps)
         };
         set_text("readout", &text);
         set_body_data("idle", if stats.idle { "1" } else { "0" });
@@ -244,6 +251,13 @@ impl Report for Page {
 
     fn frame(&mut self, stats: &Stats) {
         set_body_data("frames", &stats.frames.to_string());
+        if stats.frames == 1 {
+            // From the page's navigation to its first frame submitted: download, compile,
+            // adapter and device, pipelines, the first bake and draw.
+            if let Some(p) = web_sys::window().and_then(|w| w.performance()) {
+                set_body_data("first_frame_ms", &format!("{:.0}", p.now()));
+            }
+        }
     }
 
     fn fatal(&mut self, message: &str) {

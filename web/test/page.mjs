@@ -126,6 +126,32 @@ await withBrowser(webgpu, async (browser) => {
   check(all.length === 0, `no console errors (${all.join(" | ") || "none"})`);
   fs.writeFileSync(path.join(out, "readout.txt"), await again.locator("#readout").innerText());
 
+  // The method `blog` (the seed blog's pipeline, its own terrain) through the URL: drawn, named
+  // by the readout and the control.
+  const errors3 = [];
+  const blog = await openPage(browser, `${base}/index.html?paused=1&method=blog`, errors3);
+  await waitFrames(blog, 1);
+  const named = await blog.waitForFunction(() => /^blog · /.test(document.querySelector("#readout").textContent),
+    null, { timeout: 60000 }).then(() => true, () => false);
+  const blogShot = await shot(blog, "page-blog.png");
+  const bcontrol = await blog.evaluate(() => document.querySelector('[data-key="method"]')?.value);
+  const bq = await blog.evaluate(() => document.body.dataset.query || "");
+  check(named && !blogShot.equals(first) && bcontrol === "blog" && bq.includes("method=blog"),
+    `method=blog draws the blog's pipeline, and the readout and control say so (${bcontrol})`);
+
+  // The page's costs, on SwiftShader (Chromium's CPU WebGPU: not what a GPU's browser measures):
+  // the wasm's size, the time from navigation to the first frame, the wasm's CPU time a frame.
+  const anim = await openPage(browser, `${base}/index.html?seed=7&size=256&grid=128`, errors3);
+  await anim.waitForFunction(() => document.body.dataset.cpu_ms, null, { timeout: 120000 });
+  const firstMs = Number(await anim.evaluate(() => document.body.dataset.first_frame_ms));
+  const cpuMs = Number(await anim.evaluate(() => document.body.dataset.cpu_ms));
+  const wasmKib = fs.statSync(path.join(root, "web/pkg/relief_bg.wasm")).size / 1024;
+  const metrics = `wasm_kib ${wasmKib.toFixed(0)}\nfirst_frame_ms ${firstMs}\ncpu_ms_per_frame ${cpuMs}\n`;
+  fs.writeFileSync(path.join(out, "metrics.txt"), metrics);
+  check(firstMs > 0 && cpuMs > 0 && /CPU [0-9.]+ ms\/frame/.test(await anim.locator("#readout").innerText()),
+    `SwiftShader: wasm ${wasmKib.toFixed(0)} KiB, first frame at ${firstMs} ms, CPU ${cpuMs} ms a frame (in the readout)`);
+  check(errors3.length === 0, `no console errors with the blog and the metrics (${errors3.join(" | ") || "none"})`);
+
   // The picture for the README (not a check): the whole page, controls included.
   try {
     const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
