@@ -161,6 +161,27 @@ pub fn command() -> Command {
                         .action(ArgAction::SetTrue)
                         .help("a small sweep at a small image size (about a minute on a software GPU)"),
                 ),
+        )
+        .subcommand(
+            Command::new("stability")
+                .about(
+                    "Where methods fail: sweep grazing views against the seed march's step \
+                     factor and relief's reference on the scene the other flags give, against the \
+                     CPU f64 ray cast; write stability.csv and grazing-hs*.png/svg (the tile)",
+                )
+                .arg(
+                    Arg::new("out-dir")
+                        .long("out-dir")
+                        .default_value("stability-out")
+                        .value_name("DIR")
+                        .help("output folder (created if missing)"),
+                )
+                .arg(
+                    Arg::new("quick")
+                        .long("quick")
+                        .action(ArgAction::SetTrue)
+                        .help("a small sweep at a small image size (seconds on a software GPU)"),
+                ),
         );
     let scene = TerrainParams::default();
     for p in params() {
@@ -460,7 +481,7 @@ fn clap_error(e: clap::Error) -> i32 {
             table::shorten(&names(ContextKind::InvalidArg))
         ),
         ErrorKind::InvalidSubcommand => format!(
-            "unknown command {} (commands: window, render, bake, bench, height)",
+            "unknown command {} (commands: window, render, bake, bench, stability, height)",
             table::shorten(&names(ContextKind::InvalidSubcommand))
         ),
         ErrorKind::ArgumentConflict => format!(
@@ -497,6 +518,10 @@ enum Run {
     },
     Height {
         points: Vec<[f64; 2]>,
+    },
+    Stability {
+        out_dir: PathBuf,
+        quick: bool,
     },
 }
 
@@ -842,6 +867,10 @@ fn run(top: &ArgMatches) -> Result<()> {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
             quick: m.get_flag("quick"),
         },
+        "stability" => Run::Stability {
+            out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
+            quick: m.get_flag("quick"),
+        },
         "height" => Run::Height {
             points: m
                 .get_many::<String>("points")
@@ -899,6 +928,25 @@ fn run(top: &ArgMatches) -> Result<()> {
             &["pixel_error"],
             "heights come from the continuous surface, not from what is drawn",
         )?;
+    }
+    if matches!(run, Run::Stability { .. }) {
+        refuse_flags(
+            m,
+            name,
+            &["size", "grid", "normals", "height_scale"],
+            "the sweep casts rays at the continuous surface, at height scales of its own",
+        )?;
+        refuse_flags(
+            m,
+            name,
+            &["timings"],
+            "the sweep measures failures, not time",
+        )?;
+        if world_kind(m)? == WorldKind::Endless {
+            return Err(Error::Usage(
+                "relief stability sweeps the tile only so far (no --world endless)".into(),
+            ));
+        }
     }
     if matches!(run, Run::Bench { .. }) {
         refuse_flags(
@@ -1030,6 +1078,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         ),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
         Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
+        Run::Stability { out_dir, quick } => stability(&params, &out_dir, quick),
         Run::Height { points } => {
             for [x, z] in points {
                 println!("{}", crate::height_at(&params, x as f32, z as f32));
@@ -1806,6 +1855,65 @@ fn bench(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     println!(
         "wrote {}, bench.png and bench.svg in {:.0} s",
         dir.join("bench.csv").display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
+    use crate::stability;
+    check_out_dir(dir)?;
+    let gpu = Gpu::new()?;
+    let info = gpu.adapter.get_info();
+    let options = if quick {
+        stability::Options::quick()
+    } else {
+        stability::Options::full()
+    };
+    println!(
+        "relief stability{} on {}: grazing views at {:?} degrees, height scales {:?}, {}x{} (every {} px compared with the CPU f64 ray cast), scene: seed {}, octaves {}, frequency {}, gain {}",
+        if quick { " --quick" } else { "" },
+        gpu.describe(),
+        options.elevations,
+        options.height_scales,
+        options.size.0,
+        options.size.1,
+        options.stride,
+        base.seed,
+        base.octaves,
+        base.frequency,
+        base.gain,
+    );
+    let views = options.elevations.len() * options.height_scales.len();
+    let bar = indicatif::ProgressBar::new(views as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} views {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let start = std::time::Instant::now();
+    let rows = stability::grazing(&gpu, base, &options, |done, _| {
+        bar.set_position(done as u64)
+    })?;
+    bar.finish_and_clear();
+    print!("{}", stability::table(&rows, &options));
+    let csv = stability::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
+    let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
+    let created = create_dirs(dir)?;
+    let result = (|| {
+        let csv_path = dir.join("stability.csv");
+        let tmp = temp_name(&csv_path);
+        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
+        std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
+        stability::chart(&rows, &options, &title, &dir.join("grazing"))
+    })();
+    if result.is_err() {
+        if let Some(c) = created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    }
+    result?;
+    println!(
+        "wrote {} and the grazing-hs*.png/svg charts in {:.0} s",
+        dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

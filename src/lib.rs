@@ -99,6 +99,8 @@ pub mod raycast;
 #[cfg(feature = "scene")]
 pub mod scene;
 pub mod sky;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod stability;
 pub mod table;
 pub mod tile;
 pub mod world;

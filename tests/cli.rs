@@ -1661,3 +1661,52 @@ fn render_draws_the_blogs_pipeline_and_refuses_what_it_does_not_read() {
         &["blog", "tile"],
     );
 }
+
+#[test]
+fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
+    let dir = scratch("stability");
+    let (code, stdout, err) = relief(&[
+        "stability",
+        "--quick",
+        "--octaves",
+        "6",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert!(
+        stdout.contains("octaves 6") && stdout.contains("height scale 2"),
+        "{stdout}"
+    );
+    assert_eq!(
+        files_in(&dir),
+        [
+            "grazing-hs0p5.png",
+            "grazing-hs0p5.svg",
+            "grazing-hs2.png",
+            "grazing-hs2.svg",
+            "stability.csv"
+        ]
+    );
+    let csv = std::fs::read_to_string(dir.join("stability.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<String>> = csv.lines().skip(1).map(csv_fields).collect();
+    // 3 elevations x 2 height scales x (2 step factors + the reference).
+    assert_eq!(rows.len(), 18, "{csv}");
+    for row in &rows {
+        let tunnelled: usize = row[col("tunnelled")].parse().unwrap();
+        if row[col("method")] == "reference" {
+            assert_eq!(tunnelled, 0, "the reference tunnelled: {row:?}");
+        }
+    }
+    for (flag, value) in [("--height-scale", "1"), ("--grid", "64"), ("--timings", "")] {
+        let mut args = vec!["stability", "--quick", flag];
+        if !value.is_empty() {
+            args.push(value);
+        }
+        rejects(&args, &[flag, "stability"]);
+    }
+    rejects(&["stability", "--world", "endless"], &["stability", "tile"]);
+}

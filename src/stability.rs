@@ -1,0 +1,405 @@
+//! Where methods fail: sweeps along the axes on which terrain methods are known to break down,
+//! each measured against the truth (`relief stability`).
+//!
+//! The first axis is grazing rays against step size. The seed's march steps `t += c * h`, where
+//! `h` is the ray's height above the terrain below it: not a distance bound, so a ray skimming a
+//! slope can step through a ridge. A camera low over the tile looks down at `elevation` degrees;
+//! every sampled pixel's ray is cast on the GPU by each method and on the CPU by the f64 twin's
+//! conservative cast ([`crate::raycast::Surface::intersect`], the truth). A pixel has
+//! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther.
+//! Rays that ran out of steps are counted apart (*capped*), never as sky.
+
+use crate::camera::OrbitCamera;
+use crate::error::Result;
+use crate::gpu::headless::{self, Gpu};
+use crate::gpu::raymarch::{RayMarcher, RayMethod, RayPath, SeedMarch};
+use crate::method::Method;
+use crate::params::{Shading, TerrainParams};
+use crate::raycast::{pixel_ray, Surface};
+use std::fmt::Write as _;
+
+/// A method on the grazing axis: relief's conservative cast, or the seed's march at a step
+/// factor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Marcher {
+    /// `reference` or `raymarch`.
+    pub method: Method,
+    /// The seed march's `c` (the reference has none).
+    pub step_factor: Option<f32>,
+}
+
+impl Marcher {
+    /// Its name in the CSV and on the chart.
+    pub fn label(&self) -> String {
+        match self.step_factor {
+            Some(c) => format!("{} c={c}", self.method),
+            None => self.method.to_string(),
+        }
+    }
+
+    fn ray_method(&self, params: &TerrainParams) -> RayMethod {
+        match self.step_factor {
+            Some(step_factor) => RayMethod::SeedMarch(SeedMarch {
+                step_factor,
+                // The march sums every octave: the surface it steps against is the truth's.
+                march_octaves: params.octaves,
+                normal_octaves: params.octaves,
+                ..SeedMarch::default()
+            }),
+            None => RayMethod::Reference,
+        }
+    }
+}
+
+/// What the grazing sweep measures with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Image size of each view.
+    pub size: (u32, u32),
+    /// Every `stride`-th pixel each way is compared with the CPU's ray.
+    pub stride: u32,
+    /// Degrees the camera looks down, one view each.
+    pub elevations: Vec<f64>,
+    /// Height scales the sweep runs at (the scene's and steeper), one pass each.
+    pub height_scales: Vec<f32>,
+    /// The methods.
+    pub marchers: Vec<Marcher>,
+}
+
+impl Options {
+    /// The full sweep: 7 elevations from 0.5 to 30 degrees, the seed march at 4 step factors
+    /// and the reference, at 480x270 with every 4th pixel compared.
+    pub fn full() -> Self {
+        Self {
+            size: (480, 270),
+            stride: 4,
+            elevations: vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0],
+            height_scales: vec![0.5, 2.0],
+            marchers: Self::marchers(&[0.3, 0.5, 0.8, 1.0]),
+        }
+    }
+
+    /// `--quick`: small enough for a software GPU in the tests.
+    pub fn quick() -> Self {
+        Self {
+            size: (96, 54),
+            stride: 2,
+            elevations: vec![1.0, 5.0, 20.0],
+            height_scales: vec![0.5, 2.0],
+            marchers: Self::marchers(&[0.3, 0.8]),
+        }
+    }
+
+    fn marchers(steps: &[f32]) -> Vec<Marcher> {
+        let seed = steps.iter().map(|&c| Marcher {
+            method: Method::Raymarch,
+            step_factor: Some(c),
+        });
+        seed.chain(std::iter::once(Marcher {
+            method: Method::Reference,
+            step_factor: None,
+        }))
+        .collect()
+    }
+}
+
+/// One method at one elevation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrazingRow {
+    /// The method.
+    pub marcher: Marcher,
+    /// Degrees the camera looks down.
+    pub elevation_deg: f64,
+    /// The scene's height scale (world height of normalised height 1; the tile is 2 wide).
+    pub height_scale: f32,
+    /// Pixels compared.
+    pub sampled: usize,
+    /// Of those, where the truth hits terrain.
+    pub truth_hits: usize,
+    /// Truth hits the method sees as sky or more than 1% farther: it stepped through terrain.
+    /// A miss where a ray raised by [`SILHOUETTE`] of its length would miss too is a grazed
+    /// silhouette (f32 against f64), not a tunnel.
+    pub tunnelled: usize,
+    /// Pixels whose ray ran out of steps (a truth hit that ran out is not a tunnel).
+    pub capped: usize,
+    /// Truth hits the method stops short of by more than 1% (the seed's hit test `|h| < k t`
+    /// accepts a ray skimming the slope).
+    pub early: usize,
+    /// Largest relative depth error among the hits that did not tunnel.
+    pub depth_error_max: f64,
+}
+
+impl GrazingRow {
+    /// Tunnelled pixels as a fraction of the truth's hits.
+    pub fn tunnelled_fraction(&self) -> f64 {
+        self.tunnelled as f64 / self.truth_hits.max(1) as f64
+    }
+}
+
+/// Relative depth beyond which a later hit counts as a tunnel.
+pub const TUNNEL_TOLERANCE: f64 = 0.01;
+
+/// How far up, relative to the hit's distance, a missed ray is raised to tell a grazed
+/// silhouette from a tunnel: 1e-4 of the distance, a seventh of a 1080p pixel.
+pub const SILHOUETTE: f64 = 1e-4;
+
+/// The camera of the grazing axis: low over the tile's centre, looking down `elevation_deg`
+/// at the surface there from 1.2 world units away (the tile is 2 wide).
+pub fn grazing_camera(surface: &Surface, elevation_deg: f64) -> OrbitCamera {
+    OrbitCamera {
+        target: glam::Vec3::new(0.0, surface.height(0.0, 0.0) as f32, 0.0),
+        yaw: 0.7,
+        pitch: (elevation_deg as f32).to_radians(),
+        distance: 1.2,
+        fov_y: 45f32.to_radians(),
+    }
+}
+
+/// Sweeps the grazing axis for `params` at each of the options' height scales;
+/// `progress(done, total)` after each view.
+pub fn grazing(
+    gpu: &Gpu,
+    params: &TerrainParams,
+    options: &Options,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Vec<GrazingRow>> {
+    let (w, h) = options.size;
+    let caster = RayMarcher::new(&gpu.device, w, h)?;
+    let mut rows = Vec::new();
+    let views: Vec<(f32, f64)> = options
+        .height_scales
+        .iter()
+        .flat_map(|&hs| options.elevations.iter().map(move |&e| (hs, e)))
+        .collect();
+    for (i, &(height_scale, elevation)) in views.iter().enumerate() {
+        let params = &TerrainParams {
+            height_scale,
+            ..*params
+        };
+        params.validate()?;
+        let surface = Surface::new(params);
+        let view = grazing_camera(&surface, elevation).view(w as f32 / h as f32);
+        // The truth at the sampled pixels.
+        let stride = options.stride.max(1);
+        let pixels: Vec<(u32, u32)> = (0..h)
+            .step_by(stride as usize)
+            .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
+            .collect();
+        // The truth at the sampled pixels, and whether the ray raised by SILHOUETTE of the
+        // hit's distance still hits (a ray that then misses grazed a silhouette).
+        let truth: Vec<Option<(f64, bool)>> = pixels
+            .iter()
+            .map(|&(x, y)| {
+                let (ro, rd) = pixel_ray(&view, w, h, x, y);
+                let t = surface.intersect(ro, rd)?;
+                let raised = ro + glam::DVec3::Y * (SILHOUETTE * t);
+                Some((t, surface.intersect(raised, rd).is_some()))
+            })
+            .collect();
+        for m in &options.marchers {
+            caster.prepare(
+                &gpu.queue,
+                params,
+                &Shading::default(),
+                &view,
+                m.ray_method(params),
+            );
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            caster.encode(&mut encoder, RayPath::Compute, None);
+            gpu.queue.submit([encoder.finish()]);
+            let bytes = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance)?;
+            let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
+            let mut row = GrazingRow {
+                marcher: *m,
+                elevation_deg: elevation,
+                height_scale,
+                sampled: pixels.len(),
+                truth_hits: 0,
+                tunnelled: 0,
+                capped: 0,
+                early: 0,
+                depth_error_max: 0.0,
+            };
+            for (&(x, y), t) in pixels.iter().zip(&truth) {
+                let d = f64::from(distance[(y * w + x) as usize]);
+                let Some((t, solid)) = *t else {
+                    row.capped += usize::from(d == -2.0);
+                    continue;
+                };
+                row.truth_hits += 1;
+                if d == -2.0 {
+                    row.capped += 1;
+                } else if (d < 0.0 && solid) || d > t * (1.0 + TUNNEL_TOLERANCE) {
+                    row.tunnelled += 1;
+                } else if d >= 0.0 {
+                    // (A miss on a grazed silhouette is neither a tunnel nor a depth.)
+                    row.early += usize::from(d < t * (1.0 - TUNNEL_TOLERANCE));
+                    row.depth_error_max = row.depth_error_max.max((d - t).abs() / t);
+                }
+            }
+            rows.push(row);
+        }
+        progress(i + 1, views.len());
+    }
+    Ok(rows)
+}
+
+/// The CSV: a header and a row per method and elevation, with the device and backend.
+pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) -> String {
+    let mut out = String::from(
+        "device,backend,axis,method,step_factor,height_scale,elevation_deg,width,height,sampled,truth_hits,tunnelled,tunnelled_fraction,capped,early,depth_error_max\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "\"{device}\",\"{backend}\",grazing,{},{},{},{},{},{},{},{},{},{:.6},{},{},{:.6}",
+            r.marcher.method,
+            r.marcher
+                .step_factor
+                .map_or(String::new(), |c| c.to_string()),
+            r.height_scale,
+            r.elevation_deg,
+            options.size.0,
+            options.size.1,
+            r.sampled,
+            r.truth_hits,
+            r.tunnelled,
+            r.tunnelled_fraction(),
+            r.capped,
+            r.early,
+            r.depth_error_max,
+        );
+    }
+    out
+}
+
+/// A table for the terminal: tunnelled fraction per method (rows) and elevation (columns).
+pub fn table(rows: &[GrazingRow], options: &Options) -> String {
+    let mut out = String::new();
+    for &hs in &options.height_scales {
+        let _ = write!(out, "{:<22}", format!("height scale {hs}"));
+        for e in &options.elevations {
+            let _ = write!(out, " {:>13}", format!("{e}°"));
+        }
+        out.push('\n');
+        for m in &options.marchers {
+            let _ = write!(out, "{:<22}", m.label());
+            for e in &options.elevations {
+                let cell = rows
+                    .iter()
+                    .find(|r| r.marcher == *m && r.elevation_deg == *e && r.height_scale == hs)
+                    .map_or("-".to_owned(), |r| {
+                        format!("{:.4} ({})", r.tunnelled_fraction(), r.capped)
+                    });
+                let _ = write!(out, " {cell:>13}");
+            }
+            out.push('\n');
+        }
+    }
+    out.push_str("cells: tunnelled fraction of the truth's hits (rays that ran out of steps)\n");
+    out
+}
+
+/// The charts, one per height scale (`stem-hs0p5` for 0.5): tunnelled fraction against elevation
+/// (log), a line per method.
+pub fn chart(
+    rows: &[GrazingRow],
+    options: &Options,
+    title: &str,
+    stem: &std::path::Path,
+) -> Result<()> {
+    for &hs in &options.height_scales {
+        let mine: Vec<GrazingRow> = rows
+            .iter()
+            .filter(|r| r.height_scale == hs)
+            .cloned()
+            .collect();
+        let title = format!("{title}, height scale {hs}");
+        // No dot in the name: the extension goes after it (0.5 is written 0p5).
+        let name = stem
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("grazing");
+        let scale = hs.to_string().replace('.', "p");
+        let stem = stem.with_file_name(format!("{name}-hs{scale}"));
+        crate::bench::write_chart(
+            &stem,
+            |b| draw(b, &mine, options, &title),
+            |b| draw(b, &mine, options, &title),
+        )?;
+    }
+    Ok(())
+}
+
+fn draw<DB: plotters::prelude::DrawingBackend>(
+    backend: DB,
+    rows: &[GrazingRow],
+    options: &Options,
+    title: &str,
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let e0 = options.elevations.iter().copied().fold(f64::MAX, f64::min) / 1.3;
+    let e1 = options.elevations.iter().copied().fold(f64::MIN, f64::max) * 1.3;
+    let top = rows
+        .iter()
+        .map(GrazingRow::tunnelled_fraction)
+        .fold(0.0, f64::max)
+        .max(0.01)
+        * 1.15;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(
+            (e0..e1)
+                .log_scale()
+                .with_key_points(crate::bench::log_ticks(e0, e1, 5)),
+            0.0..top,
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&|v| crate::bench::tick_label(*v))
+        .x_desc("camera elevation above the horizon, degrees (log)")
+        .y_desc("tunnelled pixels (fraction of the truth's hits)")
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 15))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (i, m) in options.marchers.iter().enumerate() {
+        // relief's reference in black; the seed march's step factors in the palette's colours.
+        let color = if m.step_factor.is_none() {
+            BLACK.to_rgba()
+        } else {
+            Palette99::pick(i).to_rgba()
+        };
+        let line: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.marcher == *m)
+            .map(|r| (r.elevation_deg, r.tunnelled_fraction()))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
+            .map_err(|e| e.to_string())?
+            .label(m.label())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        chart
+            .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(|e| e.to_string())?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 15))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    root.present().map_err(|e| e.to_string())
+}
