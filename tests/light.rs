@@ -64,11 +64,14 @@ fn baked(gpu: &Gpu, p: WorldParams) -> World {
     world
 }
 
-/// Per level texel of `world`'s light texture: (horizon, valley).
+/// Per level texel of `world`'s light texture: (horizon, valley), unpacked from the two 16-bit
+/// floats of each texel.
 fn light(gpu: &Gpu, world: &World) -> Vec<[f32; 2]> {
-    bytemuck::pod_collect_to_vec(
+    let packed: Vec<u32> = bytemuck::pod_collect_to_vec(
         &headless::read_texture(&gpu.device, &gpu.queue, world.light_texture()).unwrap(),
-    )
+    );
+    let half = |bits: u32| half::f16::from_bits(bits as u16).to_f32();
+    packed.iter().map(|&p| [half(p & 0xffff), half(p >> 16)]).collect()
 }
 
 /// Sampled texels of level `l`: (world x, z, horizon in radians).

@@ -59,7 +59,8 @@ struct WorldUniforms {
 @group(0) @binding(2) var level_tex: texture_2d_array<f32>;
 // Per level texel: the terrain's horizon towards the sun (radians) and the valley depth
 // (metres), from the light bake (world_light.wgsl).
-@group(0) @binding(3) var light_tex: texture_2d_array<f32>;
+// Horizon elevation and valley depth, two 16-bit floats packed (src/gpu/world_light.rs).
+@group(0) @binding(3) var light_tex: texture_2d_array<u32>;
 // The tile's own textures (rg32float height and colour channel, rgba16float normals), read per
 // pixel as the tile always shaded: its `size` and `normals` keys shade the mesh.
 @group(0) @binding(4) var tile_terrain: texture_2d<f32>;
@@ -85,7 +86,8 @@ fn texel(lv: Level, ij: vec2<i32>, light: bool) -> vec4<f32> {
     let c = clamp(ij, vec2<i32>(0), vec2<i32>(i32(w.cells)));
     let t = vec2<i32>((lv.origin_mod + vec2<u32>(c)) % vec2<u32>(w.side));
     if light {
-        return textureLoad(light_tex, t, i32(lv.layer), 0);
+        let packed = textureLoad(light_tex, t, i32(lv.layer), 0).x;
+        return vec4<f32>(unpack2x16float(packed), 0.0, 0.0);
     }
     return textureLoad(level_tex, t, i32(lv.layer), 0);
 }

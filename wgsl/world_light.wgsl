@@ -63,7 +63,8 @@ struct LightRect {
 @group(0) @binding(0) var<uniform> light: LightUniforms;
 @group(0) @binding(1) var<uniform> rect: LightRect;
 @group(0) @binding(2) var heights: texture_2d_array<f32>;
-@group(0) @binding(3) var light_out: texture_storage_2d_array<rg32float, write>;
+// Horizon elevation and valley depth as two 16-bit floats in one 32-bit texel.
+@group(0) @binding(3) var light_out: texture_storage_2d_array<r32uint, write>;
 
 fn height_texel(lv: LightLevel, ij: vec2<i32>) -> f32 {
     let t = (lv.origin_mod + vec2<u32>(ij)) % vec2<u32>(light.side);
@@ -195,5 +196,6 @@ fn light_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let valley = select(0.0, h - sum / max(count, 1.0), count > 0.0);
 
     let dest = (lk.origin_mod + vec2<u32>(own)) % vec2<u32>(light.side);
-    textureStore(light_out, vec2<i32>(dest), i32(lk.layer), vec4<f32>(atan(slope), valley, 0.0, 0.0));
+    let packed = pack2x16float(vec2<f32>(atan(slope), valley));
+    textureStore(light_out, vec2<i32>(dest), i32(lk.layer), vec4<u32>(packed, 0u, 0u, 0u));
 }

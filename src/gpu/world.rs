@@ -333,8 +333,8 @@ impl World {
                 entries: &[
                     super::uniform_entry::<RenderUniforms>(0, vf),
                     super::uniform_entry::<WorldUniforms>(1, vf),
-                    array_entry(2),
-                    array_entry(3),
+                    array_entry(2, wgpu::TextureSampleType::Float { filterable: false }),
+                    array_entry(3, wgpu::TextureSampleType::Uint),
                     super::texture_entry(4, wgpu::ShaderStages::FRAGMENT, false),
                     super::texture_entry(5, wgpu::ShaderStages::FRAGMENT, true),
                     wgpu::BindGroupLayoutEntry {
@@ -457,7 +457,8 @@ impl World {
         &self.texture
     }
 
-    /// The light texture array beside the levels: side x side x levels, rg32float (the
+    /// The light texture array beside the levels: side x side x levels, r32uint holding two
+    /// 16-bit floats (the
     /// terrain's horizon towards the sun in radians, the valley depth in metres), at the same
     /// texels as [`World::level_texture`]'s samples.
     pub fn light_texture(&self) -> &wgpu::Texture {
@@ -1250,12 +1251,12 @@ impl LevelLight {
     }
 }
 
-fn array_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+fn array_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            sample_type,
             view_dimension: wgpu::TextureViewDimension::D2Array,
             multisampled: false,
         },
