@@ -71,7 +71,10 @@ fn light(gpu: &Gpu, world: &World) -> Vec<[f32; 2]> {
         &headless::read_texture(&gpu.device, &gpu.queue, world.light_texture()).unwrap(),
     );
     let half = |bits: u32| half::f16::from_bits(bits as u16).to_f32();
-    packed.iter().map(|&p| [half(p & 0xffff), half(p >> 16)]).collect()
+    packed
+        .iter()
+        .map(|&p| [half(p & 0xffff), half(p >> 16)])
+        .collect()
 }
 
 /// Sampled texels of level `l`: (world x, z, horizon in radians).
