@@ -1838,26 +1838,32 @@ fn bench(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         "relief: error against GPU time on {} ({:?})",
         info.name, info.backend
     );
-    let created = create_dirs(dir)?;
-    let result = (|| {
-        let csv_path = dir.join("bench.csv");
-        let tmp = temp_name(&csv_path);
-        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
-        std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
+    write_results(dir, ("bench.csv", &csv), || {
         bench::chart(&rows, &title, &dir.join("bench"))
-    })();
-    if result.is_err() {
-        if let Some(c) = created {
-            let _ = std::fs::remove_dir_all(c);
-        }
-    }
-    result?;
+    })?;
     println!(
         "wrote {}, bench.png and bench.svg in {:.0} s",
         dir.join("bench.csv").display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// Writes a sweep's CSV into `dir` (whole or not at all) and then its charts with `charts`; a
+/// folder this created is removed again if either fails.
+fn write_results(
+    dir: &Path,
+    (name, csv): (&str, &str),
+    charts: impl FnOnce() -> Result<()>,
+) -> Result<()> {
+    let created = create_dirs(dir)?;
+    let result = write_whole(&dir.join(name), csv).and_then(|()| charts());
+    if result.is_err() {
+        if let Some(c) = created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    }
+    result
 }
 
 fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
@@ -1897,20 +1903,9 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     print!("{}", stability::table(&rows, &options));
     let csv = stability::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
     let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
-    let created = create_dirs(dir)?;
-    let result = (|| {
-        let csv_path = dir.join("stability.csv");
-        let tmp = temp_name(&csv_path);
-        std::fs::write(&tmp, csv).map_err(|e| Error::io(&tmp, e))?;
-        std::fs::rename(&tmp, &csv_path).map_err(|e| Error::io(&csv_path, e))?;
+    write_results(dir, ("stability.csv", &csv), || {
         stability::chart(&rows, &options, &title, &dir.join("grazing"))
-    })();
-    if result.is_err() {
-        if let Some(c) = created {
-            let _ = std::fs::remove_dir_all(c);
-        }
-    }
-    result?;
+    })?;
     println!(
         "wrote {} and the grazing-hs*.png/svg charts in {:.0} s",
         dir.join("stability.csv").display(),
