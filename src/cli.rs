@@ -167,7 +167,8 @@ pub fn command() -> Command {
                 .about(
                     "Where methods fail: sweep grazing views against the seed march's step \
                      factor and relief's reference on the scene the other flags give, against the \
-                     CPU f64 ray cast; write stability.csv and grazing-hs*.png/svg (the tile)",
+                     CPU f64 ray cast, and the storage precision of heights and normals against the f64 twin; \
+                     write stability.csv, storage.csv and their charts (the tile)",
                 )
                 .arg(
                     Arg::new("out-dir")
@@ -1903,11 +1904,20 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     print!("{}", stability::table(&rows, &options));
     let csv = stability::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
     let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
+    // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
+    let side = if quick { 256 } else { stability::STORAGE_SIZE };
+    let storage = stability::storage(base, side)?;
+    println!("storage precision, {side}² texels of the scene's heights:");
+    print!("{}", stability::storage_table(&storage));
+    let storage_csv = stability::storage_csv(&storage, base, side);
     write_results(dir, ("stability.csv", &csv), || {
-        stability::chart(&rows, &options, &title, &dir.join("grazing"))
+        stability::chart(&rows, &options, &title, &dir.join("grazing"))?;
+        write_whole(&dir.join("storage.csv"), &storage_csv)?;
+        let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
+        stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {} and the grazing-hs*.png/svg charts in {:.0} s",
+        "wrote {}, storage.csv and the grazing-hs*.png/svg and storage.png/svg charts in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

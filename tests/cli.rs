@@ -1686,7 +1686,10 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             "grazing-hs0p5.svg",
             "grazing-hs2.png",
             "grazing-hs2.svg",
-            "stability.csv"
+            "stability.csv",
+            "storage.csv",
+            "storage.png",
+            "storage.svg"
         ]
     );
     let csv = std::fs::read_to_string(dir.join("stability.csv")).unwrap();

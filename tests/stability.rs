@@ -40,3 +40,30 @@ fn grazing_rays_tunnel_through_the_seed_march_on_steep_terrain_and_never_through
         "grazing axis, raymarch c=0.8 at height scale 2: tunnelled {worst}"
     );
 }
+
+#[test]
+fn eight_bit_heights_terrace_and_the_blogs_normal_map_loses_directions() {
+    let rows = relief::stability::storage(&TerrainParams::default(), 256).unwrap();
+    eprintln!("{}", relief::stability::storage_table(&rows));
+    let row = |format: &str| rows.iter().find(|r| r.format == format).unwrap();
+    let at = |format: &str| format!("storage axis, {format} at 256² texels");
+    // Heights: 8 bits (the blog's) tilt the normals by degrees and flatten some slopes; 16-bit
+    // floats by under a degree at the 99th percentile; 32-bit floats by nothing visible.
+    let r8 = row("r8unorm (blog)");
+    assert!(r8.angle_p99_deg > 3.0, "{}: {r8:?}", at(r8.format));
+    assert!(
+        r8.flat_fraction.unwrap() > 0.005,
+        "{}: {r8:?}",
+        at(r8.format)
+    );
+    let f16 = row("r16float");
+    assert!(f16.angle_p99_deg < 1.0, "{}: {f16:?}", at(f16.format));
+    let f32 = row("r32float");
+    assert!(f32.angle_max_deg < 0.001, "{}: {f32:?}", at(f32.format));
+    // Normals: the blog's rgba8unorm loses every negative component (tens of degrees); a
+    // signed 8-bit format keeps them to under half a degree.
+    let blog = row("rgba8unorm (blog)");
+    assert!(blog.angle_p99_deg > 30.0, "{}: {blog:?}", at(blog.format));
+    let snorm = row("rgba8snorm");
+    assert!(snorm.angle_max_deg < 0.5, "{}: {snorm:?}", at(snorm.format));
+}
