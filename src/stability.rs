@@ -427,6 +427,10 @@ pub struct StorageRow {
     pub flat_fraction: Option<f64>,
 }
 
+/// A storage format on the storage axis: its name, bits a value, and what storing a value in it
+/// and reading it back gives.
+type Format = (&'static str, u32, fn(f64) -> f64);
+
 /// A texel side for the storage axis: the default tile's texture side.
 pub const STORAGE_SIZE: u32 = 1024;
 
@@ -461,7 +465,7 @@ pub fn storage(params: &TerrainParams, size: u32) -> Result<Vec<StorageRow>> {
     };
     let truth: Vec<[f64; 3]> = (0..exact.len()).map(|i| normal(&exact, i)).collect();
     let mut rows = Vec::new();
-    let heights: [(&'static str, u32, fn(f64) -> f64); 3] = [
+    let heights: [Format; 3] = [
         ("r8unorm (blog)", 8, |h| {
             (h.clamp(0.0, 1.0) * 255.0).round() / 255.0
         }),
@@ -491,7 +495,7 @@ pub fn storage(params: &TerrainParams, size: u32) -> Result<Vec<StorageRow>> {
             flat_fraction: Some(flat as f64 / stored.len() as f64),
         });
     }
-    let normals: [(&'static str, u32, fn(f64) -> f64); 4] = [
+    let normals: [Format; 4] = [
         // The blog writes the signed normal into rgba8unorm: below 0 is stored as 0.
         ("rgba8unorm (blog)", 8, |c| {
             (c.clamp(0.0, 1.0) * 255.0).round() / 255.0
