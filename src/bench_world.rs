@@ -659,7 +659,7 @@ where
                 }))
                 .map_err(|e| e.to_string())?;
         }
-        legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     }
     accuracy_panel(&bottom, rows, &views, &colors)?;
     root.present().map_err(|e| e.to_string())
@@ -729,27 +729,5 @@ where
             .label(*view)
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
     }
-    legend(&mut chart, SeriesLabelPosition::LowerMiddle)
-}
-
-/// The series' legend of a panel, at `position`.
-fn legend<'a, DB, X, Y>(
-    chart: &mut plotters::prelude::ChartContext<'a, DB, plotters::prelude::Cartesian2d<X, Y>>,
-    position: plotters::prelude::SeriesLabelPosition,
-) -> std::result::Result<(), String>
-where
-    DB: plotters::prelude::DrawingBackend + 'a,
-    DB::ErrorType: 'static,
-    X: plotters::coord::ranged1d::Ranged,
-    Y: plotters::coord::ranged1d::Ranged,
-{
-    use plotters::prelude::*;
-    chart
-        .configure_series_labels()
-        .position(position)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .draw()
-        .map_err(|e| e.to_string())
+    crate::bench::legend(&mut chart, SeriesLabelPosition::LowerMiddle)
 }

@@ -148,19 +148,8 @@ pub fn command() -> Command {
                      mesh and the knobs of the seed's ray march on the scene the other flags \
                      give; write bench.csv, bench.png and bench.svg",
                 )
-                .arg(
-                    Arg::new("out-dir")
-                        .long("out-dir")
-                        .default_value("bench-out")
-                        .value_name("DIR")
-                        .help("output folder (created if missing)"),
-                )
-                .arg(
-                    Arg::new("quick")
-                        .long("quick")
-                        .action(ArgAction::SetTrue)
-                        .help("a small sweep at a small image size (about a minute on a software GPU)"),
-                ),
+                .arg(out_dir_arg("bench-out"))
+                .arg(quick_arg("about a minute on a software GPU")),
         )
         .subcommand(
             Command::new("stability")
@@ -170,19 +159,8 @@ pub fn command() -> Command {
                      CPU f64 ray cast, and the storage precision of heights and normals against the f64 twin; \
                      write stability.csv, storage.csv and their charts (the tile)",
                 )
-                .arg(
-                    Arg::new("out-dir")
-                        .long("out-dir")
-                        .default_value("stability-out")
-                        .value_name("DIR")
-                        .help("output folder (created if missing)"),
-                )
-                .arg(
-                    Arg::new("quick")
-                        .long("quick")
-                        .action(ArgAction::SetTrue)
-                        .help("a small sweep at a small image size (seconds on a software GPU)"),
-                ),
+                .arg(out_dir_arg("stability-out"))
+                .arg(quick_arg("seconds on a software GPU")),
         );
     let scene = TerrainParams::default();
     for p in params() {
@@ -1848,6 +1826,23 @@ fn bench(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// A sweep's `--out-dir`, defaulting to `default`.
+fn out_dir_arg(default: &'static str) -> Arg {
+    Arg::new("out-dir")
+        .long("out-dir")
+        .default_value(default)
+        .value_name("DIR")
+        .help("output folder (created if missing)")
+}
+
+/// A sweep's `--quick`, taking about `how_long`.
+fn quick_arg(how_long: &str) -> Arg {
+    Arg::new("quick")
+        .long("quick")
+        .action(ArgAction::SetTrue)
+        .help(format!("a small sweep at a small image size ({how_long})"))
 }
 
 /// Writes a sweep's CSV into `dir` (whole or not at all) and then its charts with `charts`; a

@@ -80,6 +80,8 @@ pub struct State {
     blit: Option<crate::gpu::blit::Blit>,
     /// The blog's pipeline, once the method `blog` has been drawn.
     blog: Option<crate::gpu::blog::Blog>,
+    /// Building it failed (said once; the mesh is drawn instead).
+    blog_failed: bool,
 }
 
 /// A ray caster sized for the window: its scene, its cast size, rays per pixel each way.
@@ -209,6 +211,7 @@ impl State {
             rays: None,
             blit: None,
             blog: None,
+            blog_failed: false,
             waited: web_time::Duration::ZERO,
         };
         state.resize(size.width, size.height);
@@ -280,11 +283,14 @@ impl State {
         timed: bool,
         method: Method,
     ) -> Drawn {
-        if method == Method::Blog && fly.is_none() && self.blog.is_none() {
-            // Built on first use, for the window's targets.
+        if method == Method::Blog && fly.is_none() && self.blog.is_none() && !self.blog_failed {
+            // Built on first use, for the window's targets; tried once.
             match crate::gpu::blog::Blog::new(&self.device, *self.terrain.targets()) {
                 Ok(blog) => self.blog = Some(blog),
-                Err(e) => log::warn!("{e}"),
+                Err(e) => {
+                    self.blog_failed = true;
+                    log::warn!("the blog's pipeline could not be built ({e}): drawing the mesh");
+                }
             }
         }
         let Some(depth) = &self.depth else {

@@ -65,6 +65,9 @@ enum Kind {
     Exact,
 }
 
+/// The bake and the normal pass, each a pipeline with its bind group.
+type Passes = [(wgpu::ComputePipeline, wgpu::BindGroup); 2];
+
 /// The blog's pipeline (or its exact surface) built for the host's targets.
 pub struct Blog {
     kind: Kind,
@@ -74,12 +77,11 @@ pub struct Blog {
     draw: wgpu::RenderPipeline,
     draw_group: wgpu::BindGroup,
     /// The bake and normal passes with their bind groups (the pipeline only).
-    passes: Option<[(wgpu::ComputePipeline, wgpu::BindGroup); 2]>,
+    passes: Option<Passes>,
     /// The pipeline's index buffer (the exact grid is drawn without one).
     indices: Option<wgpu::Buffer>,
     /// Indices (or vertices, without an index buffer) drawn.
     count: u32,
-    srgb: bool,
     /// The height map (height, colour) and normal map, rgba8unorm (the pipeline only).
     pub maps: Option<[wgpu::Texture; 2]>,
 }
@@ -170,16 +172,74 @@ impl Blog {
     }
 
     fn create(device: &wgpu::Device, targets: Targets, kind: Kind, grid: u32) -> Result<Self> {
-        use wgpu::ShaderStages as S;
         let module = super::shader::module(device, "relief:blog:shader", super::shader::BLOG);
         let uniforms = super::uniform_buffer::<BlogUniforms>(device, "relief:blog:uniforms");
+        let (draw_layout, draw_group, entries, textured) = match kind {
+            Kind::Pipeline => {
+                let (layout, group, textured) = Self::textured(device, &module, &uniforms);
+                (layout, group, ("vs_blog", "fs_blog"), Some(textured))
+            }
+            // The exact surface reads no maps: its uniforms alone.
+            Kind::Exact => {
+                let uniform =
+                    super::uniform_entry::<BlogUniforms>(0, wgpu::ShaderStages::VERTEX_FRAGMENT);
+                let entries = [uniforms.as_entire_binding()];
+                let (layout, group) = group(device, "relief:blog:exact", &[uniform], &entries);
+                (layout, group, ("vs_exact", "fs_exact"), None)
+            }
+        };
+        let draw = super::render_pipeline(
+            device,
+            ("relief:blog", &draw_layout, &module, entries),
+            &targets,
+            wgpu::PrimitiveTopology::TriangleList,
+            &[],
+            (true, wgpu::CompareFunction::Less),
+        );
+        let count = (grid - 1) * (grid - 1) * 6;
+        let indices = (kind == Kind::Pipeline).then(|| {
+            wgpu::util::DeviceExt::create_buffer_init(
+                device,
+                &wgpu::util::BufferInitDescriptor {
+                    label: Some("relief:blog:indices"),
+                    contents: bytemuck::cast_slice(&grid_indices(grid)),
+                    usage: wgpu::BufferUsages::INDEX,
+                },
+            )
+        });
+        let (passes, maps) = textured.unzip();
+        Ok(Self {
+            kind,
+            targets,
+            grid,
+            uniforms,
+            draw,
+            draw_group,
+            passes,
+            count,
+            indices,
+            maps,
+        })
+    }
+
+    /// The pipeline's maps, its draw's bind group (layout and group) and its bake and normal
+    /// passes.
+    fn textured(
+        device: &wgpu::Device,
+        module: &wgpu::ShaderModule,
+        uniforms: &wgpu::Buffer,
+    ) -> (
+        wgpu::BindGroupLayout,
+        wgpu::BindGroup,
+        (Passes, [wgpu::Texture; 2]),
+    ) {
+        use wgpu::ShaderStages as S;
         let u = || uniforms.as_entire_binding();
         let usage = wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC;
-        // The exact path reads no maps; it still binds nothing but its uniforms.
-        let side = if kind == Kind::Pipeline { BLOG_SIZE } else { 1 };
-        let make = |label| super::texture_2d(device, label, (side, side), BLOG_FORMAT, usage);
+        let size = (BLOG_SIZE, BLOG_SIZE);
+        let make = |label| super::texture_2d(device, label, size, BLOG_FORMAT, usage);
         let maps = [make("relief:blog:noise"), make("relief:blog:normals")];
         let views = maps
             .clone()
@@ -194,90 +254,47 @@ impl Blog {
         let uniform = super::uniform_entry::<BlogUniforms>(0, S::VERTEX_FRAGMENT | S::COMPUTE);
         let view = |i: usize| wgpu::BindingResource::TextureView(&views[i]);
         let sampled = wgpu::BindingResource::Sampler(&sampler);
-        let (draw_layout, draw_group, (vertex, fragment)) = match kind {
-            Kind::Pipeline => {
-                let (layout, group) = group(
-                    device,
-                    "relief:blog:draw",
-                    &[
-                        uniform,
-                        super::texture_entry(2, S::VERTEX, true),
-                        sampler_entry(3, S::VERTEX),
-                        super::texture_entry(5, S::VERTEX, true),
-                    ],
-                    &[u(), view(0), sampled.clone(), view(1)],
-                );
-                (layout, group, ("vs_blog", "fs_blog"))
-            }
-            Kind::Exact => {
-                let (layout, group) = group(device, "relief:blog:exact", &[uniform], &[u()]);
-                (layout, group, ("vs_exact", "fs_exact"))
-            }
-        };
-        let draw = super::render_pipeline(
+        let (draw_layout, draw_group) = group(
             device,
-            ("relief:blog", &draw_layout, &module, (vertex, fragment)),
-            &targets,
-            wgpu::PrimitiveTopology::TriangleList,
-            &[],
-            (true, wgpu::CompareFunction::Less),
+            "relief:blog:draw",
+            &[
+                uniform,
+                super::texture_entry(2, S::VERTEX, true),
+                sampler_entry(3, S::VERTEX),
+                super::texture_entry(5, S::VERTEX, true),
+            ],
+            &[u(), view(0), sampled.clone(), view(1)],
         );
-        let passes = (kind == Kind::Pipeline).then(|| {
-            let (bake_layout, bake_group) = group(
-                device,
-                "relief:blog:bake",
-                &[uniform, storage_entry(1)],
-                &[u(), view(0)],
-            );
-            let (normal_layout, normal_group) = group(
-                device,
-                "relief:blog:normals",
-                &[
-                    uniform,
-                    super::texture_entry(2, S::COMPUTE, true),
-                    sampler_entry(3, S::COMPUTE),
-                    storage_entry(4),
-                ],
-                &[u(), view(0), sampled.clone(), view(1)],
-            );
-            let pipeline = |label, layout, entry| {
-                super::compute_pipeline(device, label, layout, &module, entry)
-            };
-            [
-                (
-                    pipeline("relief:blog:bake", &bake_layout, "blog_bake"),
-                    bake_group,
-                ),
-                (
-                    pipeline("relief:blog:normals", &normal_layout, "blog_normals"),
-                    normal_group,
-                ),
-            ]
-        });
-        let count = (grid - 1) * (grid - 1) * 6;
-        let indices = (kind == Kind::Pipeline).then(|| {
-            wgpu::util::DeviceExt::create_buffer_init(
-                device,
-                &wgpu::util::BufferInitDescriptor {
-                    label: Some("relief:blog:indices"),
-                    contents: bytemuck::cast_slice(&grid_indices(grid)),
-                    usage: wgpu::BufferUsages::INDEX,
-                },
-            )
-        });
-        Ok(Self {
-            kind,
-            targets,
-            grid,
-            uniforms,
-            draw,
-            draw_group,
-            passes,
-            count,
-            indices,
-            srgb: targets.color_format.is_srgb(),
-            maps: (kind == Kind::Pipeline).then_some(maps),
-        })
+        let (bake_layout, bake_group) = group(
+            device,
+            "relief:blog:bake",
+            &[uniform, storage_entry(1)],
+            &[u(), view(0)],
+        );
+        let (normal_layout, normal_group) = group(
+            device,
+            "relief:blog:normals",
+            &[
+                uniform,
+                super::texture_entry(2, S::COMPUTE, true),
+                sampler_entry(3, S::COMPUTE),
+                storage_entry(4),
+            ],
+            &[u(), view(0), sampled, view(1)],
+        );
+        let pipeline =
+            |label, layout, entry| super::compute_pipeline(device, label, layout, module, entry);
+        let passes = [
+            (
+                pipeline("relief:blog:bake", &bake_layout, "blog_bake"),
+                bake_group,
+            ),
+            (
+                pipeline("relief:blog:normals", &normal_layout, "blog_normals"),
+                normal_group,
+            ),
+        ];
+        (draw_layout, draw_group, (passes, maps))
     }
 
     /// The uniforms for `params` (its height scale and snow line; the blog's terrain has its own
@@ -298,7 +315,7 @@ impl Blog {
             height_scale: params.height_scale,
             snow_height: params.snow_height,
             progress,
-            encode_srgb: u32::from(!self.srgb),
+            encode_srgb: u32::from(!self.targets.color_format.is_srgb()),
             size: BLOG_SIZE,
             grid: self.grid,
             _pad: [0; 2],
