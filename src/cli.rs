@@ -156,8 +156,9 @@ pub fn command() -> Command {
                 .about(
                     "Where methods fail: sweep grazing views against the seed march's step \
                      factor and relief's reference on the scene the other flags give, against the \
-                     CPU f64 ray cast, and the storage precision of heights and normals against the f64 twin; \
-                     write stability.csv, storage.csv and their charts (the tile)",
+                     CPU f64 ray cast; shadow rays at a low sun on the default endless world against f64 \
+                     rays; and the storage precision of heights and normals against the f64 twin; \
+                     write stability.csv, shadow.csv, storage.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU")),
@@ -1897,8 +1898,31 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     })?;
     bar.finish_and_clear();
     print!("{}", stability::table(&rows, &options));
-    let csv = stability::csv(&rows, &info.name, &format!("{:?}", info.backend), &options);
+    let backend = format!("{:?}", info.backend);
+    let csv = stability::csv(&rows, &info.name, &backend, &options);
     let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
+    // Shadow rays at a low sun, on the default endless world.
+    let world = WorldParams::default();
+    let shadow_options = if quick {
+        stability::shadow::ShadowOptions::quick()
+    } else {
+        stability::shadow::ShadowOptions::full()
+    };
+    println!(
+        "shadow rays on the default endless world: sun at {:?} degrees (azimuth {}), every {} texel(s) each way of each level drawn, where it draws, compared with f64 rays",
+        shadow_options.elevations, world.sky.sun_azimuth, shadow_options.stride
+    );
+    bar.reset();
+    bar.set_length(shadow_options.elevations.len() as u64);
+    let shadows = stability::shadow::shadows(&gpu, &world, &shadow_options, |done, _| {
+        bar.set_position(done as u64)
+    })?;
+    bar.finish_and_clear();
+    print!(
+        "{}",
+        stability::shadow::shadow_table(&shadows, &shadow_options)
+    );
+    let shadow_csv = stability::shadow::shadow_csv(&shadows, &info.name, &backend, &world);
     // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
     let side = if quick { 256 } else { stability::STORAGE_SIZE };
     let storage = stability::storage(base, side)?;
@@ -1907,12 +1931,23 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     let storage_csv = stability::storage_csv(&storage, base, side);
     write_results(dir, ("stability.csv", &csv), || {
         stability::chart(&rows, &options, &title, &dir.join("grazing"))?;
+        write_whole(&dir.join("shadow.csv"), &shadow_csv)?;
+        let title = format!(
+            "relief: shadow rays at a low sun on {} ({backend})",
+            info.name
+        );
+        stability::shadow::shadow_chart(
+            &shadows,
+            &shadow_options,
+            f64::from(world.sky.sun_elevation),
+            (&title, &dir.join("shadow")),
+        )?;
         write_whole(&dir.join("storage.csv"), &storage_csv)?;
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
         stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {}, storage.csv and the grazing-hs*.png/svg and storage.png/svg charts in {:.0} s",
+        "wrote {}, shadow.csv, storage.csv and the grazing-hs*, shadow and storage charts (.png, .svg) in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

@@ -64,37 +64,11 @@ fn baked(gpu: &Gpu, p: WorldParams) -> World {
     world
 }
 
-/// Per level texel of `world`'s light texture: (horizon, valley), unpacked from the two 16-bit
-/// floats of each texel.
-fn light(gpu: &Gpu, world: &World) -> Vec<[f32; 2]> {
-    let packed: Vec<u32> = bytemuck::pod_collect_to_vec(
-        &headless::read_texture(&gpu.device, &gpu.queue, world.light_texture()).unwrap(),
-    );
-    let half = |bits: u32| half::f16::from_bits(bits as u16).to_f32();
-    packed
-        .iter()
-        .map(|&p| [half(p & 0xffff), half(p >> 16)])
-        .collect()
-}
-
-/// Sampled texels of level `l`: (world x, z, horizon in radians).
-fn texels(world: &World, light: &[[f32; 2]], l: usize) -> Vec<(f64, f64, f32)> {
-    let map = world.clipmap();
-    let level = &map.levels[l];
-    let side = map.side() as i64;
-    let s = level.spacing();
-    let mut out = Vec::new();
-    for j in (0..=map.cells() as i64).step_by(2) {
-        for i in (0..=map.cells() as i64).step_by(2) {
-            let (si, sj) = (
-                i64::from(level.origin[0]) + i,
-                i64::from(level.origin[1]) + j,
-            );
-            let t = (level.layer as i64 * side + sj.rem_euclid(side)) * side + si.rem_euclid(side);
-            out.push((si as f64 * s, sj as f64 * s, light[t as usize][0]));
-        }
-    }
-    out
+/// Every 2nd texel of level `l` each way: (world x, z, horizon in radians).
+fn texels(gpu: &Gpu, world: &World, l: usize) -> Vec<(f64, f64, f32)> {
+    headless::world_light_horizons(gpu, world, &[l], 2)
+        .unwrap()
+        .remove(0)
 }
 
 struct Agreement {
@@ -149,14 +123,13 @@ fn shadows_agree_with_f64_rays_towards_the_sun_for_high_low_and_grazing_suns() {
     for elevation in [30.0, 8.0, 3.0] {
         let p = params(azimuth, elevation);
         let world = baked(&gpu, p);
-        let light = light(&gpu, &world);
         let first = world.clipmap().first_drawn();
         for l in first..first + 3 {
             // Two texels of the level: of the finest level drawn for the first, and of the
             // coarser ones (drawn farther away, where their texels are as small on screen)
             // for the others.
             let band = 2.0 * world.clipmap().levels[l].spacing();
-            let points = texels(&world, &light, l);
+            let points = texels(&gpu, &world, l);
             let a = agreement(&p.land, &points, (azimuth, elevation), band);
             let share = a.agree as f64 / a.judged.max(1) as f64;
             eprintln!(
@@ -198,7 +171,6 @@ fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
     let elevation: f32 = 8.0;
     let (a, b) = (200.0, 290.0);
     let wa = baked(&gpu, params(a, elevation));
-    let la = light(&gpu, &wa);
     // The same world turned by set_params (what the window's keys do): only the light re-bakes.
     let mut wb = baked(&gpu, params(a, elevation));
     wb.set_params(&gpu.device, params(b, elevation)).unwrap();
@@ -213,10 +185,9 @@ fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
         .unwrap();
     gpu.queue.submit([encoder.finish()]);
     assert_eq!(texels_baked, 0, "turning the sun re-baked heights");
-    let lb = light(&gpu, &wb);
     let first = wa.clipmap().first_drawn();
     let e = elevation.to_radians();
-    let (pa, pb) = (texels(&wa, &la, first), texels(&wb, &lb, first));
+    let (pa, pb) = (texels(&gpu, &wa, first), texels(&gpu, &wb, first));
     let moved = pa
         .iter()
         .zip(&pb)

@@ -67,3 +67,46 @@ fn eight_bit_heights_terrace_and_the_blogs_normal_map_loses_directions() {
     let snorm = row("rgba8snorm");
     assert!(snorm.angle_max_deg < 0.5, "{}: {snorm:?}", at(snorm.format));
 }
+
+#[test]
+fn shadow_rays_at_a_low_sun_tunnel_through_the_seed_march_and_rarely_through_relief() {
+    use relief::stability::shadow::{shadow_table, shadows, ShadowOptions};
+    use relief::Method;
+    let gpu = common::gpu();
+    let options = ShadowOptions::quick();
+    let rows = shadows(&gpu, &relief::WorldParams::default(), &options, |_, _| {}).unwrap();
+    eprintln!("{}", shadow_table(&rows, &options));
+    for r in &rows {
+        let at = format!("shadow axis, {} at a sun of {}°", r.method, r.elevation_deg);
+        assert!(
+            r.judged * 10 > r.sampled * 8,
+            "{at}: judged {} of {}",
+            r.judged,
+            r.sampled
+        );
+        assert!(
+            r.shadowed > 10,
+            "{at}: only {} points in shadow",
+            r.shadowed
+        );
+        let (tunnelled, wrong) = (r.tunnelled_fraction(), r.false_shadow_fraction());
+        match r.method {
+            // relief's conservative march: only occluders nearer than its first step.
+            Method::Reference => assert!(tunnelled < 0.01 && wrong < 0.01, "{at}: {r:?}"),
+            // The light bake: level texels, coarser with distance, and their penumbra.
+            Method::Mesh => assert!(tunnelled < 0.1, "{at}: {r:?}"),
+            _ => {}
+        }
+    }
+    // The control: the seed's shadow march steps over ridges, which shows the test can see a
+    // tunnel.
+    let worst = rows
+        .iter()
+        .filter(|r| r.method == Method::Raymarch)
+        .map(|r| r.tunnelled_fraction())
+        .fold(0.0, f64::max);
+    assert!(
+        worst > 0.1,
+        "shadow axis, the seed's shadow march: tunnelled {worst}"
+    );
+}

@@ -1093,6 +1093,173 @@ pub fn render_world_rays_at(
     )
 }
 
+/// The terrain's horizon towards the sun (radians above the horizontal) at each point `(x, z)`
+/// (world metres) of the endless world's continuous surface, as `method`'s rays shade it
+/// (`wgsl/horizon_probe.wgsl`): the reference's conservative march, or the seed's shadow march
+/// with `method`'s ray settings. The sun is `params.sky`'s; `view` places the casters' reference
+/// sample and bounds the march by the region the mesh draws.
+pub fn world_horizons(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    view: &WorldView,
+    method: super::raymarch::RayMethod,
+    points: &[[f64; 2]],
+) -> Result<Vec<f32>> {
+    use wgpu::util::DeviceExt as _;
+    if points.is_empty() {
+        return Ok(Vec::new());
+    }
+    let region = super::world_rays::drawn_region(params, view);
+    let ray = super::world_rays::WorldRayUniforms::new(params, view, method, view.size, region)?;
+    let render = super::world::render_uniforms(
+        params,
+        &crate::Shading::default(),
+        (super::world_rays::ray_matrix(view), region, view.eye),
+        true,
+    );
+    // Positions relative to the reference sample, as the casters' are.
+    let s = 2f64.powi(ray.base_log2);
+    let origin = [
+        f64::from(ray.reference[0]) * s,
+        f64::from(ray.reference[1]) * s,
+    ];
+    let relative: Vec<[f32; 2]> = points
+        .iter()
+        .map(|p| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32])
+        .collect();
+    let device = &gpu.device;
+    let source = super::shader::compose(&[
+        super::shader::NOISE,
+        super::shader::SHADE,
+        super::shader::LANDSCAPE,
+        super::shader::WORLD_RAYS,
+        super::shader::RAYS,
+        super::shader::HORIZON_PROBE,
+    ]);
+    let init = |label: &str, contents: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let render_buffer = init(
+        "relief:horizon-probe:render",
+        bytemuck::bytes_of(&render),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let ray_buffer = init(
+        "relief:horizon-probe:ray",
+        bytemuck::bytes_of(&ray),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let point_buffer = init(
+        "relief:horizon-probe:points",
+        bytemuck::cast_slice(&relative),
+        wgpu::BufferUsages::STORAGE,
+    );
+    let bytes = (points.len() * 4) as u64;
+    let out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("relief:horizon-probe:horizons"),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("relief:horizon-probe:staging"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    super::scoped(device, || {
+        let module = super::shader::module(device, "relief:horizon-probe", &source);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("relief:horizon-probe"),
+            layout: None,
+            module: &module,
+            entry_point: Some("horizon_cs"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let group = |index: u32, buffers: [&wgpu::Buffer; 2]| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:horizon-probe"),
+                layout: &pipeline.get_bind_group_layout(index),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: buffers[0].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: buffers[1].as_entire_binding(),
+                    },
+                ],
+            })
+        };
+        let uniforms = group(0, [&render_buffer, &ray_buffer]);
+        let io = group(1, [&point_buffer, &out]);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &uniforms, &[]);
+            pass.set_bind_group(1, &io, &[]);
+            pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&out, 0, &staging, 0, bytes);
+        gpu.queue.submit([encoder.finish()]);
+    })?;
+    Ok(bytemuck::pod_collect_to_vec(&super::map_read(
+        device, &staging,
+    )?))
+}
+
+/// The light bake's horizon towards the sun (radians) at every `stride`-th texel each way of
+/// each of `world`'s levels `levels`, as the mesh shades them: per level, (world x, z,
+/// horizon), unpacked from the light texture's two 16-bit floats.
+pub fn world_light_horizons(
+    gpu: &Gpu,
+    world: &super::world::World,
+    levels: &[usize],
+    stride: usize,
+) -> Result<Vec<Vec<(f64, f64, f32)>>> {
+    let packed: Vec<u32> = bytemuck::pod_collect_to_vec(&read_texture(
+        &gpu.device,
+        &gpu.queue,
+        world.light_texture(),
+    )?);
+    let map = world.clipmap();
+    let side = map.side() as i64;
+    let cells = map.cells() as i64;
+    let mut out = Vec::with_capacity(levels.len());
+    for &l in levels {
+        let Some(level) = map.levels.get(l) else {
+            return Err(Error::invalid(
+                "level",
+                l,
+                format!("0..{} (the clipmap's levels)", map.levels.len()),
+            ));
+        };
+        let s = level.spacing();
+        let mut texels = Vec::new();
+        for j in (0..=cells).step_by(stride.max(1)) {
+            for i in (0..=cells).step_by(stride.max(1)) {
+                let (si, sj) = (
+                    i64::from(level.origin[0]) + i,
+                    i64::from(level.origin[1]) + j,
+                );
+                let t = (i64::from(level.layer) * side + sj.rem_euclid(side)) * side
+                    + si.rem_euclid(side);
+                let horizon = half::f16::from_bits(packed[t as usize] as u16).to_f32();
+                texels.push((si as f64 * s, sj as f64 * s, horizon));
+            }
+        }
+        out.push(texels);
+    }
+    Ok(out)
+}
+
 /// Casts `method`'s rays at `scene` into a `width` x `height` image, `ss` rays per pixel each
 /// way where the device allows; `prepare(caster, cast size)` writes the uniforms.
 fn cast(

@@ -28,6 +28,9 @@ pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
 /// `wgsl/world_rays.wgsl`: the endless world's ray casters (needs [`NOISE`], [`SHADE`] and
 /// [`LANDSCAPE`], then [`RAYS`]).
 pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
+/// `wgsl/horizon_probe.wgsl`: the world's ray casters' sun horizon at given points (needs
+/// [`WORLD_RAYS`] and [`RAYS`]).
+pub const HORIZON_PROBE: &str = include_str!("../../wgsl/horizon_probe.wgsl");
 /// `wgsl/world_light.wgsl`: the endless world's light bake (needs [`NOISE`] and
 /// [`LANDSCAPE`]).
 pub const WORLD_LIGHT: &str = include_str!("../../wgsl/world_light.wgsl");
@@ -59,6 +62,10 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         (
             "world_rays",
             compose(&[NOISE, SHADE, LANDSCAPE, WORLD_RAYS, RAYS]),
+        ),
+        (
+            "horizon_probe",
+            compose(&[NOISE, SHADE, LANDSCAPE, WORLD_RAYS, RAYS, HORIZON_PROBE]),
         ),
         ("landscape", compose(&[NOISE, LANDSCAPE])),
         (

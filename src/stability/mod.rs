@@ -9,8 +9,13 @@
 //! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther.
 //! Rays that ran out of steps are counted apart (*capped*), never as sky.
 //!
-//! The second is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
+//! The second is shadow rays at a low sun ([`shadow`]), on the endless world: each method's
+//! horizon towards the sun against an f64 ray over the twin's continuous surface.
+//!
+//! The third is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
 //! (the seed blog's), 16 and 32, and normals stored as the blog stores them, against f64.
+
+pub mod shadow;
 
 use crate::camera::OrbitCamera;
 use crate::error::Result;
