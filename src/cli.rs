@@ -156,9 +156,10 @@ pub fn command() -> Command {
                 .about(
                     "Where methods fail: sweep grazing views against the seed march's step \
                      factor and relief's reference on the scene the other flags give, against the \
-                     CPU f64 ray cast; shadow rays at a low sun on the default endless world against f64 \
-                     rays; and the storage precision of heights and normals against the f64 twin; \
-                     write stability.csv, shadow.csv, storage.csv and their charts",
+                     CPU f64 ray cast; shadow rays at a low sun and the eye far from the origin on the default \
+                     endless world, against f64 rays, the twin and the reference; and the storage \
+                     precision of heights and normals against the f64 twin; write stability.csv, \
+                     shadow.csv, distance.csv, storage.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU")),
@@ -1923,6 +1924,27 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         stability::shadow::shadow_table(&shadows, &shadow_options)
     );
     let shadow_csv = stability::shadow::shadow_csv(&shadows, &info.name, &backend, &world);
+    // Distance from the origin, on the default endless world.
+    let distance_options = if quick {
+        stability::distance::DistanceOptions::quick()
+    } else {
+        stability::distance::DistanceOptions::full()
+    };
+    println!(
+        "distance from the origin on the default endless world: the eye at {:?} m, {}x{}, a {} m step",
+        distance_options.distances,
+        distance_options.size.0,
+        distance_options.size.1,
+        distance_options.step
+    );
+    bar.reset();
+    bar.set_length(distance_options.distances.len() as u64);
+    let far = stability::distance::distances(&gpu, &world, &distance_options, |done, _| {
+        bar.set_position(done as u64)
+    })?;
+    bar.finish_and_clear();
+    print!("{}", stability::distance::distance_table(&far));
+    let distance_csv = stability::distance::distance_csv(&far, &info.name, &backend);
     // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
     let side = if quick { 256 } else { stability::STORAGE_SIZE };
     let storage = stability::storage(base, side)?;
@@ -1942,12 +1964,15 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
             f64::from(world.sky.sun_elevation),
             (&title, &dir.join("shadow")),
         )?;
+        write_whole(&dir.join("distance.csv"), &distance_csv)?;
+        let title = format!("relief: far from the origin on {} ({backend})", info.name);
+        stability::distance::distance_chart(&far, (&title, &dir.join("distance")))?;
         write_whole(&dir.join("storage.csv"), &storage_csv)?;
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
         stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {}, shadow.csv, storage.csv and the grazing-hs*, shadow and storage charts (.png, .svg) in {:.0} s",
+        "wrote {}, shadow.csv, distance.csv, storage.csv and the grazing-hs*, shadow, distance and storage charts (.png, .svg) in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

@@ -110,3 +110,78 @@ fn shadow_rays_at_a_low_sun_tunnel_through_the_seed_march_and_rarely_through_rel
         "shadow axis, the seed's shadow march: tunnelled {worst}"
     );
 }
+
+/// A small world (ridges 256 m apart, 150 m high, detail to 16 m) that reaches 2^32 m, so that
+/// 10^9 m is measured, not refused.
+fn small_world() -> relief::WorldParams {
+    relief::WorldParams {
+        land: relief::landscape::Landscape {
+            seed: 11,
+            octaves: 5,
+            gain: 0.5,
+            feature_log2: 8,
+            peak_height: 150.0,
+            terrain: relief::landscape::TerrainFn::Fbm,
+            period: 0,
+        },
+        pixel_error: 2.0,
+        no_water: true,
+        ..relief::WorldParams::default()
+    }
+}
+
+#[test]
+fn far_from_the_origin_the_world_neither_jitters_nor_cracks_and_refuses_what_it_cannot_reach() {
+    use relief::stability::distance::{distance_table, distances, DistanceOptions};
+    let gpu = common::gpu();
+    let options = DistanceOptions::quick();
+    let rows = distances(&gpu, &small_world(), &options, |_, _| {}).unwrap();
+    eprintln!("{}", distance_table(&rows));
+    let origin = &rows[0];
+    assert!(
+        origin.step_change[0] > 0.0 && origin.step_change[1] > 0.0,
+        "{origin:?}"
+    );
+    for r in &rows {
+        let at = format!("distance axis, the eye {:e} m out", r.distance);
+        assert_eq!(r.refused, None, "{at}");
+        // The bake matches the twin to f32 rounding of a normalised height (a few ulps).
+        assert!(
+            r.height_error_m < 1e-4,
+            "{at}: bake vs twin {} m",
+            r.height_error_m
+        );
+        // No jitter: a centimetre's step changes the picture about as much as at the origin
+        // (within what the terrain there changes it by: up to 3.5x on lavapipe). Positions
+        // rounded to f32 would move it by whole metres 10^9 m out.
+        let j = r.jitter(origin);
+        assert!(j[0] < 6.0 && j[1] < 6.0, "{at}: jitter {j:?}");
+        // No holes or cracks, and the mesh within its knob of the surface.
+        assert!(r.missed + r.extra < 0.01, "{at}: {r:?}");
+        assert!(r.screen_error_p99 < 2.0 * 2.0, "{at}: {r:?}");
+    }
+    // The control for jitter: a 50 cm step at the origin, what rounding would do 10^7 m out,
+    // changes the picture by far more.
+    let big = DistanceOptions {
+        distances: vec![1.0],
+        step: 0.5,
+        ..options.clone()
+    };
+    let moved = distances(&gpu, &small_world(), &big, |_, _| {}).unwrap()[0].step_change[0];
+    assert!(
+        moved > 6.0 * origin.step_change[0],
+        "distance axis: a 50 cm step changed the picture by {moved}, a 1 cm one by {}",
+        origin.step_change[0]
+    );
+    // The default world reaches 2^29 m; 10^9 m out is refused, in words.
+    let far = DistanceOptions {
+        distances: vec![1e9],
+        ..options
+    };
+    let refused = distances(&gpu, &relief::WorldParams::default(), &far, |_, _| {}).unwrap();
+    let why = refused[0].refused.as_deref().unwrap_or("");
+    assert!(
+        why.contains("within"),
+        "distance axis, 1e9 m on the default world: {refused:?}"
+    );
+}

@@ -1,0 +1,374 @@
+//! The distance axis of `relief stability`: the endless world far from its origin. Positions
+//! of 10^6 metres and more do not fit f32 to a centimetre, so a renderer that passes world
+//! positions to the GPU jitters by whole metres there. Relief keeps level samples as integers
+//! and draws camera-relative. At each distance from the origin (the eye placed there, looking
+//! down at the ground ahead), the sweep measures:
+//!
+//! - **height error**: the GPU bake's heights at the finest level's samples there against the
+//!   CPU twin's f64 ones, metres;
+//! - **screen error**: how far the mesh's drawn points lie from the twin's continuous surface,
+//!   in pixels (the LOD's own error, within the knob, plus any from position rounding);
+//! - **jitter**: how much a 1 cm step of the eye changes the picture (mean absolute 8-bit
+//!   difference), for the mesh and the reference, as a ratio to the same step at the origin
+//!   (a renderer rounding positions far out changes it by far more);
+//! - **seams**: pixels where the reference sees terrain and the mesh sky (holes, cracks
+//!   between levels) or the reverse, and the mesh's FLIP against the reference.
+//!
+//! Eyes beyond [`crate::clipmap::max_eye`] are refused by the world (their level sample
+//! coordinates would not fit 32 bits): such a row says so.
+
+use crate::error::Result;
+use crate::gpu::headless::{self, Gpu, Offscreen};
+use crate::gpu::world::World;
+use crate::method::Method;
+use crate::metrics;
+use crate::noise::Channel;
+use crate::params::Shading;
+use crate::world::WorldParams;
+use crate::WorldView;
+use glam::DVec3;
+use std::fmt::Write as _;
+
+/// What the distance sweep measures with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DistanceOptions {
+    /// Distances of the eye from the origin, metres.
+    pub distances: Vec<f64>,
+    /// Image size of each view.
+    pub size: (u32, u32),
+    /// The eye's step, metres.
+    pub step: f64,
+    /// Samples per side of the bake compared with the twin.
+    pub bake_side: u32,
+}
+
+impl DistanceOptions {
+    /// The full sweep: 10^0 to 10^9 metres, 480x270.
+    pub fn full() -> Self {
+        Self {
+            distances: (0..=9).map(|k| 10f64.powi(k)).collect(),
+            size: (480, 270),
+            step: 0.01,
+            bake_side: 64,
+        }
+    }
+
+    /// `--quick`: small enough for the tests.
+    pub fn quick() -> Self {
+        Self {
+            distances: vec![1.0, 1e3, 1e6, 1e9],
+            size: (96, 54),
+            step: 0.01,
+            bake_side: 16,
+        }
+    }
+}
+
+/// One distance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DistanceRow {
+    /// Metres from the origin (along x; z is -0.6 of it).
+    pub distance: f64,
+    /// Why the world refused the eye there, if it did (the other fields are then 0).
+    pub refused: Option<String>,
+    /// Largest |GPU bake - twin| over the finest level's samples there, metres.
+    pub height_error_m: f64,
+    /// The mesh's screen error against the twin, pixels: 99th percentile and largest.
+    pub screen_error_p99: f64,
+    pub screen_error_max: f64,
+    /// Mean absolute 8-bit change of the picture under the eye's step: mesh, reference.
+    pub step_change: [f64; 2],
+    /// Fraction of pixels where the reference sees terrain and the mesh sky, and the reverse.
+    pub missed: f64,
+    pub extra: f64,
+    /// Mean FLIP of the mesh against the reference.
+    pub flip: f64,
+}
+
+impl DistanceRow {
+    /// The step's change of the picture relative to the first row's (the origin's): mesh,
+    /// reference.
+    pub fn jitter(&self, origin: &DistanceRow) -> [f64; 2] {
+        [0, 1].map(|i| self.step_change[i] / origin.step_change[i].max(1e-9))
+    }
+}
+
+/// The eye at `distance` from the origin: a little above the ground, looking ahead and down.
+pub fn distance_view(params: &WorldParams, distance: f64, size: (u32, u32)) -> WorldView {
+    let land = &params.land;
+    let (x, z) = (distance, -0.6 * distance);
+    let eye = DVec3::new(x, land.height_at(x, z) + 0.01 * land.peak_height + 2.0, z);
+    WorldView::look_at(
+        eye,
+        eye + DVec3::new(0.8, -0.35, 0.5),
+        50f32.to_radians(),
+        size,
+    )
+}
+
+/// Sweeps the distance axis over `params`' world; `progress(done, total)` after each distance.
+pub fn distances(
+    gpu: &Gpu,
+    params: &WorldParams,
+    options: &DistanceOptions,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Vec<DistanceRow>> {
+    params.validate()?;
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
+    world.set_bake_budget(u64::MAX);
+    let (w, h) = options.size;
+    let target = Offscreen::new(&gpu.device, w, h, 1)?;
+    let mut rows = Vec::new();
+    for (done, &d) in options.distances.iter().enumerate() {
+        let view = distance_view(params, d, options.size);
+        let row = match measure(gpu, params, (&mut world, &target), &view, options) {
+            Ok(row) => row,
+            // Only the world's refusal of the eye is a finding; anything else is an error.
+            Err(crate::Error::InvalidParam { name, allowed, .. }) if name == "eye" => DistanceRow {
+                distance: d,
+                refused: Some(allowed),
+                height_error_m: 0.0,
+                screen_error_p99: 0.0,
+                screen_error_max: 0.0,
+                step_change: [0.0; 2],
+                missed: 0.0,
+                extra: 0.0,
+                flip: 0.0,
+            },
+            Err(e) => return Err(e),
+        };
+        rows.push(DistanceRow { distance: d, ..row });
+        progress(done + 1, options.distances.len());
+    }
+    Ok(rows)
+}
+
+fn measure(
+    gpu: &Gpu,
+    params: &WorldParams,
+    (world, target): (&mut World, &Offscreen),
+    view: &WorldView,
+    options: &DistanceOptions,
+) -> Result<DistanceRow> {
+    let (w, h) = options.size;
+    let land = &params.land;
+    // The mesh, and the same after the step.
+    let mut stepped = *view;
+    stepped.eye += DVec3::new(options.step, 0.0, 0.6 * options.step);
+    let (mesh, _) = target.render_world(gpu, world, view, None)?;
+    let (mesh_b, _) = target.render_world(gpu, world, &stepped, None)?;
+    let (error, mesh_distance) = headless::world_depth_metrics(gpu, world, view, 1)?;
+    // The reference, and the same after the step.
+    let shading = Shading::default();
+    let cast = |v: &WorldView| {
+        headless::render_world_rays(gpu, params, &shading, v, Method::Reference, None)
+    };
+    let (reference, reference_b) = (cast(view)?, cast(&stepped)?);
+    let change = |a: &[u8], b: &[u8]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| f64::from(x.abs_diff(*y)))
+            .sum::<f64>()
+            / a.len() as f64
+    };
+    let coverage = metrics::coverage(&reference.distance, &mesh_distance, 0.01);
+    let (flip, _) =
+        metrics::image_error(&metrics::rgb(&reference.rgba), &metrics::rgb(&mesh), w, h);
+    // The bake at the finest level's samples under the eye, against the twin's.
+    let log2 = crate::clipmap::finest_log2(land);
+    let s = 2f64.powi(log2);
+    let n = options.bake_side;
+    let origin = [
+        (view.eye.x / s).floor() as i32 - n as i32 / 2,
+        (view.eye.z / s).floor() as i32 - n as i32 / 2,
+    ];
+    let mut height_error_m: f64 = 0.0;
+    headless::bake_region(gpu, land, origin, n, log2, None, |first, band| {
+        for (k, t) in band.iter().enumerate() {
+            let (i, j) = ((k as u32 % n) as i64, (first + k as u32 / n) as i64);
+            let twin = land.level_sample(
+                Channel::Height,
+                log2,
+                i64::from(origin[0]) + i,
+                i64::from(origin[1]) + j,
+            );
+            let e = (f64::from(t[0]) - twin.value).abs() * land.peak_height;
+            height_error_m = height_error_m.max(e);
+        }
+    })?;
+    Ok(DistanceRow {
+        distance: 0.0,
+        refused: None,
+        height_error_m,
+        screen_error_p99: error.p99,
+        screen_error_max: error.max,
+        step_change: [
+            change(&mesh, &mesh_b),
+            change(&reference.rgba, &reference_b.rgba),
+        ],
+        missed: coverage.missed,
+        extra: coverage.extra,
+        flip,
+    })
+}
+
+/// The CSV: a header and a row per distance, with the device and backend.
+pub fn distance_csv(rows: &[DistanceRow], device: &str, backend: &str) -> String {
+    let mut out = String::from(
+        "distance_m,refused,height_error_m,screen_error_p99_px,screen_error_max_px,step_change_mesh,step_change_reference,jitter_mesh,jitter_reference,missed,extra,flip_mesh_vs_reference,device,backend\n",
+    );
+    let Some(first) = rows.first() else {
+        return out;
+    };
+    for r in rows {
+        let j = r.jitter(first);
+        let _ = writeln!(
+            out,
+            "{:e},{},{:.3e},{:.3},{:.3},{:.4},{:.4},{:.3},{:.3},{:.5},{:.5},{:.4},{device},{backend}",
+            r.distance,
+            r.refused.as_deref().map_or(String::new(), |s| format!("\"{s}\"")),
+            r.height_error_m,
+            r.screen_error_p99,
+            r.screen_error_max,
+            r.step_change[0],
+            r.step_change[1],
+            j[0],
+            j[1],
+            r.missed,
+            r.extra,
+            r.flip,
+        );
+    }
+    out
+}
+
+/// The table: a row per distance.
+pub fn distance_table(rows: &[DistanceRow]) -> String {
+    let mut out = String::from(
+        "distance m   height err m  screen px p99/max   jitter mesh/ref   missed/extra     FLIP\n",
+    );
+    let Some(first) = rows.first() else {
+        return out;
+    };
+    for r in rows {
+        if let Some(why) = &r.refused {
+            let _ = writeln!(out, "{:<12.0e} refused: the eye must be {why}", r.distance);
+            continue;
+        }
+        let j = r.jitter(first);
+        let _ = writeln!(
+            out,
+            "{:<12.0e} {:>12.2e} {:>8.2} / {:>6.2} {:>8.2} / {:>6.2} {:>7.4} / {:.4} {:>8.4}",
+            r.distance,
+            r.height_error_m,
+            r.screen_error_p99,
+            r.screen_error_max,
+            j[0],
+            j[1],
+            r.missed,
+            r.extra,
+            r.flip
+        );
+    }
+    out.push_str("jitter: the picture's change under a 1 cm step, relative to the origin's\n");
+    out
+}
+
+/// The chart: per distance (log), the mesh's and the reference's jitter ratio, the screen
+/// error's 99th percentile (px) and missed pixels (%), refused distances marked.
+pub fn distance_chart(rows: &[DistanceRow], (title, stem): (&str, &std::path::Path)) -> Result<()> {
+    crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
+}
+
+fn draw<DB: plotters::prelude::DrawingBackend>(
+    backend: DB,
+    rows: &[DistanceRow],
+    title: &str,
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let Some(first) = rows.first() else {
+        return root.present().map_err(|e| e.to_string());
+    };
+    let d0 = rows.iter().map(|r| r.distance).fold(f64::MAX, f64::min) / 2.0;
+    let d1 = rows.iter().map(|r| r.distance).fold(f64::MIN, f64::max) * 2.0;
+    let measured: Vec<&DistanceRow> = rows.iter().filter(|r| r.refused.is_none()).collect();
+    let series: [(&str, RGBAColor, Box<dyn Fn(&DistanceRow) -> f64>); 4] = [
+        (
+            "mesh jitter (step's change / origin's)",
+            BLACK.to_rgba(),
+            Box::new(|r| r.jitter(first)[0]),
+        ),
+        (
+            "reference jitter",
+            Palette99::pick(1).to_rgba(),
+            Box::new(|r| r.jitter(first)[1]),
+        ),
+        (
+            "mesh screen error p99, px",
+            Palette99::pick(2).to_rgba(),
+            Box::new(|r| r.screen_error_p99),
+        ),
+        (
+            "missed pixels, % (holes, seams)",
+            Palette99::pick(4).to_rgba(),
+            Box::new(|r| 100.0 * r.missed),
+        ),
+    ];
+    let top = measured
+        .iter()
+        .flat_map(|r| series.iter().map(move |s| (s.2)(r)))
+        .fold(2.0, f64::max)
+        * 1.15;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d((d0..d1).log_scale(), 0.0..top)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .x_desc("eye's distance from the origin, metres (log)")
+        .y_desc("ratio, pixels or percent (see legend)")
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 15))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (label, color, value) in &series {
+        let color = *color;
+        let line: Vec<(f64, f64)> = measured.iter().map(|r| (r.distance, value(r))).collect();
+        chart
+            .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
+            .map_err(|e| e.to_string())?
+            .label(*label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        chart
+            .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(|e| e.to_string())?;
+    }
+    let red = RGBColor(200, 30, 30);
+    let refused: Vec<f64> = rows
+        .iter()
+        .filter(|r| r.refused.is_some())
+        .map(|r| r.distance)
+        .collect();
+    if !refused.is_empty() {
+        chart
+            .draw_series(
+                refused
+                    .iter()
+                    .map(|&d| Cross::new((d, top * 0.05), 8, red.stroke_width(3))),
+            )
+            .map_err(|e| e.to_string())?
+            .label("refused: the eye beyond the world's reach")
+            .legend(move |(x, y)| Cross::new((x + 10, y), 6, red.stroke_width(3)));
+    }
+    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    root.present().map_err(|e| e.to_string())
+}
