@@ -280,6 +280,13 @@ pub fn distance_chart(rows: &[DistanceRow], (title, stem): (&str, &std::path::Pa
     crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
 }
 
+/// A line of the chart: its legend, colour and value per row.
+type Series<'a> = (
+    &'static str,
+    plotters::style::RGBAColor,
+    Box<dyn Fn(&DistanceRow) -> f64 + 'a>,
+);
+
 fn draw<DB: plotters::prelude::DrawingBackend>(
     backend: DB,
     rows: &[DistanceRow],
@@ -297,7 +304,7 @@ where
     let d0 = rows.iter().map(|r| r.distance).fold(f64::MAX, f64::min) / 2.0;
     let d1 = rows.iter().map(|r| r.distance).fold(f64::MIN, f64::max) * 2.0;
     let measured: Vec<&DistanceRow> = rows.iter().filter(|r| r.refused.is_none()).collect();
-    let series: [(&str, RGBAColor, Box<dyn Fn(&DistanceRow) -> f64>); 4] = [
+    let series: [Series; 4] = [
         (
             "mesh jitter (step's change / origin's)",
             BLACK.to_rgba(),
