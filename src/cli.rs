@@ -156,10 +156,10 @@ pub fn command() -> Command {
                 .about(
                     "Where methods fail: sweep grazing views against the seed march's step \
                      factor and relief's reference on the scene the other flags give, against the \
-                     CPU f64 ray cast; shadow rays at a low sun and the eye far from the origin on the default \
-                     endless world, against f64 rays, the twin and the reference; and the storage \
-                     precision of heights and normals against the f64 twin; write stability.csv, \
-                     shadow.csv, distance.csv, storage.csv and their charts",
+                     CPU f64 ray cast; shadow rays at a low sun, the eye far from the origin and a moving eye \
+                     on the default endless world, against f64 rays, the twin and the reference; and \
+                     the storage precision of heights and normals against the f64 twin; write \
+                     stability.csv, shadow.csv, distance.csv, motion.csv, storage.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU")),
@@ -925,7 +925,9 @@ fn run(top: &ArgMatches) -> Result<()> {
         )?;
         if world_kind(m)? == WorldKind::Endless {
             return Err(Error::Usage(
-                "relief stability sweeps the tile only so far (no --world endless)".into(),
+                "relief stability takes the tile's scene from the flags, and sweeps the default endless \
+                 world for its world axes (no --world endless)"
+                    .into(),
             ));
         }
     }
@@ -1945,6 +1947,32 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     bar.finish_and_clear();
     print!("{}", stability::distance::distance_table(&far));
     let distance_csv = stability::distance::distance_csv(&far, &info.name, &backend);
+    // Motion, on the default endless world.
+    let motion_options = if quick {
+        stability::motion::MotionOptions::quick()
+    } else {
+        stability::motion::MotionOptions::full()
+    };
+    println!(
+        "motion over the default endless world: {:?} m a frame, knobs {} and {:?} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
+        motion_options.speeds,
+        world.pixel_error,
+        motion_options.knobs,
+        motion_options.frames,
+        motion_options.size.0,
+        motion_options.size.1,
+        motion_options.height,
+        motion_options.budget
+    );
+    let flights = (motion_options.knobs.len() + 1) * motion_options.speeds.len();
+    bar.reset();
+    bar.set_length(flights as u64);
+    let moving = stability::motion::motion(&gpu, &world, &motion_options, |done, _| {
+        bar.set_position(done as u64)
+    })?;
+    bar.finish_and_clear();
+    print!("{}", stability::motion::motion_table(&moving));
+    let motion_csv = stability::motion::motion_csv(&moving, &info.name, &backend);
     // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
     let side = if quick { 256 } else { stability::STORAGE_SIZE };
     let storage = stability::storage(base, side)?;
@@ -1967,12 +1995,15 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         write_whole(&dir.join("distance.csv"), &distance_csv)?;
         let title = format!("relief: far from the origin on {} ({backend})", info.name);
         stability::distance::distance_chart(&far, (&title, &dir.join("distance")))?;
+        write_whole(&dir.join("motion.csv"), &motion_csv)?;
+        let title = format!("relief: a moving eye on {} ({backend})", info.name);
+        stability::motion::motion_chart(&moving, world.pixel_error, (&title, &dir.join("motion")))?;
         write_whole(&dir.join("storage.csv"), &storage_csv)?;
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
         stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {}, shadow.csv, distance.csv, storage.csv and the grazing-hs*, shadow, distance and storage charts (.png, .svg) in {:.0} s",
+        "wrote {}, shadow.csv, distance.csv, motion.csv, storage.csv and the grazing-hs*, shadow, distance, motion and storage charts (.png, .svg) in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

@@ -1682,15 +1682,45 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
     assert_eq!(
         files_in(&dir),
         [
+            "distance.csv",
+            "distance.png",
+            "distance.svg",
             "grazing-hs0p5.png",
             "grazing-hs0p5.svg",
             "grazing-hs2.png",
             "grazing-hs2.svg",
+            "motion.csv",
+            "motion.png",
+            "motion.svg",
+            "shadow.csv",
+            "shadow.png",
+            "shadow.svg",
             "stability.csv",
             "storage.csv",
             "storage.png",
             "storage.svg"
         ]
+    );
+    // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the
+    // default world's refusal 10^9 m out, the flights (2 speeds, the morph on and off).
+    let lines = |name: &str| {
+        std::fs::read_to_string(dir.join(name))
+            .unwrap()
+            .lines()
+            .count()
+    };
+    assert_eq!(lines("shadow.csv"), 1 + 9);
+    assert_eq!(lines("motion.csv"), 1 + 4);
+    let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
+    assert!(
+        distance
+            .lines()
+            .any(|l| l.starts_with("1e9,\"x and z within")),
+        "{distance}"
+    );
+    assert!(
+        stdout.contains("refused: the eye must be x and z within"),
+        "{stdout}"
     );
     let csv = std::fs::read_to_string(dir.join("stability.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();

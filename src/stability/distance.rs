@@ -8,9 +8,10 @@
 //!   CPU twin's f64 ones, metres;
 //! - **screen error**: how far the mesh's drawn points lie from the twin's continuous surface,
 //!   in pixels (the LOD's own error, within the knob, plus any from position rounding);
-//! - **jitter**: how much a 1 cm step of the eye changes the picture (mean absolute 8-bit
-//!   difference), for the mesh and the reference, as a ratio to the same step at the origin
-//!   (a renderer rounding positions far out changes it by far more);
+//! - **jitter**: how much a 1 cm step of the eye changes the mesh's picture (mean absolute
+//!   8-bit difference) over how much it changes the reference's, whose rays start from exact
+//!   integer samples (a renderer rounding positions far out changes it by far more; the
+//!   terrain in view sets how much the step changes either picture);
 //! - **seams**: pixels where the reference sees terrain and the mesh sky (holes, cracks
 //!   between levels) or the reverse, and the mesh's FLIP against the reference.
 //!
@@ -86,10 +87,9 @@ pub struct DistanceRow {
 }
 
 impl DistanceRow {
-    /// The step's change of the picture relative to the first row's (the origin's): mesh,
-    /// reference.
-    pub fn jitter(&self, origin: &DistanceRow) -> [f64; 2] {
-        [0, 1].map(|i| self.step_change[i] / origin.step_change[i].max(1e-9))
+    /// The step's change of the mesh's picture over its change of the reference's.
+    pub fn jitter(&self) -> f64 {
+        self.step_change[0] / self.step_change[1].max(1e-9)
     }
 }
 
@@ -215,25 +215,22 @@ fn measure(
 /// The CSV: a header and a row per distance, with the device and backend.
 pub fn distance_csv(rows: &[DistanceRow], device: &str, backend: &str) -> String {
     let mut out = String::from(
-        "distance_m,refused,height_error_m,screen_error_p99_px,screen_error_max_px,step_change_mesh,step_change_reference,jitter_mesh,jitter_reference,missed,extra,flip_mesh_vs_reference,device,backend\n",
+        "distance_m,refused,height_error_m,screen_error_p99_px,screen_error_max_px,step_change_mesh,step_change_reference,jitter,missed,extra,flip_mesh_vs_reference,device,backend\n",
     );
-    let Some(first) = rows.first() else {
-        return out;
-    };
     for r in rows {
-        let j = r.jitter(first);
         let _ = writeln!(
             out,
-            "{:e},{},{:.3e},{:.3},{:.3},{:.4},{:.4},{:.3},{:.3},{:.5},{:.5},{:.4},{device},{backend}",
+            "{:e},{},{:.3e},{:.3},{:.3},{:.4},{:.4},{:.3},{:.5},{:.5},{:.4},{device},{backend}",
             r.distance,
-            r.refused.as_deref().map_or(String::new(), |s| format!("\"{s}\"")),
+            r.refused
+                .as_deref()
+                .map_or(String::new(), |s| format!("\"{s}\"")),
             r.height_error_m,
             r.screen_error_p99,
             r.screen_error_max,
             r.step_change[0],
             r.step_change[1],
-            j[0],
-            j[1],
+            r.jitter(),
             r.missed,
             r.extra,
             r.flip,
@@ -245,36 +242,31 @@ pub fn distance_csv(rows: &[DistanceRow], device: &str, backend: &str) -> String
 /// The table: a row per distance.
 pub fn distance_table(rows: &[DistanceRow]) -> String {
     let mut out = String::from(
-        "distance m   height err m  screen px p99/max   jitter mesh/ref   missed/extra     FLIP\n",
+        "distance m   height err m  screen px p99/max   jitter   missed/extra     FLIP\n",
     );
-    let Some(first) = rows.first() else {
-        return out;
-    };
     for r in rows {
         if let Some(why) = &r.refused {
             let _ = writeln!(out, "{:<12.0e} refused: the eye must be {why}", r.distance);
             continue;
         }
-        let j = r.jitter(first);
         let _ = writeln!(
             out,
-            "{:<12.0e} {:>12.2e} {:>8.2} / {:>6.2} {:>8.2} / {:>6.2} {:>7.4} / {:.4} {:>8.4}",
+            "{:<12.0e} {:>12.2e} {:>8.2} / {:>6.2} {:>8.2} {:>7.4} / {:.4} {:>8.4}",
             r.distance,
             r.height_error_m,
             r.screen_error_p99,
             r.screen_error_max,
-            j[0],
-            j[1],
+            r.jitter(),
             r.missed,
             r.extra,
             r.flip
         );
     }
-    out.push_str("jitter: the picture's change under a 1 cm step, relative to the origin's\n");
+    out.push_str("jitter: the mesh's change under a 1 cm step over the reference's\n");
     out
 }
 
-/// The chart: per distance (log), the mesh's and the reference's jitter ratio, the screen
+/// The chart: per distance (log), the mesh's jitter against the reference, the screen
 /// error's 99th percentile (px) and missed pixels (%), refused distances marked.
 pub fn distance_chart(rows: &[DistanceRow], (title, stem): (&str, &std::path::Path)) -> Result<()> {
     crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
@@ -298,22 +290,17 @@ where
     use plotters::prelude::*;
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let Some(first) = rows.first() else {
+    if rows.is_empty() {
         return root.present().map_err(|e| e.to_string());
-    };
+    }
     let d0 = rows.iter().map(|r| r.distance).fold(f64::MAX, f64::min) / 2.0;
     let d1 = rows.iter().map(|r| r.distance).fold(f64::MIN, f64::max) * 2.0;
     let measured: Vec<&DistanceRow> = rows.iter().filter(|r| r.refused.is_none()).collect();
-    let series: [Series; 4] = [
+    let series: [Series; 3] = [
         (
-            "mesh jitter (step's change / origin's)",
+            "jitter: a 1 cm step's change, mesh / reference",
             BLACK.to_rgba(),
-            Box::new(|r| r.jitter(first)[0]),
-        ),
-        (
-            "reference jitter",
-            Palette99::pick(1).to_rgba(),
-            Box::new(|r| r.jitter(first)[1]),
+            Box::new(|r| r.jitter()),
         ),
         (
             "mesh screen error p99, px",

@@ -15,10 +15,14 @@
 //! The third is distance from the origin ([`distance`]), on the endless world: the bake against
 //! the twin, the mesh's screen error, jitter under a tiny step, and holes against the reference.
 //!
-//! The fourth is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
+//! The fourth is motion ([`motion`]), on the endless world: popping and baking falling behind
+//! under a moving eye, against speed and the LOD knob.
+//!
+//! The fifth is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
 //! (the seed blog's), 16 and 32, and normals stored as the blog stores them, against f64.
 
 pub mod distance;
+pub mod motion;
 pub mod shadow;
 
 use crate::camera::OrbitCamera;
