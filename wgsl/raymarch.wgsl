@@ -28,7 +28,8 @@ struct RayUniforms {
     lipschitz: f32,
     step_factor: f32,
     hit_k: f32,
-    _pad: u32,
+    // The seed's relaxation: steps multiplied by max(relax * t, 1); 0: off.
+    relax: f32,
     offset: vec2<f32>,
 }
 

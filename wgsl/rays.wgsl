@@ -2,7 +2,7 @@
 // (world_rays.wgsl) casters, composed after either: a compute shader writing storage textures
 // and a full-screen fragment shader writing two colour targets. The file before this one
 // declares `ray` (with `width`, `height`, `inv_view_proj`, `max_steps`, `march_octaves`,
-// `step_factor`, `hit_k` and `octaves`), `color_out`, `distance_out`, `cast_pixel(pixel) -> (colour,
+// `step_factor`, `hit_k`, `relax` and `octaves`), `color_out`, `distance_out`, `cast_pixel(pixel) -> (colour,
 // distance)` and `march_height(xz, octaves) -> height` (what the seed's march steps against).
 
 // Distance stored for pixels that hit nothing, and for rays that ran out of steps.
@@ -36,7 +36,8 @@ fn bisect(ro: vec3<f32>, rd: vec3<f32>, lo_in: f32, hi_in: f32, below: bool) -> 
 }
 
 // The seed's heightfield march from `t = span.x`: t += step_factor * h, a hit when
-// |h| < hit_k * t, `march_octaves` octaves. Distance, MISS or UNRESOLVED.
+// |h| < hit_k * t, `march_octaves` octaves; with `relax` (its relaxation variant) each step is
+// multiplied by max(relax * t, 1), growing with distance. Distance, MISS or UNRESOLVED.
 fn seed_march(ro: vec3<f32>, rd: vec3<f32>, span: vec2<f32>) -> f32 {
     var t = span.x;
     for (var i = 0u; i < ray.max_steps; i++) {
@@ -45,7 +46,7 @@ fn seed_march(ro: vec3<f32>, rd: vec3<f32>, span: vec2<f32>) -> f32 {
         if abs(f) < ray.hit_k * t {
             return t;
         }
-        t += ray.step_factor * f;
+        t += ray.step_factor * f * max(ray.relax * t, 1.0);
         if t > span.y || t < span.x {
             return MISS;
         }

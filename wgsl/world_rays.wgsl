@@ -52,6 +52,8 @@ struct WorldRayUniforms {
     pixel_angle: f32,
     // 1: the march fades octaves finer than the pixel's footprint out of its shading.
     band_limit: u32,
+    // The seed's relaxation: steps multiplied by max(relax * t, 1); 0: off.
+    relax: f32,
     // The region drawn, relative to the reference sample: x0, z0, x1, z1 in metres.
     bounds: vec4<f32>,
     // Entry k: x, Lipschitz bound (metres per metre) of the height of the first k+1 octaves;

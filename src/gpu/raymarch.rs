@@ -44,8 +44,8 @@ pub struct RayUniforms {
     pub step_factor: f32,
     /// Hit threshold k of the seed's march (|h| < k t).
     pub hit_k: f32,
-    /// Padding.
-    pub _pad: u32,
+    /// The seed's relaxation: each step is multiplied by max(relax t, 1) (0: off).
+    pub relax: f32,
     /// Scroll offset in tiles, reduced to [0, 1).
     pub offset: [f32; 2],
 }
@@ -73,6 +73,9 @@ pub struct SeedMarch {
     /// Fade octaves finer than the pixel's footprint out of the shading (relief's own march;
     /// the endless world only so far). The seed does not.
     pub band_limit: bool,
+    /// The seed's relaxation variant: each step is multiplied by `max(relax * t, 1)`, so steps
+    /// grow with distance (per unit of distance; 0, the seed's plain march, leaves them be).
+    pub relax: f32,
 }
 
 impl Default for SeedMarch {
@@ -85,6 +88,7 @@ impl Default for SeedMarch {
             march_octaves: 5,
             normal_octaves: 8,
             band_limit: false,
+            relax: 0.0,
         }
     }
 }
@@ -129,7 +133,7 @@ impl RayUniforms {
             ) as f32,
             step_factor: seed.step_factor,
             hit_k: seed.hit_k,
-            _pad: 0,
+            relax: seed.relax,
             offset: [off[0] as f32, off[1] as f32],
         }
     }

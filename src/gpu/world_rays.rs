@@ -65,6 +65,10 @@ pub struct WorldRayUniforms {
     pub pixel_angle: f32,
     /// 1 where the march fades octaves finer than the pixel's footprint out of its shading.
     pub band_limit: u32,
+    /// The seed's relaxation: steps multiplied by max(relax t, 1); 0: off.
+    pub relax: f32,
+    /// Padding to the next 16 bytes.
+    pub _pad: [u32; 3],
     /// The region drawn relative to the reference sample: x0, z0, x1, z1 in metres.
     pub bounds: [f32; 4],
     /// Per octave count k+1: (Lipschitz bound of the partial sum, bound on the rest, 0, 0).
@@ -161,6 +165,8 @@ impl WorldRayUniforms {
             hit_k: seed.hit_k,
             pixel_angle,
             band_limit: u32::from(method_id == 1 && seed.band_limit),
+            relax: seed.relax,
+            _pad: [0; 3],
             bounds: [
                 (region[0] - origin.x) as f32,
                 (region[1] - origin.z) as f32,

@@ -7,7 +7,9 @@
 //! every sampled pixel's ray is cast on the GPU by each method and on the CPU by the f64 twin's
 //! conservative cast ([`crate::raycast::Surface::intersect`], the truth). A pixel has
 //! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther.
-//! Rays that ran out of steps are counted apart (*capped*), never as sky.
+//! Rays that ran out of steps are counted apart (*capped*), never as sky. The seed's
+//! relaxation variant (steps multiplied by `max(relax t, 1)`, growing with distance) is a
+//! second variant of its march ([`TILE_RELAX`]).
 //!
 //! The second is shadow rays at a low sun ([`shadow`]), on the endless world: each method's
 //! horizon towards the sun against an f64 ray over the twin's continuous surface.
@@ -35,19 +37,30 @@ use crate::raycast::{pixel_ray, Surface};
 use std::fmt::Write as _;
 
 /// A method on the grazing axis: relief's conservative cast, or the seed's march at a step
-/// factor.
+/// factor, plain or in its relaxation variant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Marcher {
     /// `reference` or `raymarch`.
     pub method: Method,
     /// The seed march's `c` (the reference has none).
     pub step_factor: Option<f32>,
+    /// The relaxation's growth of the step per unit of distance (0: the plain march).
+    pub relax: f32,
 }
+
+/// The seed's relaxation variant on the tile: the seed multiplies its steps by
+/// `max(0.02 t, 1)` over a 400-unit view, so they start growing an eighth of the way out; the
+/// tile (2 wide) is crossed within about 4 units, so here they grow from half a unit.
+pub const TILE_RELAX: f32 = 2.0;
+
+/// The seed's step factor in its relaxation variant.
+pub const RELAX_STEP_FACTOR: f32 = 0.7;
 
 impl Marcher {
     /// Its name in the CSV and on the chart.
     pub fn label(&self) -> String {
         match self.step_factor {
+            Some(c) if self.relax > 0.0 => format!("{} relax c={c}", self.method),
             Some(c) => format!("{} c={c}", self.method),
             None => self.method.to_string(),
         }
@@ -60,6 +73,7 @@ impl Marcher {
                 // The march sums every octave: the surface it steps against is the truth's.
                 march_octaves: params.octaves,
                 normal_octaves: params.octaves,
+                relax: self.relax,
                 ..SeedMarch::default()
             }),
             None => RayMethod::Reference,
@@ -84,7 +98,8 @@ pub struct Options {
 
 impl Options {
     /// The full sweep: 7 elevations from 0.5 to 30 degrees, the seed march at 4 step factors
-    /// and the reference, at 480x270 with every 4th pixel compared.
+    /// and in its relaxation variant, and the reference, at 480x270 with every 4th pixel
+    /// compared.
     pub fn full() -> Self {
         Self {
             size: (480, 270),
@@ -110,12 +125,19 @@ impl Options {
         let seed = steps.iter().map(|&c| Marcher {
             method: Method::Raymarch,
             step_factor: Some(c),
+            relax: 0.0,
         });
-        seed.chain(std::iter::once(Marcher {
+        let relaxed = Marcher {
+            method: Method::Raymarch,
+            step_factor: Some(RELAX_STEP_FACTOR),
+            relax: TILE_RELAX,
+        };
+        let reference = Marcher {
             method: Method::Reference,
             step_factor: None,
-        }))
-        .collect()
+            relax: 0.0,
+        };
+        seed.chain([relaxed, reference]).collect()
     }
 }
 
@@ -263,16 +285,17 @@ pub fn grazing(
 /// The CSV: a header and a row per method and elevation, with the device and backend.
 pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
-        "device,backend,axis,method,step_factor,height_scale,elevation_deg,width,height,sampled,truth_hits,tunnelled,tunnelled_fraction,capped,early,depth_error_max\n",
+        "device,backend,axis,method,step_factor,relax,height_scale,elevation_deg,width,height,sampled,truth_hits,tunnelled,tunnelled_fraction,capped,early,depth_error_max\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "\"{device}\",\"{backend}\",grazing,{},{},{},{},{},{},{},{},{},{:.6},{},{},{:.6}",
+            "\"{device}\",\"{backend}\",grazing,{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{:.6}",
             r.marcher.method,
             r.marcher
                 .step_factor
                 .map_or(String::new(), |c| c.to_string()),
+            r.marcher.relax,
             r.height_scale,
             r.elevation_deg,
             options.size.0,
