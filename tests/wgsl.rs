@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 13);
+    assert_eq!(modules.len(), 14);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -245,8 +245,30 @@ fn world_ray_uniforms_match_wgsl() {
         ("max_steps", offset_of!(WorldRayUniforms, max_steps)),
         ("gain", offset_of!(WorldRayUniforms, gain)),
         ("pixel_angle", offset_of!(WorldRayUniforms, pixel_angle)),
+        ("relax", offset_of!(WorldRayUniforms, relax)),
         ("bounds", offset_of!(WorldRayUniforms, bounds)),
         ("prefix", offset_of!(WorldRayUniforms, prefix)),
+    ] {
+        assert_eq!(offset(&members, name), at, "{name}");
+    }
+}
+
+#[test]
+fn tile_ray_uniforms_match_wgsl() {
+    use relief::gpu::raymarch::RayUniforms;
+    let m = parse(
+        "raymarch",
+        &shader::compose(&[shader::NOISE, shader::SHADE, shader::RAYMARCH, shader::RAYS]),
+    );
+    let (size, members) = layout(&m, "RayUniforms");
+    assert_eq!(size as usize, size_of::<RayUniforms>());
+    for (name, at) in [
+        ("seed", offset_of!(RayUniforms, seed)),
+        ("max_steps", offset_of!(RayUniforms, max_steps)),
+        ("lipschitz", offset_of!(RayUniforms, lipschitz)),
+        ("hit_k", offset_of!(RayUniforms, hit_k)),
+        ("relax", offset_of!(RayUniforms, relax)),
+        ("offset", offset_of!(RayUniforms, offset)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");
     }
