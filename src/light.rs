@@ -62,6 +62,24 @@ pub fn lit_by_ray(
     slope: f64,
     max_distance: f64,
 ) -> bool {
+    lit_beyond(
+        land,
+        (x, z),
+        (azimuth, elevation),
+        slope,
+        (0.0, max_distance),
+    )
+}
+
+/// [`lit_by_ray`] for occluders from `near` to `max_distance` metres along the ray only:
+/// what a march that takes its first sample `near` metres out can see.
+pub fn lit_beyond(
+    land: &Landscape,
+    (x, z): (f64, f64),
+    (azimuth, elevation): (f64, f64),
+    slope: f64,
+    (near, max_distance): (f64, f64),
+) -> bool {
     if elevation <= 0.0 {
         return false;
     }
@@ -73,7 +91,7 @@ pub fn lit_by_ray(
     let rate = slope * ce - se;
     // The first steps are fixed and small: the ray leaves the surface at the point itself.
     let floor = 1e-3 * land.cell(land.octaves.saturating_sub(1));
-    let mut t = floor;
+    let mut t = floor.max(near);
     loop {
         let (px, pz, py) = (x + t * ce * dx, z + t * ce * dz, y0 + t * se);
         if py > top || t * ce > max_distance {

@@ -15,15 +15,17 @@
 //! A point is *judged* where the truth is the same for the top and the bottom of the sun's
 //! disc (outside the penumbra). It has *tunnelled* where the truth is in shadow and the method
 //! sees more than half of the disc, and is *falsely shadowed* where the truth is lit and the
-//! method sees less than half. Relief's marches take their first sample a thousandth of the
-//! peak height from the point (2.4 m on the default world), so a surface that curves up
-//! nearer than that is an occluder they cannot see: the reference's rare tunnels are these.
+//! method sees less than half. Relief's marches take their first sample [`near`] metres from
+//! the point (a thousandth of the peak height: 2.4 m on the default world), so the truth judges
+//! only occluders beyond it; a point shadowed by its own surface nearer than that (a slope
+//! facing away, which the shading's N·L darkens, or a concave rise within a texel or two) is
+//! counted apart as *near*, for every method alike.
 
 use crate::error::Result;
 use crate::gpu::headless::{self, Gpu};
 use crate::gpu::raymarch::{RayMethod, SeedMarch};
 use crate::gpu::world::World;
-use crate::light::lit_by_ray;
+use crate::light::lit_beyond;
 use crate::method::Method;
 use crate::sky::SUN_RADIUS;
 use crate::world::WorldParams;
@@ -70,7 +72,9 @@ pub struct ShadowRow {
     pub elevation_deg: f64,
     /// Points compared.
     pub sampled: usize,
-    /// Of those, outside the penumbra.
+    /// Of those, shadowed by their own surface within [`near`] metres (not judged).
+    pub near: usize,
+    /// Of those, outside the penumbra and not near.
     pub judged: usize,
     /// Of the judged, in shadow by the truth.
     pub shadowed: usize,
@@ -147,6 +151,7 @@ pub fn shadows(
                 method: *method,
                 elevation_deg: e,
                 sampled: points.len(),
+                near: 0,
                 judged: 0,
                 shadowed: 0,
                 tunnelled: 0,
@@ -154,7 +159,15 @@ pub fn shadows(
             };
             let sun = e.to_radians() as f32;
             for (t, &h) in truth.iter().zip(horizon) {
-                let Some(lit) = *t else { continue };
+                let lit = match *t {
+                    Truth::Lit => true,
+                    Truth::Shadowed => false,
+                    Truth::Near => {
+                        row.near += 1;
+                        continue;
+                    }
+                    Truth::Penumbra => continue,
+                };
                 row.judged += 1;
                 row.shadowed += usize::from(!lit);
                 row.tunnelled += usize::from(!lit && h < sun);
@@ -194,14 +207,27 @@ fn sample(gpu: &Gpu, world: &World, stride: usize) -> Result<Vec<(f64, f64, f32)
     Ok(out)
 }
 
-/// The truth at each point for `params`' sun: lit or shadowed where the disc's top and bottom
-/// agree, `None` in the penumbra. Rays end at `region`'s edge (what the methods see).
-fn truth(
-    params: &WorldParams,
-    points: &[[f64; 2]],
-    slope: f64,
-    region: [f64; 4],
-) -> Vec<Option<bool>> {
+/// How far from the point relief's horizon marches take their first sample, metres
+/// (`wgsl/world_rays.wgsl`): a millimetre and a thousandth of the peak height.
+pub fn near(params: &WorldParams) -> f64 {
+    1e-3 + 1e-3 * params.land.peak_height
+}
+
+/// The truth at a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Truth {
+    Lit,
+    /// By terrain beyond [`near`].
+    Shadowed,
+    /// Only by its own surface within [`near`].
+    Near,
+    /// The disc's top and bottom disagree.
+    Penumbra,
+}
+
+/// The truth at each point for `params`' sun. Rays end at `region`'s edge (what the methods
+/// see).
+fn truth(params: &WorldParams, points: &[[f64; 2]], slope: f64, region: [f64; 4]) -> Vec<Truth> {
     let azimuth = f64::from(params.sky.sun_azimuth).to_radians();
     let e = f64::from(params.sky.sun_elevation).to_radians();
     let w = f64::from(SUN_RADIUS);
@@ -218,17 +244,22 @@ fn truth(
             }
         };
         let reach = exit(p[0], dx, region[0], region[2]).min(exit(p[1], dz, region[1], region[3]));
-        let lit = |elevation: f64| {
-            lit_by_ray(
+        let lit = |elevation: f64, from: f64| {
+            lit_beyond(
                 &params.land,
                 (p[0], p[1]),
                 (azimuth, elevation),
                 slope,
-                reach,
+                (from, reach),
             )
         };
-        let (low, high) = (lit(e - w), lit(e + w));
-        (low == high).then_some(low)
+        let from = near(params);
+        match (lit(e - w, from), lit(e + w, from)) {
+            (true, true) if !lit(e + w, 0.0) => Truth::Near,
+            (true, true) => Truth::Lit,
+            (false, false) => Truth::Shadowed,
+            _ => Truth::Penumbra,
+        }
     };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let chunk = points.len().div_ceil(threads).max(1);
@@ -247,16 +278,17 @@ fn truth(
 /// The CSV: a header and a row per method and elevation, with the device and backend.
 pub fn shadow_csv(rows: &[ShadowRow], device: &str, backend: &str, params: &WorldParams) -> String {
     let mut out = String::from(
-        "method,sun_elevation_deg,sun_azimuth_deg,sampled,judged,shadowed,tunnelled,false_shadow,tunnelled_fraction,false_shadow_fraction,device,backend\n",
+        "method,sun_elevation_deg,sun_azimuth_deg,sampled,near,judged,shadowed,tunnelled,false_shadow,tunnelled_fraction,false_shadow_fraction,device,backend\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{:.5},{:.5},{device},{backend}",
+            "{},{},{},{},{},{},{},{},{},{:.5},{:.5},{device},{backend}",
             r.method,
             r.elevation_deg,
             params.sky.sun_azimuth,
             r.sampled,
+            r.near,
             r.judged,
             r.shadowed,
             r.tunnelled,
