@@ -414,7 +414,7 @@ fn mesh_row(
     )?;
     single.render(gpu, &mut terrain1, view, None)?;
     let depth = single.read_depth(gpu)?;
-    let distance = distances(&depth, view, options);
+    let distance = distances(&depth, view, (options.width, options.height));
 
     let baked = headless::read_baked(&gpu.device, &gpu.queue, &terrain)?;
     // The mesh as drawn (levels of detail and all), from the single-sampled depth.
@@ -441,7 +441,7 @@ fn mesh_row(
 }
 
 /// Distance from the eye per pixel of a single-sampled depth buffer (-1 for sky).
-fn distances(depth: &[f32], view: &View, options: &Options) -> Vec<f32> {
+pub(crate) fn distances(depth: &[f32], view: &View, (width, height): (u32, u32)) -> Vec<f32> {
     let vp = view.view_proj.as_dmat4();
     let eye = view.eye.as_dvec3();
     depth
@@ -451,9 +451,8 @@ fn distances(depth: &[f32], view: &View, options: &Options) -> Vec<f32> {
             if d >= 1.0 {
                 return -1.0;
             }
-            let (x, y) = (i as u32 % options.width, i as u32 / options.width);
-            let p =
-                crate::raycast::unproject(vp, options.width, options.height, x, y, f64::from(d));
+            let (x, y) = (i as u32 % width, i as u32 / width);
+            let p = crate::raycast::unproject(vp, width, height, x, y, f64::from(d));
             (p - eye).length() as f32
         })
         .collect()
@@ -495,12 +494,20 @@ fn blog_row(
     })?;
     let slot = |s: Slot| median(times.iter().filter_map(|t| t[s as usize]).collect());
     let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
-    let depth = distances(&target.read_depth(gpu)?, view, options);
+    let depth = distances(
+        &target.read_depth(gpu)?,
+        view,
+        (options.width, options.height),
+    );
     // Where the exact surface lies, from its own single-sampled depth.
     let exact = Blog::exact(&gpu.device, Offscreen::targets(1), options.blog_exact_grid)?;
     let single = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
     single.render_blog(gpu, &exact, scene, view, None)?;
-    let truth_depth = distances(&single.read_depth(gpu)?, view, options);
+    let truth_depth = distances(
+        &single.read_depth(gpu)?,
+        view,
+        (options.width, options.height),
+    );
     let (flip_mean, flip_p99) = metrics::image_error(
         &metrics::rgb(&truth),
         &metrics::rgb(&image),

@@ -1726,8 +1726,9 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let rows: Vec<Vec<String>> = csv.lines().skip(1).map(csv_fields).collect();
-    // 3 elevations x 2 height scales x (2 step factors + the relaxation + the reference).
-    assert_eq!(rows.len(), 24, "{csv}");
+    // 3 elevations x 2 height scales x (2 step factors, the relaxation, the march in a
+    // fragment shader, the mesh, the reference).
+    assert_eq!(rows.len(), 36, "{csv}");
     for row in &rows {
         let tunnelled: usize = row[col("tunnelled")].parse().unwrap();
         if row[col("method")] == "reference" {

@@ -9,7 +9,9 @@
 //! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther.
 //! Rays that ran out of steps are counted apart (*capped*), never as sky. The seed's
 //! relaxation variant (steps multiplied by `max(relax t, 1)`, growing with distance) is a
-//! second variant of its march ([`TILE_RELAX`]).
+//! second variant of its march ([`TILE_RELAX`]); `raymarch-fragment` runs the march in a
+//! fragment shader; the mesh is judged by the distance its depth buffer gives each pixel.
+//! `blog` is not on this axis: its sine-hash terrain has no f64 twin to cast the truth on.
 //!
 //! The second is shadow rays at a low sun ([`shadow`]), on the endless world: each method's
 //! horizon towards the sun against an f64 ray over the twin's continuous surface.
@@ -36,11 +38,11 @@ use crate::params::{Shading, TerrainParams};
 use crate::raycast::{pixel_ray, Surface};
 use std::fmt::Write as _;
 
-/// A method on the grazing axis: relief's conservative cast, or the seed's march at a step
-/// factor, plain or in its relaxation variant.
+/// A method on the grazing axis: relief's mesh or its conservative cast, or the seed's march at
+/// a step factor, plain or in its relaxation variant, in compute or in a fragment shader.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Marcher {
-    /// `reference` or `raymarch`.
+    /// `mesh`, `reference`, `raymarch` or `raymarch-fragment`.
     pub method: Method,
     /// The seed march's `c` (the reference has none).
     pub step_factor: Option<f32>,
@@ -55,6 +57,10 @@ pub const TILE_RELAX: f32 = 2.0;
 
 /// The seed's step factor in its relaxation variant.
 pub const RELAX_STEP_FACTOR: f32 = 0.7;
+
+/// The step factor the seed's march runs at in the fragment shader on the grazing axis (one
+/// that tunnels on steep terrain in compute, so the two paths can be compared).
+pub const FRAGMENT_STEP_FACTOR: f32 = 0.8;
 
 impl Marcher {
     /// Its name in the CSV and on the chart.
@@ -132,12 +138,17 @@ impl Options {
             step_factor: Some(RELAX_STEP_FACTOR),
             relax: TILE_RELAX,
         };
-        let reference = Marcher {
-            method: Method::Reference,
-            step_factor: None,
+        let fragment = Marcher {
+            method: Method::RaymarchFragment,
+            step_factor: Some(FRAGMENT_STEP_FACTOR),
             relax: 0.0,
         };
-        seed.chain([relaxed, reference]).collect()
+        let [reference, mesh] = [Method::Reference, Method::Mesh].map(|method| Marcher {
+            method,
+            step_factor: None,
+            relax: 0.0,
+        });
+        seed.chain([relaxed, fragment, mesh, reference]).collect()
     }
 }
 
@@ -235,18 +246,33 @@ pub fn grazing(
             })
             .collect();
         for m in &options.marchers {
-            caster.prepare(
-                &gpu.queue,
-                params,
-                &Shading::default(),
-                &view,
-                m.ray_method(params),
-            );
-            let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            caster.encode(&mut encoder, RayPath::Compute, None);
-            gpu.queue.submit([encoder.finish()]);
-            let bytes = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance)?;
-            let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
+            let distance = if m.method == Method::Mesh {
+                // The mesh as drawn (its grid over the baked texture), single-sampled: the
+                // distance of what each pixel shows, from the depth buffer.
+                let target = headless::Offscreen::new(&gpu.device, w, h, 1)?;
+                let mut terrain = crate::gpu::Terrain::new(
+                    &gpu.device,
+                    &gpu.queue,
+                    headless::Offscreen::targets(1),
+                    *params,
+                )?;
+                target.render(gpu, &mut terrain, &view, None)?;
+                crate::bench::distances(&target.read_depth(gpu)?, &view, (w, h))
+            } else {
+                caster.prepare(
+                    &gpu.queue,
+                    params,
+                    &Shading::default(),
+                    &view,
+                    m.ray_method(params),
+                );
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                let path = m.method.ray_path().unwrap_or(RayPath::Compute);
+                caster.encode(&mut encoder, path, None);
+                gpu.queue.submit([encoder.finish()]);
+                let bytes = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance)?;
+                bytemuck::pod_collect_to_vec(&bytes)
+            };
             let mut row = GrazingRow {
                 marcher: *m,
                 elevation_deg: elevation,
@@ -412,11 +438,12 @@ where
         .draw()
         .map_err(|e| e.to_string())?;
     for (i, m) in options.marchers.iter().enumerate() {
-        // relief's reference in black; the seed march's step factors in the palette's colours.
-        let color = if m.step_factor.is_none() {
-            BLACK.to_rgba()
-        } else {
-            Palette99::pick(i).to_rgba()
+        // relief's reference in black, its mesh in grey; the seed march's variants in the
+        // palette's colours.
+        let color = match m.method {
+            Method::Reference => BLACK.to_rgba(),
+            Method::Mesh => RGBColor(128, 128, 128).to_rgba(),
+            _ => Palette99::pick(i).to_rgba(),
         };
         let line: Vec<(f64, f64)> = rows
             .iter()
