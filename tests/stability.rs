@@ -76,7 +76,7 @@ fn grazing_rays_tunnel_through_the_seed_march_on_steep_terrain_and_never_through
     for hs in [0.5, 2.0] {
         let (low, high) = (find(Method::Mesh, hs, 1.0), find(Method::Mesh, hs, 20.0));
         assert!(
-            low > high && low > 0.05,
+            low > high && low > 0.01,
             "grazing axis, mesh at height scale {hs}: tunnelled {low} at 1°, {high} at 20°"
         );
     }

@@ -6,7 +6,9 @@
 //! slope can step through a ridge. A camera low over the tile looks down at `elevation` degrees;
 //! every sampled pixel's ray is cast on the GPU by each method and on the CPU by the f64 twin's
 //! conservative cast ([`crate::raycast::Surface::intersect`], the truth). A pixel has
-//! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther.
+//! *tunnelled* where the truth hits and the method sees sky or a hit more than 1% farther,
+//! while the truth's ray one pixel higher still hits in front of it: the method lost terrain
+//! at least a pixel tall on screen (a miss within a pixel is counted apart, *grazed*).
 //! Rays that ran out of steps are counted apart (*capped*), never as sky. The seed's
 //! relaxation variant (steps multiplied by `max(relax t, 1)`, growing with distance) is a
 //! second variant of its march ([`TILE_RELAX`]); `raymarch-fragment` runs the march in a
@@ -165,10 +167,14 @@ pub struct GrazingRow {
     pub sampled: usize,
     /// Of those, where the truth hits terrain.
     pub truth_hits: usize,
-    /// Truth hits the method sees as sky or more than 1% farther: it stepped through terrain.
-    /// A miss where a ray raised by [`SILHOUETTE`] of its length would miss too is a grazed
-    /// silhouette (f32 against f64), not a tunnel.
+    /// Truth hits the method sees as sky or more than 1% farther, where the truth's ray one
+    /// pixel higher still hits nearer than the method: it stepped through terrain a pixel or
+    /// more tall on screen.
     pub tunnelled: usize,
+    /// Truth hits the method sees as sky or farther, but within a pixel: the ray one pixel
+    /// higher passes over what the method missed (a grazed silhouette, or a ridge the mesh
+    /// draws lower by less than a pixel).
+    pub grazed: usize,
     /// Pixels whose ray ran out of steps (a truth hit that ran out is not a tunnel).
     pub capped: usize,
     /// Truth hits the method stops short of by more than 1% (the seed's hit test `|h| < k t`
@@ -185,12 +191,11 @@ impl GrazingRow {
     }
 }
 
+/// The grazing camera's vertical field of view, degrees.
+pub const GRAZING_FOV_DEG: f32 = 45.0;
+
 /// Relative depth beyond which a later hit counts as a tunnel.
 pub const TUNNEL_TOLERANCE: f64 = 0.01;
-
-/// How far up, relative to the hit's distance, a missed ray is raised to tell a grazed
-/// silhouette from a tunnel: 1e-4 of the distance, a seventh of a 1080p pixel.
-pub const SILHOUETTE: f64 = 1e-4;
 
 /// The camera of the grazing axis: low over the tile's centre, looking down `elevation_deg`
 /// at the surface there from 1.2 world units away (the tile is 2 wide).
@@ -200,7 +205,7 @@ pub fn grazing_camera(surface: &Surface, elevation_deg: f64) -> OrbitCamera {
         yaw: 0.7,
         pitch: (elevation_deg as f32).to_radians(),
         distance: 1.2,
-        fov_y: 45f32.to_radians(),
+        fov_y: GRAZING_FOV_DEG.to_radians(),
     }
 }
 
@@ -234,15 +239,17 @@ pub fn grazing(
             .step_by(stride as usize)
             .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
             .collect();
-        // The truth at the sampled pixels, and whether the ray raised by SILHOUETTE of the
-        // hit's distance still hits (a ray that then misses grazed a silhouette).
-        let truth: Vec<Option<(f64, bool)>> = pixels
+        // The truth at the sampled pixels, and where the ray raised by one pixel at the hit's
+        // distance hits (what tells a tunnel from a miss within a pixel).
+        let pixel_angle =
+            2.0 * (f64::from(GRAZING_FOV_DEG).to_radians() * 0.5).tan() / f64::from(h);
+        let truth: Vec<Option<(f64, Option<f64>)>> = pixels
             .iter()
             .map(|&(x, y)| {
                 let (ro, rd) = pixel_ray(&view, w, h, x, y);
                 let t = surface.intersect(ro, rd)?;
-                let raised = ro + glam::DVec3::Y * (SILHOUETTE * t);
-                Some((t, surface.intersect(raised, rd).is_some()))
+                let raised = ro + glam::DVec3::Y * (pixel_angle * t);
+                Some((t, surface.intersect(raised, rd)))
             })
             .collect();
         for m in &options.marchers {
@@ -280,23 +287,26 @@ pub fn grazing(
                 sampled: pixels.len(),
                 truth_hits: 0,
                 tunnelled: 0,
+                grazed: 0,
                 capped: 0,
                 early: 0,
                 depth_error_max: 0.0,
             };
             for (&(x, y), t) in pixels.iter().zip(&truth) {
                 let d = f64::from(distance[(y * w + x) as usize]);
-                let Some((t, solid)) = *t else {
+                let Some((t, up)) = *t else {
                     row.capped += usize::from(d == -2.0);
                     continue;
                 };
                 row.truth_hits += 1;
                 if d == -2.0 {
                     row.capped += 1;
-                } else if (d < 0.0 && solid) || d > t * (1.0 + TUNNEL_TOLERANCE) {
-                    row.tunnelled += 1;
-                } else if d >= 0.0 {
-                    // (A miss on a grazed silhouette is neither a tunnel nor a depth.)
+                } else if d < 0.0 || d > t * (1.0 + TUNNEL_TOLERANCE) {
+                    // Behind: a tunnel where even a pixel higher the truth hits in front.
+                    let solid = up.is_some_and(|u| d < 0.0 || u < d * (1.0 - TUNNEL_TOLERANCE));
+                    row.tunnelled += usize::from(solid);
+                    row.grazed += usize::from(!solid);
+                } else {
                     row.early += usize::from(d < t * (1.0 - TUNNEL_TOLERANCE));
                     row.depth_error_max = row.depth_error_max.max((d - t).abs() / t);
                 }
@@ -311,12 +321,12 @@ pub fn grazing(
 /// The CSV: a header and a row per method and elevation, with the device and backend.
 pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
-        "device,backend,axis,method,step_factor,relax,height_scale,elevation_deg,width,height,sampled,truth_hits,tunnelled,tunnelled_fraction,capped,early,depth_error_max\n",
+        "device,backend,axis,method,step_factor,relax,height_scale,elevation_deg,width,height,sampled,truth_hits,tunnelled,tunnelled_fraction,grazed,capped,early,depth_error_max\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "\"{device}\",\"{backend}\",grazing,{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{:.6}",
+            "\"{device}\",\"{backend}\",grazing,{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{:.6}",
             r.marcher.method,
             r.marcher
                 .step_factor
@@ -330,6 +340,7 @@ pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) 
             r.truth_hits,
             r.tunnelled,
             r.tunnelled_fraction(),
+            r.grazed,
             r.capped,
             r.early,
             r.depth_error_max,
