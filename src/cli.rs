@@ -158,8 +158,9 @@ pub fn command() -> Command {
                      factor and relief's reference on the scene the other flags give, against the \
                      CPU f64 ray cast; shadow rays at a low sun, the eye far from the origin and a moving eye \
                      on the default endless world, against f64 rays, the twin and the reference; and \
-                     the storage precision of heights and normals against the f64 twin; write \
-                     stability.csv, shadow.csv, distance.csv, motion.csv, storage.csv and their charts",
+                     detail against resolution and the storage precision of heights and normals \
+                     against the f64 twin; write stability.csv, shadow.csv, distance.csv, \
+                     motion.csv, detail.csv, storage.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU")),
@@ -1979,6 +1980,22 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     println!("storage precision, {side}² texels of the scene's heights:");
     print!("{}", stability::storage_table(&storage));
     let storage_csv = stability::storage_csv(&storage, base, side);
+    // Detail against resolution, on the CPU twin.
+    let detail_options = if quick {
+        stability::detail::DetailOptions::quick()
+    } else {
+        stability::detail::DetailOptions::full()
+    };
+    let detail = stability::detail::detail(base, &detail_options)?;
+    println!(
+        "detail against resolution: {:?} octaves at {:?} texels a side (the scene's other values):",
+        detail_options.octaves, detail_options.sizes
+    );
+    print!(
+        "{}",
+        stability::detail::detail_table(&detail, &detail_options)
+    );
+    let detail_csv = stability::detail::detail_csv(&detail, base);
     write_results(dir, ("stability.csv", &csv), || {
         stability::chart(&rows, &options, &title, &dir.join("grazing"))?;
         write_whole(&dir.join("shadow.csv"), &shadow_csv)?;
@@ -1998,12 +2015,19 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         write_whole(&dir.join("motion.csv"), &motion_csv)?;
         let title = format!("relief: a moving eye on {} ({backend})", info.name);
         stability::motion::motion_chart(&moving, world.pixel_error, (&title, &dir.join("motion")))?;
+        write_whole(&dir.join("detail.csv"), &detail_csv)?;
+        let title = "relief: detail against resolution (CPU f64 twin)";
+        stability::detail::detail_chart(
+            &detail,
+            (base.octaves, base.size),
+            (title, &dir.join("detail")),
+        )?;
         write_whole(&dir.join("storage.csv"), &storage_csv)?;
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
         stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {}, shadow.csv, distance.csv, motion.csv, storage.csv and the grazing-hs*, shadow, distance, motion and storage charts (.png, .svg) in {:.0} s",
+        "wrote {}, shadow.csv, distance.csv, motion.csv, detail.csv, storage.csv and the grazing-hs*, shadow, distance, motion, detail and storage charts (.png, .svg) in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

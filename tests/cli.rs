@@ -1682,6 +1682,9 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
     assert_eq!(
         files_in(&dir),
         [
+            "detail.csv",
+            "detail.png",
+            "detail.svg",
             "distance.csv",
             "distance.png",
             "distance.svg",

@@ -269,3 +269,35 @@ fn a_moving_eye_sees_no_pop_with_the_morph_and_a_fast_one_outruns_the_bake() {
         "motion axis, 256 m a frame on 2^12 texels a frame: {rows:?}"
     );
 }
+
+#[test]
+fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
+    use relief::stability::detail::{detail, detail_table, DetailOptions};
+    let options = DetailOptions::quick();
+    let rows = detail(&TerrainParams::default(), &options).unwrap();
+    eprintln!("{}", detail_table(&rows, &options));
+    let row = |octaves: u32, size: u32| {
+        rows.iter()
+            .find(|r| r.octaves == octaves && r.size == size)
+            .unwrap()
+    };
+    // 4 octaves of frequency 4 end at 32 cells a tile: every one within Nyquist at 128²
+    // texels, and the differences follow the surface to a few degrees.
+    let coarse = row(4, 128);
+    let at = |r: &relief::stability::detail::DetailRow| {
+        format!("detail axis, {} octaves at {}²: {r:?}", r.octaves, r.size)
+    };
+    assert_eq!(coarse.above_nyquist, 0.0, "{}", at(coarse));
+    assert!(coarse.angle_p99_deg < 10.0, "{}", at(coarse));
+    // 10 octaves end at 2048 cells: above Nyquist at 128², where they hold little of the
+    // height but a third of the slope, and the baked normals miss the detail they cannot hold
+    // by tens of degrees; more texels bring the error down.
+    let fine = row(10, 128);
+    assert!(fine.above_nyquist < 0.01, "{}", at(fine));
+    assert!(fine.slope_above_nyquist > 0.3, "{}", at(fine));
+    assert!(fine.angle_p99_deg > 20.0, "{}", at(fine));
+    assert!(
+        row(10, 512).angle_p99_deg < fine.angle_p99_deg,
+        "detail axis, 10 octaves: 512² no better than 128²"
+    );
+}

@@ -24,9 +24,13 @@
 //! The fourth is motion ([`motion`]), on the endless world: popping and baking falling behind
 //! under a moving eye, against speed and the LOD knob.
 //!
-//! The fifth is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
+//! The fifth is detail against resolution ([`detail`]), on the CPU twin: octaves against
+//! texel size, the normal error and the variance above the texture's Nyquist frequency.
+//!
+//! The sixth is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
 //! (the seed blog's), 16 and 32, and normals stored as the blog stores them, against f64.
 
+pub mod detail;
 pub mod distance;
 pub mod motion;
 pub mod shadow;
@@ -501,14 +505,14 @@ type Format = (&'static str, u32, fn(f64) -> f64);
 /// A texel side for the storage axis: the default tile's texture side.
 pub const STORAGE_SIZE: u32 = 1024;
 
-fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let la = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
     let lb = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
     (d / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
-fn summary(mut angles: Vec<f64>) -> (f64, f64, f64) {
+pub(crate) fn summary(mut angles: Vec<f64>) -> (f64, f64, f64) {
     angles.sort_by(f64::total_cmp);
     let n = angles.len().max(1);
     let mean = angles.iter().sum::<f64>() / n as f64;
