@@ -108,18 +108,7 @@ pub fn detail(params: &TerrainParams, options: &DetailOptions) -> Result<Vec<Det
             slope_above_nyquist: share(&|o| (2.0 * gain).powi(2 * o as i32)),
         }
     };
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = combos.len().div_ceil(threads).max(1);
-    Ok(std::thread::scope(|s| {
-        let handles: Vec<_> = combos
-            .chunks(chunk)
-            .map(|c| s.spawn(move || c.iter().map(one).collect::<Vec<_>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_default())
-            .collect()
-    }))
+    Ok(super::parallel_map(&combos, one))
 }
 
 /// The CSV: a header and a row per octave count and side, with the scene.

@@ -322,6 +322,68 @@ pub fn grazing(
     Ok(rows)
 }
 
+/// The coordinates of a stability chart: a log x axis with plain-number key ticks, a linear y
+/// axis.
+pub(crate) type LogX = plotters::coord::cartesian::Cartesian2d<
+    plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>>,
+    plotters::coord::types::RangedCoordf64,
+>;
+
+/// A chart on `root` with `title`, x from `x0` to `x1` on a log scale and y from 0 to `top`,
+/// its mesh drawn with the axis descriptions: what every log-x stability chart starts from.
+pub(crate) fn log_x_chart<'a, DB>(
+    root: &'a plotters::drawing::DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    (x0, x1, top): (f64, f64, f64),
+    (x_desc, y_desc): (&str, &str),
+) -> std::result::Result<plotters::chart::ChartContext<'a, DB, LogX>, String>
+where
+    DB: plotters::prelude::DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 20))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(
+            (x0..x1)
+                .log_scale()
+                .with_key_points(crate::bench::log_ticks(x0, x1, 5)),
+            0.0..top,
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&|v| crate::bench::tick_label(*v))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 15))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
+/// `f` of each item, the items split among the machine's cores (the f64 truths' work), in
+/// order.
+pub(crate) fn parallel_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let chunk = items.len().div_ceil(threads).max(1);
+    let f = &f;
+    std::thread::scope(|s| {
+        let handles: Vec<_> = items
+            .chunks(chunk)
+            .map(|c| s.spawn(move || c.iter().map(f).collect::<Vec<_>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect()
+    })
+}
+
 /// The CSV: a header and a row per method and elevation, with the device and backend.
 pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
@@ -431,27 +493,15 @@ where
         .fold(0.0, f64::max)
         .max(0.01)
         * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(64)
-        .build_cartesian_2d(
-            (e0..e1)
-                .log_scale()
-                .with_key_points(crate::bench::log_ticks(e0, e1, 5)),
-            0.0..top,
-        )
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_label_formatter(&|v| crate::bench::tick_label(*v))
-        .x_desc("camera elevation above the horizon, degrees (log)")
-        .y_desc("tunnelled pixels (fraction of the truth's hits)")
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 15))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let mut chart = log_x_chart(
+        &root,
+        title,
+        (e0, e1, top),
+        (
+            "camera elevation above the horizon, degrees (log)",
+            "tunnelled pixels (fraction of the truth's hits)",
+        ),
+    )?;
     for (i, m) in options.marchers.iter().enumerate() {
         // relief's reference in black, its mesh in grey; the seed march's variants in the
         // palette's colours.

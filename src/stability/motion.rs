@@ -247,27 +247,15 @@ where
         return root.present().map_err(|e| e.to_string());
     }
     let top = rows.iter().map(MotionRow::pop).fold(2.0, f64::max) * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(64)
-        .build_cartesian_2d(
-            (s0..s1)
-                .log_scale()
-                .with_key_points(crate::bench::log_ticks(s0, s1, 5)),
-            0.0..top,
-        )
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_label_formatter(&|v| crate::bench::tick_label(*v))
-        .x_desc("eye speed, metres a frame (log)")
-        .y_desc("pop: largest frame-to-frame FLIP / median")
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 15))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let mut chart = super::log_x_chart(
+        &root,
+        title,
+        (s0, s1, top),
+        (
+            "eye speed, metres a frame (log)",
+            "pop: largest frame-to-frame FLIP / median",
+        ),
+    )?;
     let mut lines: Vec<(f64, bool)> = Vec::new();
     for r in rows {
         if !lines.contains(&(r.knob, r.morphing)) {

@@ -261,18 +261,7 @@ fn truth(params: &WorldParams, points: &[[f64; 2]], slope: f64, region: [f64; 4]
             _ => Truth::Penumbra,
         }
     };
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = points.len().div_ceil(threads).max(1);
-    std::thread::scope(|s| {
-        let handles: Vec<_> = points
-            .chunks(chunk)
-            .map(|c| s.spawn(move || c.iter().map(one).collect::<Vec<_>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_default())
-            .collect()
-    })
+    super::parallel_map(points, one)
 }
 
 /// The CSV: a header and a row per method and elevation, with the device and backend.
@@ -366,27 +355,15 @@ where
         .fold(0.0, f64::max)
         .max(0.01)
         * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(64)
-        .build_cartesian_2d(
-            (e0..e1)
-                .log_scale()
-                .with_key_points(crate::bench::log_ticks(e0, e1, 5)),
-            0.0..top,
-        )
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_label_formatter(&|v| crate::bench::tick_label(*v))
-        .x_desc("sun elevation above the horizon, degrees (log)")
-        .y_desc("fraction of judged points wrong")
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 15))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let mut chart = super::log_x_chart(
+        &root,
+        title,
+        (e0, e1, top),
+        (
+            "sun elevation above the horizon, degrees (log)",
+            "fraction of judged points wrong",
+        ),
+    )?;
     let grey = RGBColor(150, 150, 150);
     chart
         .draw_series(LineSeries::new(
