@@ -156,8 +156,8 @@ pub fn command() -> Command {
                 .about(
                     "Where methods fail: sweep grazing views against the seed march's step \
                      factor and relief's reference on the scene the other flags give, against the \
-                     CPU f64 ray cast; shadow rays at a low sun, the eye far from the origin and a moving eye \
-                     on the default endless world, against f64 rays, the twin and the reference; and \
+                     CPU f64 ray cast; grazing views, shadow rays at a low sun, the eye far from the origin and a \
+                     moving eye on the default endless world, against f64 rays, the twin and the reference; and \
                      detail against resolution and the storage precision of heights and normals \
                      against the f64 twin; write stability.csv, shadow.csv, distance.csv, \
                      motion.csv, detail.csv, storage.csv and their charts",
@@ -1905,8 +1905,23 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     let backend = format!("{:?}", info.backend);
     let csv = stability::csv(&rows, &info.name, &backend, &options);
     let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
-    // Shadow rays at a low sun, on the default endless world.
+    // Grazing rays over the default endless world.
     let world = WorldParams::default();
+    let world_options = stability::world_grazing::world_options(&world, quick);
+    println!(
+        "grazing views of the default endless world at {:?} degrees, {}x{} (every {} px compared with the CPU f64 ray cast)",
+        world_options.elevations, world_options.size.0, world_options.size.1, world_options.stride
+    );
+    bar.reset();
+    bar.set_length(world_options.elevations.len() as u64);
+    let world_rows =
+        stability::world_grazing::world_grazing(&gpu, &world, &world_options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+    bar.finish_and_clear();
+    print!("{}", stability::table(&world_rows, &world_options));
+    let world_csv = stability::csv(&world_rows, &info.name, &backend, &world_options);
+    // Shadow rays at a low sun, on the default endless world.
     let shadow_options = if quick {
         stability::shadow::ShadowOptions::quick()
     } else {
@@ -1998,6 +2013,17 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     let detail_csv = stability::detail::detail_csv(&detail, base);
     write_results(dir, ("stability.csv", &csv), || {
         stability::chart(&rows, &options, &title, &dir.join("grazing"))?;
+        write_whole(&dir.join("world-grazing.csv"), &world_csv)?;
+        let title = format!(
+            "relief: grazing rays over the endless world on {} ({backend})",
+            info.name
+        );
+        stability::chart(
+            &world_rows,
+            &world_options,
+            &title,
+            &dir.join("world-grazing"),
+        )?;
         write_whole(&dir.join("shadow.csv"), &shadow_csv)?;
         let title = format!(
             "relief: shadow rays at a low sun on {} ({backend})",
@@ -2027,7 +2053,7 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         stability::storage_chart(&storage, &title, &dir.join("storage"))
     })?;
     println!(
-        "wrote {}, shadow.csv, distance.csv, motion.csv, detail.csv, storage.csv and the grazing-hs*, shadow, distance, motion, detail and storage charts (.png, .svg) in {:.0} s",
+        "wrote {}, world-grazing.csv, shadow.csv, distance.csv, motion.csv, detail.csv, storage.csv and the grazing-hs*, world-grazing-hs*, shadow, distance, motion, detail and storage charts (.png, .svg) in {:.0} s",
         dir.join("stability.csv").display(),
         start.elapsed().as_secs_f64()
     );

@@ -264,6 +264,48 @@ impl Landscape {
         )
     }
 
+    /// Where the ray from `ro` along the unit `rd` first meets the continuous surface (every
+    /// octave), in metres along the ray, within `reach` metres horizontally; `None` if it does
+    /// not. Steps are bounded by the surface's slope bound `slope` (metres per metre,
+    /// [`Landscape::slope_bounds`]'s last entry), so no ridge is stepped over but a sliver
+    /// under a millionth of the distance; the crossing is bisected to f64 precision. The f64
+    /// truth the stability sweeps judge the endless world's methods by.
+    pub fn intersect(&self, ro: [f64; 3], rd: [f64; 3], slope: f64, reach: f64) -> Option<f64> {
+        let flat = (rd[0] * rd[0] + rd[2] * rd[2]).sqrt();
+        let rate = slope * flat - rd[1];
+        let floor = 1e-3 * self.cell(self.octaves.saturating_sub(1));
+        let at = |t: f64| [ro[0] + t * rd[0], ro[1] + t * rd[1], ro[2] + t * rd[2]];
+        let clearance = |t: f64| {
+            let p = at(t);
+            p[1] - self.height_at(p[0], p[2])
+        };
+        let mut t = 0.0;
+        let mut c = clearance(t);
+        if c <= 0.0 {
+            return Some(0.0);
+        }
+        loop {
+            if rate <= 0.0 || t * flat > reach || (at(t)[1] > self.peak_height && rd[1] >= 0.0) {
+                return None;
+            }
+            let next = t + (c / rate).max(floor + 1e-6 * t);
+            let cn = clearance(next);
+            if cn <= 0.0 {
+                let (mut lo, mut hi) = (t, next);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if clearance(mid) > 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                return Some(0.5 * (lo + hi));
+            }
+            (t, c) = (next, cn);
+        }
+    }
+
     /// Slope bounds for the reference ray cast, one per octave count `1..=octaves`: twice the
     /// steepest slope (metres per metre) of the first k octaves over 2048 scattered points, and
     /// never more than the proven [`Landscape::lipschitz`]. A measured bound, as the clipmap's

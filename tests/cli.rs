@@ -1701,7 +1701,10 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             "stability.csv",
             "storage.csv",
             "storage.png",
-            "storage.svg"
+            "storage.svg",
+            "world-grazing-hs2400.png",
+            "world-grazing-hs2400.svg",
+            "world-grazing.csv"
         ]
     );
     // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the

@@ -34,6 +34,7 @@ pub mod detail;
 pub mod distance;
 pub mod motion;
 pub mod shadow;
+pub mod world_grazing;
 
 use crate::camera::OrbitCamera;
 use crate::error::Result;
@@ -284,42 +285,57 @@ pub fn grazing(
                 let bytes = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance)?;
                 bytemuck::pod_collect_to_vec(&bytes)
             };
-            let mut row = GrazingRow {
-                marcher: *m,
-                elevation_deg: elevation,
-                height_scale,
-                sampled: pixels.len(),
-                truth_hits: 0,
-                tunnelled: 0,
-                grazed: 0,
-                capped: 0,
-                early: 0,
-                depth_error_max: 0.0,
-            };
-            for (&(x, y), t) in pixels.iter().zip(&truth) {
-                let d = f64::from(distance[(y * w + x) as usize]);
-                let Some((t, up)) = *t else {
-                    row.capped += usize::from(d == -2.0);
-                    continue;
-                };
-                row.truth_hits += 1;
-                if d == -2.0 {
-                    row.capped += 1;
-                } else if d < 0.0 || d > t * (1.0 + TUNNEL_TOLERANCE) {
-                    // Behind: a tunnel where even a pixel higher the truth hits in front.
-                    let solid = up.is_some_and(|u| d < 0.0 || u < d * (1.0 - TUNNEL_TOLERANCE));
-                    row.tunnelled += usize::from(solid);
-                    row.grazed += usize::from(!solid);
-                } else {
-                    row.early += usize::from(d < t * (1.0 - TUNNEL_TOLERANCE));
-                    row.depth_error_max = row.depth_error_max.max((d - t).abs() / t);
-                }
-            }
+            let d: Vec<f64> = pixels
+                .iter()
+                .map(|&(x, y)| f64::from(distance[(y * w + x) as usize]))
+                .collect();
+            let row = judge(*m, (elevation, height_scale), &truth, &d);
             rows.push(row);
         }
         progress(i + 1, views.len());
     }
     Ok(rows)
+}
+
+/// Judges one method's distances `d` at the sampled pixels (-1 sky, -2 out of steps) against
+/// the truth there (`(t, where the ray one pixel higher hits)`, `None` where it misses).
+pub(crate) fn judge(
+    marcher: Marcher,
+    (elevation_deg, height_scale): (f64, f32),
+    truth: &[Option<(f64, Option<f64>)>],
+    distances: &[f64],
+) -> GrazingRow {
+    let mut row = GrazingRow {
+        marcher,
+        elevation_deg,
+        height_scale,
+        sampled: truth.len(),
+        truth_hits: 0,
+        tunnelled: 0,
+        grazed: 0,
+        capped: 0,
+        early: 0,
+        depth_error_max: 0.0,
+    };
+    for (t, &d) in truth.iter().zip(distances) {
+        let Some((t, up)) = *t else {
+            row.capped += usize::from(d == -2.0);
+            continue;
+        };
+        row.truth_hits += 1;
+        if d == -2.0 {
+            row.capped += 1;
+        } else if d < 0.0 || d > t * (1.0 + TUNNEL_TOLERANCE) {
+            // Behind: a tunnel where even a pixel higher the truth hits in front.
+            let solid = up.is_some_and(|u| d < 0.0 || u < d * (1.0 - TUNNEL_TOLERANCE));
+            row.tunnelled += usize::from(solid);
+            row.grazed += usize::from(!solid);
+        } else {
+            row.early += usize::from(d < t * (1.0 - TUNNEL_TOLERANCE));
+            row.depth_error_max = row.depth_error_max.max((d - t).abs() / t);
+        }
+    }
+    row
 }
 
 /// The coordinates of a stability chart: a log x axis with plain-number key ticks, a linear y
