@@ -1,7 +1,7 @@
 //! The grazing axis on the endless world: the eye a little above the ground looking down
 //! 0.5° to 30°, the world's methods against an f64 ray cast of the twin's continuous surface
 //! ([`crate::landscape::Landscape::intersect`]) at sampled pixels, judged as on the tile
-//! ([`super::judge`]): the mesh (the clipmap, whose layout bounds its screen error by the
+//! (the tile axis's judge): the mesh (the clipmap, whose layout bounds its screen error by the
 //! knob), relief's reference cast, and the seed's march at its own step factor and at 0.8, every
 //! octave. Rows are [`super::GrazingRow`]s whose `height_scale` is the world's peak height.
 
