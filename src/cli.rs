@@ -2001,10 +2001,15 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     } else {
         stability::detail::DetailOptions::full()
     };
-    let detail = stability::detail::detail(base, &detail_options)?;
+    let mut detail = stability::detail::detail(base, &detail_options)?;
+    stability::detail::detail_flip(&gpu, base, &mut detail, detail_options.image)?;
     println!(
-        "detail against resolution: {:?} octaves at {:?} texels a side (the scene's other values):",
-        detail_options.octaves, detail_options.sizes
+        "detail against resolution: {:?} octaves at {:?} texels a side, the mesh's grid {:?} (the scene's other values; FLIP at {}x{}):",
+        detail_options.octaves,
+        detail_options.sizes,
+        detail_options.grids,
+        detail_options.image.0,
+        detail_options.image.1
     );
     print!(
         "{}",
@@ -2042,11 +2047,14 @@ fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
         let title = format!("relief: a moving eye on {} ({backend})", info.name);
         stability::motion::motion_chart(&moving, world.pixel_error, (&title, &dir.join("motion")))?;
         write_whole(&dir.join("detail.csv"), &detail_csv)?;
-        let title = "relief: detail against resolution (CPU f64 twin)";
+        let title = format!(
+            "relief: detail against resolution (CPU f64 twin; FLIP on {} ({backend}))",
+            info.name
+        );
         stability::detail::detail_chart(
             &detail,
             (base.octaves, base.size),
-            (title, &dir.join("detail")),
+            (&title, &dir.join("detail")),
         )?;
         write_whole(&dir.join("storage.csv"), &storage_csv)?;
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");

@@ -274,11 +274,14 @@ fn a_moving_eye_sees_no_pop_with_the_morph_and_a_fast_one_outruns_the_bake() {
 fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
     use relief::stability::detail::{detail, detail_table, DetailOptions};
     let options = DetailOptions::quick();
-    let rows = detail(&TerrainParams::default(), &options).unwrap();
+    let params = TerrainParams::default();
+    let mut rows = detail(&params, &options).unwrap();
+    relief::stability::detail::detail_flip(&common::gpu(), &params, &mut rows, options.image)
+        .unwrap();
     eprintln!("{}", detail_table(&rows, &options));
     let row = |octaves: u32, size: u32| {
         rows.iter()
-            .find(|r| r.octaves == octaves && r.size == size)
+            .find(|r| r.octaves == octaves && r.size == size && r.grid == params.grid)
             .unwrap()
     };
     // 4 octaves of frequency 4 end at 32 cells a tile: every one within Nyquist at 128²
@@ -299,6 +302,27 @@ fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
     assert!(
         row(10, 512).angle_p99_deg < fine.angle_p99_deg,
         "detail axis, 10 octaves: 512² no better than 128²"
+    );
+    // What shows on screen: the aliased normals of 10 octaves at 128² stray further from the
+    // reference's picture than 4 octaves at 512², which the texels hold.
+    let flip = |r: &relief::stability::detail::DetailRow| r.flip.expect("FLIP measured");
+    assert!(
+        flip(fine) > flip(row(4, 512)),
+        "detail axis, FLIP: {} and {}",
+        at(fine),
+        at(row(4, 512))
+    );
+    // The LOD knob: a 32² mesh grid loses the shape a 256² grid draws.
+    let knob = |grid: u32| {
+        rows.iter()
+            .find(|r| r.octaves == params.octaves && r.grid == grid)
+            .unwrap_or_else(|| panic!("no knob row at grid {grid}"))
+    };
+    assert!(
+        flip(knob(32)) > flip(knob(256)),
+        "detail axis, the LOD knob: grid 32 {:?}, grid 256 {:?}",
+        knob(32),
+        knob(256)
     );
 }
 

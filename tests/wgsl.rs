@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 14);
+    assert_eq!(modules.len(), 15);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -53,7 +53,12 @@ fn offset(members: &[(String, u32)], name: &str) -> usize {
 fn landscape_uniforms_match_wgsl() {
     let m = parse(
         "landscape_bake",
-        &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::LANDSCAPE_BAKE]),
+        &shader::compose(&[
+            shader::NOISE,
+            shader::LANDSCAPE,
+            shader::LEVEL_TEXEL,
+            shader::LANDSCAPE_BAKE,
+        ]),
     );
     let (size, members) = layout(&m, "LandscapeUniforms");
     assert_eq!(size as usize, size_of::<LandscapeUniforms>());
@@ -101,7 +106,10 @@ fn uniform_structs_match_wgsl() {
         offset_of!(NormalUniforms, texel_world)
     );
 
-    let render = parse("world", &shader::compose(&[shader::SHADE, shader::WORLD]));
+    let render = parse(
+        "world",
+        &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
+    );
     let (size, m) = layout(&render, "RenderUniforms");
     assert_eq!(size as usize, size_of::<RenderUniforms>());
     assert_eq!(
@@ -135,7 +143,10 @@ fn world_size_agrees_with_render_wgsl() {
 #[test]
 fn world_uniforms_match_wgsl() {
     use relief::gpu::world::{LevelUniforms, WorldUniforms};
-    let m = parse("world", &shader::compose(&[shader::SHADE, shader::WORLD]));
+    let m = parse(
+        "world",
+        &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
+    );
     let (size, members) = layout(&m, "WorldUniforms");
     assert_eq!(size as usize, size_of::<WorldUniforms>());
     for (name, at) in [
@@ -179,7 +190,12 @@ fn light_uniforms_match_wgsl() {
     use relief::gpu::world_light::{LightLevel, LightRect, LightUniforms};
     let m = parse(
         "world_light",
-        &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::WORLD_LIGHT]),
+        &shader::compose(&[
+            shader::NOISE,
+            shader::LANDSCAPE,
+            shader::LEVEL_TEXEL,
+            shader::WORLD_LIGHT,
+        ]),
     );
     let (size, members) = layout(&m, "LightUniforms");
     assert_eq!(size as usize, size_of::<LightUniforms>());

@@ -56,7 +56,8 @@ struct WorldUniforms {
 
 @group(0) @binding(0) var<uniform> r: RenderUniforms;
 @group(0) @binding(1) var<uniform> w: WorldUniforms;
-@group(0) @binding(2) var level_tex: texture_2d_array<f32>;
+// Per level texel: (height, dh/dx, dh/dz, colour) packed in 64 bits (level_texel.wgsl).
+@group(0) @binding(2) var level_tex: texture_2d_array<u32>;
 // Per level texel: the terrain's horizon towards the sun (radians) and the valley depth
 // (metres), from the light bake (world_light.wgsl).
 // Horizon elevation and valley depth, two 16-bit floats packed (src/gpu/world_light.rs).
@@ -89,7 +90,8 @@ fn texel(lv: Level, ij: vec2<i32>, light: bool) -> vec4<f32> {
         let packed = textureLoad(light_tex, t, i32(lv.layer), 0).x;
         return vec4<f32>(unpack2x16float(packed), 0.0, 0.0);
     }
-    return textureLoad(level_tex, t, i32(lv.layer), 0);
+    let spacing = w.eye.w * f32(1u << lv.shift);
+    return unpack_level_texel(textureLoad(level_tex, t, i32(lv.layer), 0).xy, spacing);
 }
 
 // Bilinear by hand (32-bit float textures are not filterable in core WebGPU). At integer

@@ -62,13 +62,14 @@ struct LightRect {
 
 @group(0) @binding(0) var<uniform> light: LightUniforms;
 @group(0) @binding(1) var<uniform> rect: LightRect;
-@group(0) @binding(2) var heights: texture_2d_array<f32>;
+// The levels' packed texels (level_texel.wgsl), of which the light reads the height.
+@group(0) @binding(2) var heights: texture_2d_array<u32>;
 // Horizon elevation and valley depth as two 16-bit floats in one 32-bit texel.
 @group(0) @binding(3) var light_out: texture_storage_2d_array<r32uint, write>;
 
 fn height_texel(lv: LightLevel, ij: vec2<i32>) -> f32 {
     let t = (lv.origin_mod + vec2<u32>(ij)) % vec2<u32>(light.side);
-    return textureLoad(heights, vec2<i32>(t), i32(lv.layer), 0).x;
+    return level_texel_height(textureLoad(heights, vec2<i32>(t), i32(lv.layer), 0).x);
 }
 
 // Height in metres at `local` (this level's samples from its first), bilinearly; the caller

@@ -1,6 +1,8 @@
-//! The landscape bake pass: rectangles of the endless world's sample grids into layers of an
-//! `rgba32float` texture array (height, dh/dx, dh/dz, colour channel), at wrapping texel
-//! addresses. Several rectangles per encoder, each with its own uniforms at a dynamic offset.
+//! The landscape bake pass: rectangles of the endless world's sample grids into layers of a
+//! texture array (height, dh/dx, dh/dz, colour channel), at wrapping texel addresses: packed in
+//! 64 bits ([`LandscapeBake::LEVEL_FORMAT`], [`unpack_level_texel`]) for the levels the renderer
+//! draws from, or as four 32-bit floats ([`LandscapeBake::FORMAT`]) for region bakes read back.
+//! Several rectangles per encoder, each with its own uniforms at a dynamic offset.
 
 use super::shader;
 use crate::landscape::Landscape;
@@ -81,24 +83,80 @@ pub struct LevelTarget {
 /// Most rectangles one [`LandscapeBake::encode`] records.
 pub const MAX_RECTS: usize = 64;
 
+/// One in the height's 24-bit fixed point in a packed level texel (`wgsl/level_texel.wgsl`).
+const LEVEL_HEIGHT_ONE: f32 = 16_777_215.0;
+/// What the gradient per sample is multiplied by in a packed level texel.
+const LEVEL_GRADIENT_SCALE: f32 = 64.0;
+
+/// (height, dh/dx, dh/dz, colour) of a packed level texel ([`LandscapeBake::LEVEL_FORMAT`]) of
+/// a level spaced `2^spacing_log2` metres, as `wgsl/level_texel.wgsl` unpacks it: the height to
+/// 6e-8 of the peak, the gradient to 16-bit float precision (about 5e-4 of itself), the colour
+/// channel to 1/255.
+pub fn unpack_level_texel(texel: [u32; 2], spacing_log2: i32) -> [f32; 4] {
+    let g = |bits: u32| f16_bits_to_f32(bits) / (LEVEL_GRADIENT_SCALE * 2f32.powi(spacing_log2));
+    [
+        (texel[0] >> 8) as f32 / LEVEL_HEIGHT_ONE,
+        g(texel[1] & 0xffff),
+        g(texel[1] >> 16),
+        (texel[0] & 0xff) as f32 / 255.0,
+    ]
+}
+
+/// The IEEE half-precision float in the low 16 bits of `bits` (WGSL's `unpack2x16float`).
+fn f16_bits_to_f32(bits: u32) -> f32 {
+    let sign = if bits & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exponent = ((bits >> 10) & 0x1f) as i32;
+    let mantissa = (bits & 0x3ff) as f32;
+    sign * match exponent {
+        0 => mantissa * 2f32.powi(-24),
+        31 if mantissa == 0.0 => f32::INFINITY,
+        31 => f32::NAN,
+        e => (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
 /// The pass: pipeline, layout and a uniform buffer of [`MAX_RECTS`] aligned slots.
 pub struct LandscapeBake {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     uniforms: wgpu::Buffer,
     stride: u64,
+    /// The storage texture's binding (1: four floats, 2: packed).
+    binding: u32,
 }
 
 impl LandscapeBake {
-    /// Format of the level textures.
+    /// Format of the textures [`LandscapeBake::new`] writes: four 32-bit floats a texel.
     pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+    /// Format of the level textures [`LandscapeBake::levels`] writes: 64 bits a texel
+    /// ([`unpack_level_texel`]), so that the endless world's default fits in 256 MiB.
+    pub const LEVEL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 
-    /// Builds the pipeline.
+    /// Builds the pipeline writing [`LandscapeBake::FORMAT`] (region bakes read back).
     pub fn new(device: &wgpu::Device) -> Self {
+        Self::with_format(device, false)
+    }
+
+    /// Builds the pipeline writing packed level texels ([`LandscapeBake::LEVEL_FORMAT`]).
+    pub fn levels(device: &wgpu::Device) -> Self {
+        Self::with_format(device, true)
+    }
+
+    fn with_format(device: &wgpu::Device, packed: bool) -> Self {
+        let (format, binding, entry) = if packed {
+            (Self::LEVEL_FORMAT, 2, "landscape_bake_levels")
+        } else {
+            (Self::FORMAT, 1, "landscape_bake_main")
+        };
         let module = shader::module(
             device,
             "relief:landscape-bake:shader",
-            &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::LANDSCAPE_BAKE]),
+            &shader::compose(&[
+                shader::NOISE,
+                shader::LANDSCAPE,
+                shader::LEVEL_TEXEL,
+                shader::LANDSCAPE_BAKE,
+            ]),
         );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:landscape-bake:bind-group-layout"),
@@ -116,24 +174,19 @@ impl LandscapeBake {
                     count: None,
                 },
                 wgpu::BindGroupLayoutEntry {
-                    binding: 1,
+                    binding,
                     visibility: wgpu::ShaderStages::COMPUTE,
                     ty: wgpu::BindingType::StorageTexture {
                         access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: Self::FORMAT,
+                        format,
                         view_dimension: wgpu::TextureViewDimension::D2Array,
                     },
                     count: None,
                 },
             ],
         });
-        let pipeline = super::compute_pipeline(
-            device,
-            "relief:landscape-bake",
-            &layout,
-            &module,
-            "landscape_bake_main",
-        );
+        let pipeline =
+            super::compute_pipeline(device, "relief:landscape-bake", &layout, &module, entry);
         let (uniforms, stride) = super::slot_buffer::<LandscapeUniforms>(
             device,
             "relief:landscape-bake:uniforms",
@@ -144,11 +197,12 @@ impl LandscapeBake {
             layout,
             uniforms,
             stride,
+            binding,
         }
     }
 
-    /// A target writing into `levels` (a 2-D array view of a square rgba32float texture of
-    /// side `wrap`).
+    /// A target writing into `levels` (a 2-D array view of a square texture of side `wrap`, of
+    /// the format this pass writes).
     pub fn bind(
         &self,
         device: &wgpu::Device,
@@ -171,7 +225,7 @@ impl LandscapeBake {
                         }),
                     },
                     wgpu::BindGroupEntry {
-                        binding: 1,
+                        binding: self.binding,
                         resource: wgpu::BindingResource::TextureView(levels),
                     },
                 ],
@@ -247,5 +301,19 @@ impl LandscapeBake {
             );
         }
         rects.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn half_floats_decode() {
+        use super::f16_bits_to_f32 as f;
+        assert_eq!(f(0x3c00), 1.0);
+        assert_eq!(f(0xc000), -2.0);
+        assert_eq!(f(0x7bff), 65504.0);
+        assert_eq!(f(0x0001), 2f32.powi(-24));
+        assert_eq!(f(0x3555), 0.333_251_95);
+        assert!(f(0x7c00).is_infinite() && f(0x7e00).is_nan());
     }
 }

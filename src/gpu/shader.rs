@@ -13,12 +13,16 @@ pub const BAKE: &str = include_str!("../../wgsl/bake.wgsl");
 pub const NORMALS: &str = include_str!("../../wgsl/normals.wgsl");
 /// `wgsl/landscape.wgsl`: the endless world's terrain function (needs [`NOISE`]).
 pub const LANDSCAPE: &str = include_str!("../../wgsl/landscape.wgsl");
-/// `wgsl/landscape_bake.wgsl`: bakes rectangles of landscape levels (needs [`NOISE`] and
-/// [`LANDSCAPE`]).
+/// `wgsl/level_texel.wgsl`: the packed level texel (rg32uint), packed and unpacked (stands
+/// alone).
+pub const LEVEL_TEXEL: &str = include_str!("../../wgsl/level_texel.wgsl");
+/// `wgsl/landscape_bake.wgsl`: bakes rectangles of landscape levels (needs [`NOISE`],
+/// [`LANDSCAPE`] and [`LEVEL_TEXEL`]).
 pub const LANDSCAPE_BAKE: &str = include_str!("../../wgsl/landscape_bake.wgsl");
 /// `wgsl/shade.wgsl`: render uniforms and the shading every renderer shares.
 pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
-/// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`]).
+/// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`] and
+/// [`LEVEL_TEXEL`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
 pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
@@ -31,8 +35,8 @@ pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
 /// `wgsl/horizon_probe.wgsl`: the world's ray casters' sun horizon at given points (needs
 /// [`WORLD_RAYS`] and [`RAYS`]).
 pub const HORIZON_PROBE: &str = include_str!("../../wgsl/horizon_probe.wgsl");
-/// `wgsl/world_light.wgsl`: the endless world's light bake (needs [`NOISE`] and
-/// [`LANDSCAPE`]).
+/// `wgsl/world_light.wgsl`: the endless world's light bake (needs [`NOISE`], [`LANDSCAPE`]
+/// and [`LEVEL_TEXEL`]).
 pub const WORLD_LIGHT: &str = include_str!("../../wgsl/world_light.wgsl");
 /// `wgsl/blit.wgsl`: shows a ray-cast image in a window (stands alone).
 pub const BLIT: &str = include_str!("../../wgsl/blit.wgsl");
@@ -52,11 +56,15 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("noise", NOISE.to_owned()),
         ("blit", BLIT.to_owned()),
         ("blog", BLOG.to_owned()),
-        ("world_light", compose(&[NOISE, LANDSCAPE, WORLD_LIGHT])),
+        (
+            "world_light",
+            compose(&[NOISE, LANDSCAPE, LEVEL_TEXEL, WORLD_LIGHT]),
+        ),
+        ("level_texel", LEVEL_TEXEL.to_owned()),
         ("bake", compose(&[NOISE, BAKE])),
         ("normals", compose(&[NOISE, NORMALS])),
         ("shade", SHADE.to_owned()),
-        ("world", compose(&[SHADE, WORLD])),
+        ("world", compose(&[SHADE, LEVEL_TEXEL, WORLD])),
         ("sky", compose(&[SHADE, SKY])),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),
         (
@@ -70,7 +78,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("landscape", compose(&[NOISE, LANDSCAPE])),
         (
             "landscape_bake",
-            compose(&[NOISE, LANDSCAPE, LANDSCAPE_BAKE]),
+            compose(&[NOISE, LANDSCAPE, LEVEL_TEXEL, LANDSCAPE_BAKE]),
         ),
     ]
 }

@@ -138,7 +138,7 @@ pub fn mib(bytes: u64) -> f64 {
 /// GPU memory of one level's textures (samples and light) in a layout of `map`, bytes.
 fn level_bytes(map: &Clipmap) -> u64 {
     u64::from(map.side()).pow(2)
-        * (super::texel_bytes(super::landscape::LandscapeBake::FORMAT)
+        * (super::texel_bytes(super::landscape::LandscapeBake::LEVEL_FORMAT)
             + super::texel_bytes(LightBake::FORMAT))
 }
 
@@ -318,14 +318,14 @@ impl World {
         let k = 1080.0 / (2.0 * (22.5f64).to_radians().tan());
         let map = layout(&params, &errors, k);
         scoped(device, || {
-            let bake = LandscapeBake::new(device);
+            let bake = LandscapeBake::levels(device);
             let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
             let light = LevelLight::new(device, &light_bake, &texture, &map);
             let module = shader::module(
                 device,
                 "relief:world:shader",
-                &shader::compose(&[shader::SHADE, shader::WORLD]),
+                &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
             );
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -333,7 +333,7 @@ impl World {
                 entries: &[
                     super::uniform_entry::<RenderUniforms>(0, vf),
                     super::uniform_entry::<WorldUniforms>(1, vf),
-                    array_entry(2, wgpu::TextureSampleType::Float { filterable: false }),
+                    array_entry(2, wgpu::TextureSampleType::Uint),
                     array_entry(3, wgpu::TextureSampleType::Uint),
                     super::texture_entry(4, wgpu::ShaderStages::FRAGMENT, false),
                     super::texture_entry(5, wgpu::ShaderStages::FRAGMENT, true),
@@ -451,8 +451,9 @@ impl World {
         self.map.morphing = on;
     }
 
-    /// The level texture array: side x side x levels, rgba32float (height, dh/dx, dh/dz,
-    /// colour channel), toroidally addressed.
+    /// The level texture array: side x side x levels, rg32uint (height, dh/dx, dh/dz, colour
+    /// channel packed in 64 bits: [`super::landscape::unpack_level_texel`]), toroidally
+    /// addressed.
     pub fn level_texture(&self) -> &wgpu::Texture {
         &self.texture
     }
@@ -1190,7 +1191,12 @@ fn level_texture(
     bake: &LandscapeBake,
     map: &Clipmap,
 ) -> (wgpu::Texture, LevelTarget) {
-    let texture = level_array(device, "relief:world:levels", LandscapeBake::FORMAT, map);
+    let texture = level_array(
+        device,
+        "relief:world:levels",
+        LandscapeBake::LEVEL_FORMAT,
+        map,
+    );
     let view = array_view(&texture);
     let target = bake.bind(device, &view, map.side());
     (texture, target)

@@ -143,7 +143,12 @@ impl LightBake {
         let module = shader::module(
             device,
             "relief:world-light:shader",
-            &shader::compose(&[shader::NOISE, shader::LANDSCAPE, shader::WORLD_LIGHT]),
+            &shader::compose(&[
+                shader::NOISE,
+                shader::LANDSCAPE,
+                shader::LEVEL_TEXEL,
+                shader::WORLD_LIGHT,
+            ]),
         );
         let c = wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -166,7 +171,7 @@ impl LightBake {
                     binding: 2,
                     visibility: c,
                     ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        sample_type: wgpu::TextureSampleType::Uint,
                         view_dimension: wgpu::TextureViewDimension::D2Array,
                         multisampled: false,
                     },

@@ -11,8 +11,12 @@
 //!   share of the slope's (in proportion to `(2 gain)^(2o)`: each octave's slope doubles with
 //!   its frequency, so with the default gain of 0.47 the finest octaves carry as much slope as
 //!   the first, and it is the slope that shading sees).
+//! - **FLIP** (on the GPU, [`detail_flip`]): the tile's mesh with those octaves and texels,
+//!   drawn from the benchmark's view, against the reference ray cast of the same surface; and
+//!   the LOD knob (the mesh's `grid`, its finest vertex spacing) swept at the scene's octaves.
 
 use crate::error::Result;
+use crate::gpu::headless::{Gpu, Offscreen};
 use crate::noise::{analytic_normal, central_difference_normal, Channel, Fbm};
 use crate::params::TerrainParams;
 use std::fmt::Write as _;
@@ -24,6 +28,11 @@ pub struct DetailOptions {
     pub octaves: Vec<u32>,
     /// Texture sides, texels.
     pub sizes: Vec<u32>,
+    /// The LOD knob: mesh grids (vertices a side), swept at the scene's octaves and side (the
+    /// side capped at the largest of `sizes`), the other rows at the scene's grid.
+    pub grids: Vec<u32>,
+    /// The image [`detail_flip`] draws, pixels.
+    pub image: (u32, u32),
 }
 
 impl DetailOptions {
@@ -32,6 +41,8 @@ impl DetailOptions {
         Self {
             octaves: vec![2, 4, 6, 8, 10, 12],
             sizes: vec![256, 512, 1024, 2048],
+            grids: vec![32, 64, 128, 256, 512, 1024],
+            image: (960, 540),
         }
     }
 
@@ -40,6 +51,8 @@ impl DetailOptions {
         Self {
             octaves: vec![4, 8, 10],
             sizes: vec![128, 512],
+            grids: vec![32, 256],
+            image: (96, 64),
         }
     }
 }
@@ -51,6 +64,10 @@ pub struct DetailRow {
     pub octaves: u32,
     /// Texels a side.
     pub size: u32,
+    /// Mesh vertices a side (the LOD knob).
+    pub grid: u32,
+    /// Mean FLIP of the mesh against the reference ([`detail_flip`]; None until measured).
+    pub flip: Option<f64>,
     /// Angle between the difference normal and the analytic one, degrees: mean, 99th
     /// percentile, largest.
     pub angle_mean_deg: f64,
@@ -67,13 +84,22 @@ pub struct DetailRow {
 pub fn detail(params: &TerrainParams, options: &DetailOptions) -> Result<Vec<DetailRow>> {
     params.validate()?;
     let max = crate::params::max_octaves_for(params.frequency);
-    let combos: Vec<(u32, u32)> = options
+    let mut combos: Vec<(u32, u32, u32)> = options
         .octaves
         .iter()
         .filter(|&&o| (1..=max).contains(&o))
-        .flat_map(|&o| options.sizes.iter().map(move |&s| (o, s)))
+        .flat_map(|&o| options.sizes.iter().map(move |&s| (o, s, params.grid)))
         .collect();
-    let one = |&(octaves, size): &(u32, u32)| {
+    let knob_size = params
+        .size
+        .min(options.sizes.iter().copied().max().unwrap_or(params.size));
+    for &g in &options.grids {
+        let row = (params.octaves, knob_size, g);
+        if !combos.contains(&row) {
+            combos.push(row);
+        }
+    }
+    let one = |&(octaves, size, grid): &(u32, u32, u32)| {
         let p = TerrainParams { octaves, ..*params };
         let fbm = Fbm::from_params(&p);
         let hs = f64::from(p.height_scale);
@@ -101,6 +127,8 @@ pub fn detail(params: &TerrainParams, options: &DetailOptions) -> Result<Vec<Det
         DetailRow {
             octaves,
             size,
+            grid,
+            flip: None,
             angle_mean_deg,
             angle_p99_deg,
             angle_max_deg,
@@ -111,17 +139,67 @@ pub fn detail(params: &TerrainParams, options: &DetailOptions) -> Result<Vec<Det
     Ok(super::parallel_map(&combos, one))
 }
 
+/// Draws the tile's mesh for every row (its octaves, texels and grid, the scene's other
+/// values) from the benchmark's view at `image` pixels, and scores it by mean FLIP against the
+/// reference ray cast of the same surface (one reference per octave count).
+pub fn detail_flip(
+    gpu: &Gpu,
+    params: &TerrainParams,
+    rows: &mut [DetailRow],
+    (width, height): (u32, u32),
+) -> Result<()> {
+    let options = crate::bench::Options {
+        width,
+        height,
+        ..crate::bench::Options::QUICK
+    };
+    let view = crate::camera::OrbitCamera::default().view(width as f32 / height as f32);
+    let shading = crate::Shading::default();
+    let samples = crate::gpu::headless::RENDER_SAMPLES;
+    let target = Offscreen::new(&gpu.device, width, height, samples)?;
+    let mut octaves: Vec<u32> = rows.iter().map(|r| r.octaves).collect();
+    octaves.sort_unstable();
+    octaves.dedup();
+    for o in octaves {
+        let p = TerrainParams { octaves: o, ..*params };
+        let reference = crate::bench::Reference::new(gpu, &p, &shading, &view, &options)?;
+        for r in rows.iter_mut().filter(|r| r.octaves == o) {
+            let p = TerrainParams {
+                size: r.size,
+                grid: r.grid,
+                ..p
+            };
+            let mut terrain = crate::Terrain::new(
+                &gpu.device,
+                &gpu.queue,
+                Offscreen::targets(samples),
+                p,
+            )?;
+            let (image, _) = target.render(gpu, &mut terrain, &view, None)?;
+            let (flip, _) = crate::metrics::image_error(
+                &reference.rgb,
+                &crate::metrics::rgb(&image),
+                width,
+                height,
+            );
+            r.flip = Some(flip);
+        }
+    }
+    Ok(())
+}
+
 /// The CSV: a header and a row per octave count and side, with the scene.
 pub fn detail_csv(rows: &[DetailRow], params: &TerrainParams) -> String {
     let mut out = String::from(
-        "axis,octaves,size,seed,frequency,gain,height_scale,normal_error_mean_deg,normal_error_p99_deg,normal_error_max_deg,energy_above_nyquist,slope_energy_above_nyquist\n",
+        "axis,octaves,size,grid,seed,frequency,gain,height_scale,normal_error_mean_deg,normal_error_p99_deg,normal_error_max_deg,energy_above_nyquist,slope_energy_above_nyquist,flip_mean\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "detail,{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.6},{:.4}",
+            "detail,{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.6},{:.4},{}",
             r.octaves,
             r.size,
+            r.grid,
             params.seed,
             params.frequency,
             params.gain,
@@ -130,45 +208,80 @@ pub fn detail_csv(rows: &[DetailRow], params: &TerrainParams) -> String {
             r.angle_p99_deg,
             r.angle_max_deg,
             r.above_nyquist,
-            r.slope_above_nyquist
+            r.slope_above_nyquist,
+            r.flip.map_or(String::new(), |f| format!("{f:.4}"))
         );
     }
     out
 }
 
+/// The rows of the LOD knob's sweep: those at the knob's octaves and side (the last rows
+/// [`detail`] adds), by grid.
+fn knob_rows(rows: &[DetailRow]) -> Vec<&DetailRow> {
+    let Some(last) = rows.last() else {
+        return Vec::new();
+    };
+    let mut knob: Vec<&DetailRow> = rows
+        .iter()
+        .filter(|r| r.octaves == last.octaves && r.size == last.size)
+        .collect();
+    knob.sort_by_key(|r| r.grid);
+    knob
+}
+
 /// The table: a row per octave count, a column per side (p99 normal error / energy above
-/// Nyquist).
+/// Nyquist / FLIP), then the LOD knob's rows.
 pub fn detail_table(rows: &[DetailRow], options: &DetailOptions) -> String {
+    let flip = |r: &DetailRow| r.flip.map_or("-".to_owned(), |f| format!("{f:.3}"));
+    let knob = knob_rows(rows);
+    // The octaves-by-sides rows, at the scene's grid (the first row's).
+    let main: Vec<&DetailRow> = rows.iter().filter(|r| r.grid == rows[0].grid).collect();
     let mut out = format!("{:<8}", "octaves");
     for s in &options.sizes {
-        let _ = write!(out, " {:>24}", format!("{s}²"));
+        let _ = write!(out, " {:>30}", format!("{s}²"));
     }
     out.push('\n');
     for o in &options.octaves {
-        if !rows.iter().any(|r| r.octaves == *o) {
+        if !main.iter().any(|r| r.octaves == *o) {
             continue;
         }
         let _ = write!(out, "{o:<8}");
         for s in &options.sizes {
-            let cell = rows
+            let cell = main
                 .iter()
                 .find(|r| r.octaves == *o && r.size == *s)
                 .map_or("-".to_owned(), |r| {
                     format!(
-                        "{:.2}° / {:.4} / {:.2}",
-                        r.angle_p99_deg, r.above_nyquist, r.slope_above_nyquist
+                        "{:.2}° / {:.4} / {:.2} / {}",
+                        r.angle_p99_deg,
+                        r.above_nyquist,
+                        r.slope_above_nyquist,
+                        flip(r)
                     )
                 });
-            let _ = write!(out, " {cell:>24}");
+            let _ = write!(out, " {cell:>30}");
         }
         out.push('\n');
     }
-    out.push_str("cells: normal error p99 (differences of the baked heights against the analytic normal) / share of the height's variance above Nyquist / of the slope's\n");
+    out.push_str("cells: normal error p99 (differences of the baked heights against the analytic normal) / share of the height's variance above Nyquist / of the slope's / FLIP of the mesh against the reference\n");
+    if let Some(k) = knob.first() {
+        let _ = writeln!(
+            out,
+            "the LOD knob at {} octaves, {}² texels: grid {}",
+            k.octaves,
+            k.size,
+            knob.iter()
+                .map(|r| format!("{} FLIP {}", r.grid, flip(r)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     out
 }
 
 /// The chart: the normal error's 99th percentile against octaves, a line per texture side,
-/// the scene's (octaves, side) marked.
+/// the scene's (octaves, side) marked; beside it FLIP against octaves, and FLIP against the LOD
+/// knob (the mesh's grid).
 pub fn detail_chart(
     rows: &[DetailRow],
     scene: (u32, u32),
@@ -181,10 +294,12 @@ pub fn detail_chart(
     )
 }
 
+type Area<DB> = plotters::drawing::DrawingArea<DB, plotters::coord::Shift>;
+
 fn draw<DB: plotters::prelude::DrawingBackend>(
     backend: DB,
     rows: &[DetailRow],
-    (scene_octaves, scene_size): (u32, u32),
+    scene: (u32, u32),
     title: &str,
 ) -> std::result::Result<(), String>
 where
@@ -193,11 +308,43 @@ where
     use plotters::prelude::*;
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let root = root
+        .titled(title, ("sans-serif", 20))
+        .map_err(|e| e.to_string())?;
+    let (w, _) = root.dim_in_pixel();
+    let (left, right) = root.split_horizontally(w / 2);
+    let grid = rows.first().map_or(0, |r| r.grid);
+    let main: Vec<&DetailRow> = rows.iter().filter(|r| r.grid == grid).collect();
+    let y_normal = "normal error p99, degrees (differences of the bake against analytic)";
+    by_octaves(&left, &main, scene, (y_normal, &|r| Some(r.angle_p99_deg)))?;
+    let knob = knob_rows(rows);
+    if main.iter().any(|r| r.flip.is_some()) {
+        let (top, bottom) = right.split_vertically(right.dim_in_pixel().1 / 2);
+        by_octaves(&top, &main, scene, ("FLIP against the reference", &|r| r.flip))?;
+        by_grid(&bottom, &knob)?;
+    }
+    Ok(())
+}
+
+/// A value against octaves, a line per texture side, the scene marked.
+fn by_octaves<DB: plotters::prelude::DrawingBackend>(
+    area: &Area<DB>,
+    rows: &[&DetailRow],
+    (scene_octaves, scene_size): (u32, u32),
+    (y_desc, value): (&str, &dyn Fn(&DetailRow) -> Option<f64>),
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
     let o0 = rows.iter().map(|r| r.octaves).min().unwrap_or(1);
     let o1 = rows.iter().map(|r| r.octaves).max().unwrap_or(1);
-    let top = rows.iter().map(|r| r.angle_p99_deg).fold(1.0, f64::max) * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
+    let top = rows
+        .iter()
+        .filter_map(|r| value(r))
+        .fold(1e-3, f64::max)
+        * 1.15;
+    let mut chart = ChartBuilder::on(area)
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
@@ -208,7 +355,7 @@ where
         .x_labels((o1 - o0 + 1) as usize)
         .x_label_formatter(&|v| format!("{v:.0}"))
         .x_desc("octaves")
-        .y_desc("normal error p99, degrees (differences of the bake against analytic)")
+        .y_desc(y_desc)
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 15))
         .draw()
@@ -221,7 +368,7 @@ where
         let line: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.size == size)
-            .map(|r| (f64::from(r.octaves), r.angle_p99_deg))
+            .filter_map(|r| value(r).map(|v| (f64::from(r.octaves), v)))
             .collect();
         chart
             .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
@@ -232,13 +379,14 @@ where
             .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
             .map_err(|e| e.to_string())?;
     }
-    if let Some(r) = rows
+    if let Some((r, v)) = rows
         .iter()
         .find(|r| r.octaves == scene_octaves && r.size == scene_size)
+        .and_then(|r| value(r).map(|v| (r, v)))
     {
         chart
             .draw_series([Cross::new(
-                (f64::from(r.octaves), r.angle_p99_deg),
+                (f64::from(r.octaves), v),
                 9,
                 BLACK.stroke_width(3),
             )])
@@ -248,6 +396,55 @@ where
             ))
             .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
-    root.present().map_err(|e| e.to_string())
+    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)
+}
+
+/// FLIP against the LOD knob (the mesh's grid, log scale).
+fn by_grid<DB: plotters::prelude::DrawingBackend>(
+    area: &Area<DB>,
+    knob: &[&DetailRow],
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let points: Vec<(f64, f64)> = knob
+        .iter()
+        .filter_map(|r| r.flip.map(|f| (f64::from(r.grid), f)))
+        .collect();
+    let (Some(first), Some(last)) = (points.first(), points.last()) else {
+        return Ok(());
+    };
+    let top = points.iter().map(|p| p.1).fold(1e-3, f64::max) * 1.15;
+    let caption = format!(
+        "the LOD knob at {} octaves, {}² texels",
+        knob[0].octaves, knob[0].size
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 15))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(
+            (first.0 / 1.5..last.0 * 1.5).log_scale(),
+            0.0..top,
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .x_desc("mesh grid, vertices a side (finer: more triangles)")
+        .y_desc("FLIP against the reference")
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 15))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let color = Palette99::pick(0).to_rgba();
+    chart
+        .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+        .map_err(|e| e.to_string())?;
+    chart
+        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+        .map_err(|e| e.to_string())?;
+    Ok(())
 }
