@@ -161,7 +161,10 @@ pub fn detail_flip(
     octaves.sort_unstable();
     octaves.dedup();
     for o in octaves {
-        let p = TerrainParams { octaves: o, ..*params };
+        let p = TerrainParams {
+            octaves: o,
+            ..*params
+        };
         let reference = crate::bench::Reference::new(gpu, &p, &shading, &view, &options)?;
         for r in rows.iter_mut().filter(|r| r.octaves == o) {
             let p = TerrainParams {
@@ -169,12 +172,8 @@ pub fn detail_flip(
                 grid: r.grid,
                 ..p
             };
-            let mut terrain = crate::Terrain::new(
-                &gpu.device,
-                &gpu.queue,
-                Offscreen::targets(samples),
-                p,
-            )?;
+            let mut terrain =
+                crate::Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), p)?;
             let (image, _) = target.render(gpu, &mut terrain, &view, None)?;
             let (flip, _) = crate::metrics::image_error(
                 &reference.rgb,
@@ -320,7 +319,12 @@ where
     let knob = knob_rows(rows);
     if main.iter().any(|r| r.flip.is_some()) {
         let (top, bottom) = right.split_vertically(right.dim_in_pixel().1 / 2);
-        by_octaves(&top, &main, scene, ("FLIP against the reference", &|r| r.flip))?;
+        by_octaves(
+            &top,
+            &main,
+            scene,
+            ("FLIP against the reference", &|r| r.flip),
+        )?;
         by_grid(&bottom, &knob)?;
     }
     Ok(())
@@ -339,11 +343,7 @@ where
     use plotters::prelude::*;
     let o0 = rows.iter().map(|r| r.octaves).min().unwrap_or(1);
     let o1 = rows.iter().map(|r| r.octaves).max().unwrap_or(1);
-    let top = rows
-        .iter()
-        .filter_map(|r| value(r))
-        .fold(1e-3, f64::max)
-        * 1.15;
+    let top = rows.iter().filter_map(|r| value(r)).fold(1e-3, f64::max) * 1.15;
     let mut chart = ChartBuilder::on(area)
         .margin(16)
         .x_label_area_size(48)
@@ -425,10 +425,7 @@ where
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
-        .build_cartesian_2d(
-            (first.0 / 1.5..last.0 * 1.5).log_scale(),
-            0.0..top,
-        )
+        .build_cartesian_2d((first.0 / 1.5..last.0 * 1.5).log_scale(), 0.0..top)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
