@@ -315,7 +315,13 @@ where
     let grid = rows.first().map_or(0, |r| r.grid);
     let main: Vec<&DetailRow> = rows.iter().filter(|r| r.grid == grid).collect();
     let y_normal = "normal error p99, degrees (differences of the bake against analytic)";
-    by_octaves(&left, &main, scene, (y_normal, &|r| Some(r.angle_p99_deg)))?;
+    by_octaves(
+        &left,
+        &main,
+        scene,
+        (y_normal, &|r| Some(r.angle_p99_deg)),
+        SeriesLabelPosition::UpperLeft,
+    )?;
     let knob = knob_rows(rows);
     if main.iter().any(|r| r.flip.is_some()) {
         let (top, bottom) = right.split_vertically(right.dim_in_pixel().1 / 2);
@@ -324,8 +330,9 @@ where
             &main,
             scene,
             ("FLIP against the reference", &|r| r.flip),
+            SeriesLabelPosition::LowerRight,
         )?;
-        by_grid(&bottom, &knob)?;
+        by_grid(&bottom, &knob, grid)?;
     }
     Ok(())
 }
@@ -336,6 +343,7 @@ fn by_octaves<DB: plotters::prelude::DrawingBackend>(
     rows: &[&DetailRow],
     (scene_octaves, scene_size): (u32, u32),
     (y_desc, value): (&str, &dyn Fn(&DetailRow) -> Option<f64>),
+    legend: plotters::chart::SeriesLabelPosition,
 ) -> std::result::Result<(), String>
 where
     DB::ErrorType: 'static,
@@ -396,13 +404,14 @@ where
             ))
             .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    crate::bench::legend(&mut chart, legend)
 }
 
-/// FLIP against the LOD knob (the mesh's grid, log scale).
+/// FLIP against the LOD knob (the mesh's grid, on a log2 axis), the scene's grid marked.
 fn by_grid<DB: plotters::prelude::DrawingBackend>(
     area: &Area<DB>,
     knob: &[&DetailRow],
+    scene_grid: u32,
 ) -> std::result::Result<(), String>
 where
     DB::ErrorType: 'static,
@@ -410,7 +419,7 @@ where
     use plotters::prelude::*;
     let points: Vec<(f64, f64)> = knob
         .iter()
-        .filter_map(|r| r.flip.map(|f| (f64::from(r.grid), f)))
+        .filter_map(|r| r.flip.map(|f| (f64::from(r.grid).log2(), f)))
         .collect();
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
         return Ok(());
@@ -425,11 +434,12 @@ where
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
-        .build_cartesian_2d((first.0 / 1.5..last.0 * 1.5).log_scale(), 0.0..top)
+        .build_cartesian_2d(first.0 - 0.5..last.0 + 0.5, 0.0..top)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .x_label_formatter(&|v| format!("{v:.0}"))
+        .x_labels((last.0 - first.0) as usize + 1)
+        .x_label_formatter(&|v| format!("{:.0}", v.exp2()))
         .x_desc("mesh grid, vertices a side (finer: more triangles)")
         .y_desc("FLIP against the reference")
         .label_style(("sans-serif", 15))
@@ -443,5 +453,14 @@ where
     chart
         .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
         .map_err(|e| e.to_string())?;
+    let scene = f64::from(scene_grid).log2();
+    if let Some(&p) = points.iter().find(|p| p.0 == scene) {
+        chart
+            .draw_series([Cross::new(p, 9, BLACK.stroke_width(3))])
+            .map_err(|e| e.to_string())?
+            .label(format!("the scene: grid {scene_grid}"))
+            .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
+        crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    }
     Ok(())
 }
