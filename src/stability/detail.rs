@@ -320,7 +320,7 @@ where
         &main,
         scene,
         (y_normal, &|r| Some(r.angle_p99_deg)),
-        SeriesLabelPosition::UpperLeft,
+        (SeriesLabelPosition::UpperLeft, 1.15),
     )?;
     let knob = knob_rows(rows);
     if main.iter().any(|r| r.flip.is_some()) {
@@ -330,7 +330,8 @@ where
             &main,
             scene,
             ("FLIP against the reference", &|r| r.flip),
-            SeriesLabelPosition::LowerRight,
+            // Head room for the legend above lines that rise to the right.
+            (SeriesLabelPosition::UpperLeft, 1.7),
         )?;
         by_grid(&bottom, &knob, grid)?;
     }
@@ -343,7 +344,7 @@ fn by_octaves<DB: plotters::prelude::DrawingBackend>(
     rows: &[&DetailRow],
     (scene_octaves, scene_size): (u32, u32),
     (y_desc, value): (&str, &dyn Fn(&DetailRow) -> Option<f64>),
-    legend: plotters::chart::SeriesLabelPosition,
+    (legend, headroom): (plotters::chart::SeriesLabelPosition, f64),
 ) -> std::result::Result<(), String>
 where
     DB::ErrorType: 'static,
@@ -351,7 +352,7 @@ where
     use plotters::prelude::*;
     let o0 = rows.iter().map(|r| r.octaves).min().unwrap_or(1);
     let o1 = rows.iter().map(|r| r.octaves).max().unwrap_or(1);
-    let top = rows.iter().filter_map(|r| value(r)).fold(1e-3, f64::max) * 1.15;
+    let top = rows.iter().filter_map(|r| value(r)).fold(1e-3, f64::max) * headroom;
     let mut chart = ChartBuilder::on(area)
         .margin(16)
         .x_label_area_size(48)
