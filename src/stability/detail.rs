@@ -294,6 +294,8 @@ pub fn detail_chart(
 }
 
 type Area<DB> = plotters::drawing::DrawingArea<DB, plotters::coord::Shift>;
+/// What a panel plots of a row.
+type Pick = dyn Fn(&DetailRow) -> Option<f64>;
 
 fn draw<DB: plotters::prelude::DrawingBackend>(
     backend: DB,
@@ -343,7 +345,7 @@ fn by_octaves<DB: plotters::prelude::DrawingBackend>(
     area: &Area<DB>,
     rows: &[&DetailRow],
     (scene_octaves, scene_size): (u32, u32),
-    (y_desc, value): (&str, &dyn Fn(&DetailRow) -> Option<f64>),
+    (y_desc, value): (&str, &Pick),
     (legend, headroom): (plotters::chart::SeriesLabelPosition, f64),
 ) -> std::result::Result<(), String>
 where
