@@ -9,31 +9,54 @@
 @group(0) @binding(1) var region_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(2) var level_out: texture_storage_2d_array<rg32uint, write>;
 
-// The sample of invocation `id` and the texel it goes to; false outside the rectangle.
-fn bake_target(id: vec2<u32>, s: ptr<function, vec2<i32>>, dest: ptr<function, vec2<u32>>) -> bool {
-    if id.x >= land.extent.x || id.y >= land.extent.y {
+// Each invocation bakes a 2x2 quad of samples (landscape_samples_quad): the quads lie on even
+// world sample coordinates, from the rectangle's origin rounded down, and the samples of a
+// quad outside the rectangle are not written.
+
+// The first sample of invocation `id`'s quad; false when the whole quad is past the rectangle.
+fn quad_origin(id: vec2<u32>, s: ptr<function, vec2<i32>>) -> bool {
+    *s = (land.origin & vec2<i32>(-2)) + 2 * vec2<i32>(id);
+    let r = *s - land.origin;
+    return all(r < vec2<i32>(land.extent));
+}
+
+// Where sample `s` goes; false outside the rectangle.
+fn bake_target(s: vec2<i32>, dest: ptr<function, vec2<u32>>) -> bool {
+    let r = s - land.origin;
+    if any(r < vec2<i32>(0)) || any(r >= vec2<i32>(land.extent)) {
         return false;
     }
-    *s = land.origin + vec2<i32>(id);
-    *dest = (land.dest_origin + id) % vec2<u32>(land.wrap);
+    *dest = (land.dest_origin + vec2<u32>(r)) % vec2<u32>(land.wrap);
     return true;
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn landscape_bake_main(@builtin(global_invocation_id) id: vec3<u32>) {
     var s: vec2<i32>;
-    var dest: vec2<u32>;
-    if bake_target(id.xy, &s, &dest) {
-        textureStore(region_out, vec2<i32>(dest), i32(land.layer), landscape_samples(s, land));
+    if !quad_origin(id.xy, &s) {
+        return;
+    }
+    let samples = landscape_samples_quad(s, land);
+    for (var k = 0u; k < 4u; k++) {
+        var dest: vec2<u32>;
+        if bake_target(s + quad_offset(k), &dest) {
+            textureStore(region_out, vec2<i32>(dest), i32(land.layer), samples[k]);
+        }
     }
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn landscape_bake_levels(@builtin(global_invocation_id) id: vec3<u32>) {
     var s: vec2<i32>;
-    var dest: vec2<u32>;
-    if bake_target(id.xy, &s, &dest) {
-        let packed = pack_level_texel(landscape_samples(s, land), land.level_log2);
-        textureStore(level_out, vec2<i32>(dest), i32(land.layer), vec4<u32>(packed, 0u, 0u));
+    if !quad_origin(id.xy, &s) {
+        return;
+    }
+    let samples = landscape_samples_quad(s, land);
+    for (var k = 0u; k < 4u; k++) {
+        var dest: vec2<u32>;
+        if bake_target(s + quad_offset(k), &dest) {
+            let packed = pack_level_texel(samples[k], land.level_log2);
+            textureStore(level_out, vec2<i32>(dest), i32(land.layer), vec4<u32>(packed, 0u, 0u));
+        }
     }
 }

@@ -256,11 +256,8 @@ impl LandscapeBake {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &target.bind_group, &[0]);
-        pass.dispatch_workgroups(
-            rect.extent[0].div_ceil(super::WORKGROUP),
-            rect.extent[1].div_ceil(super::WORKGROUP),
-            1,
-        );
+        let [x, y] = quad_groups(rect);
+        pass.dispatch_workgroups(x, y, 1);
     }
 
     /// Writes the uniforms of up to [`MAX_RECTS`] rectangles and records one compute pass
@@ -294,14 +291,22 @@ impl LandscapeBake {
         pass.set_pipeline(&self.pipeline);
         for (i, r) in rects.iter().enumerate() {
             pass.set_bind_group(0, &target.bind_group, &[(i as u64 * self.stride) as u32]);
-            pass.dispatch_workgroups(
-                r.extent[0].div_ceil(super::WORKGROUP),
-                r.extent[1].div_ceil(super::WORKGROUP),
-                1,
-            );
+            let [x, y] = quad_groups(r);
+            pass.dispatch_workgroups(x, y, 1);
         }
         rects.len()
     }
+}
+
+/// Workgroups that cover `rect` with 2x2 quads of samples on even world coordinates (an
+/// invocation a quad, `wgsl/landscape_bake.wgsl`).
+fn quad_groups(rect: &Rect) -> [u32; 2] {
+    [0, 1].map(|a| {
+        let odd = (rect.origin[a] & 1) as u32;
+        (rect.extent[a] + odd)
+            .div_ceil(2)
+            .div_ceil(super::WORKGROUP)
+    })
 }
 
 #[cfg(test)]
