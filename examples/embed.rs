@@ -7,7 +7,9 @@
 //! 200 m tall on the landscape, placed with `World::height_at`, and drawn camera-relative with
 //! the world's own matrix (`World::relative_matrix`), as a host must do far from the origin.
 //!
-//!     cargo run --example embed -- embed.png [endless]
+//! A third argument names how relief draws it (`mesh`, the default, or `visibility`).
+//!
+//!     cargo run --example embed -- embed.png [endless|tile] [mesh|visibility]
 
 use relief::{wgpu, OrbitCamera, Terrain, TerrainParams, World, WorldParams, WorldView};
 
@@ -146,6 +148,9 @@ pub struct Draw {
     pub terrain: bool,
     /// The endless world rather than the tile.
     pub endless: bool,
+    /// How relief draws it: `Mesh` or `Visibility` (whose raster and shading passes
+    /// `encode_bake` records before the host's pass).
+    pub method: relief::Method,
 }
 
 /// The host's MSAA sample count and formats; relief is built for exactly these.
@@ -199,6 +204,8 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             ..Default::default()
         };
         let mut w = World::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        w.set_method(device, draw.method)
+            .map_err(|e| e.to_string())?;
         let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);
         let spot = glam::DVec3::new(900.0, w.height_at(900.0, 0.0), 0.0);
         let view = WorldView::look_at(eye, spot + glam::DVec3::Y * 60.0, 0.8, (width, height));
@@ -220,10 +227,12 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             0.0,
         ];
         let m = w.relative_matrix();
-        world = Some(w);
+        world = Some((w, view));
         (m, uniforms)
     } else {
         let mut t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        t.set_method(device, draw.method)
+            .map_err(|e| e.to_string())?;
         let view = OrbitCamera::default().view(width as f32 / height as f32);
         // The screen-error bound's pixels, and one still frame: every level baked at once.
         t.set_viewport((width, height));
@@ -271,6 +280,11 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             .map_err(|e| e.to_string())?;
         t.prepare(queue, view);
     }
+    if let Some((w, view)) = &mut world {
+        w.encode_bake(device, queue, &mut encoder, view)
+            .map_err(|e| e.to_string())?;
+        w.prepare(queue, view);
+    }
     queue.write_buffer(
         &pillar.uniforms,
         0,
@@ -314,7 +328,7 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             if let Some((t, _)) = &terrain {
                 t.render(&mut pass);
             }
-            if let Some(w) = &world {
+            if let Some((w, _)) = &world {
                 w.render(&mut pass);
             }
         }
@@ -370,6 +384,12 @@ fn main() -> Result<(), String> {
         .nth(1)
         .unwrap_or_else(|| "embed.png".into());
     let endless = std::env::args().nth(2).as_deref() == Some("endless");
+    let method = std::env::args()
+        .nth(3)
+        .map_or(Some(relief::Method::Mesh), |m| {
+            relief::Method::from_name(&m)
+        })
+        .ok_or("the third argument names a method: mesh or visibility")?;
     let host = Host::new()?;
     let (w, h) = (640, 480);
     let pixels = render_frame(
@@ -380,6 +400,7 @@ fn main() -> Result<(), String> {
             host: true,
             terrain: true,
             endless,
+            method,
         },
     )?;
     image::save_buffer(&out, &pixels, w, h, image::ColorType::Rgba8).map_err(|e| e.to_string())?;

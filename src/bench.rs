@@ -40,9 +40,12 @@ impl Config {
     /// A few words naming the configuration, for progress and chart labels.
     pub fn label(&self) -> String {
         match self.method {
-            Method::Mesh => format!(
-                "mesh {} / {} / {}",
-                self.params.size, self.params.grid, self.params.normals
+            Method::Mesh | Method::Visibility => format!(
+                "{} {} / {} / {}",
+                self.method.name(),
+                self.params.size,
+                self.params.grid,
+                self.params.normals
             ),
             Method::Blog => format!("blog {} / {} / rgba8", self.params.size, self.params.grid),
             m => format!(
@@ -140,6 +143,21 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
             }
         }
     }
+    // The visibility method: the same mesh, shaded per sample in compute, at the default and
+    // at finer textures and grids.
+    let d = TerrainParams::default();
+    let visibility: &[(u32, u32)] = if quick {
+        &[(d.size, d.grid)]
+    } else {
+        &[(d.size, d.grid), (d.size, 1024), (2048, 512), (4096, 1024)]
+    };
+    for &(size, grid) in visibility {
+        out.push(Config {
+            method: Method::Visibility,
+            params: TerrainParams { size, grid, ..base },
+            march: SeedMarch::default(),
+        });
+    }
     for method in [Method::RaymarchFragment, Method::Raymarch] {
         for &step_factor in steps {
             let mut seen = Vec::new();
@@ -233,7 +251,9 @@ pub fn run(
     for (i, config) in configs.iter().enumerate() {
         progress.start(i, configs.len(), config);
         rows.push(match config.method {
-            Method::Mesh => mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?,
+            Method::Mesh | Method::Visibility => {
+                mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?
+            }
             Method::Blog => blog_row(gpu, config, options, &view, &shading, timer.as_ref())?,
             Method::RaymarchFragment
             | Method::Raymarch
@@ -366,6 +386,7 @@ fn mesh_row(
         Offscreen::targets(samples),
         config.params,
     )?;
+    terrain.set_method(&gpu.device, config.method)?;
     let color_view = target.color.create_view(&Default::default());
     terrain.set_viewport((options.width, options.height));
     headless::bake_whole(gpu, &mut terrain, view, None)?;
@@ -395,7 +416,15 @@ fn mesh_row(
             .filter_map(|t| t[s as usize])
             .collect::<Vec<f64>>()
     };
-    let (bake, normals, render) = (slot(Slot::Bake), slot(Slot::Normals), slot(Slot::Render));
+    let (bake, normals) = (slot(Slot::Bake), slot(Slot::Normals));
+    // The draw: the host's pass, and the visibility method's raster and shading before it.
+    let render: Vec<f64> = times
+        .iter()
+        .filter_map(|t| {
+            let draw = [Slot::Render, Slot::Raster, Slot::Shade].map(|s| t[s as usize]);
+            draw[0].map(|r| r + draw[1].unwrap_or(0.0) + draw[2].unwrap_or(0.0))
+        })
+        .collect();
     let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
     let (flip_mean, flip_p99) = metrics::image_error(
         &reference.rgb,
@@ -850,6 +879,7 @@ where
         .map_err(|e| e.to_string())?;
     let series = [
         (Method::Mesh, RGBColor(31, 119, 180)),
+        (Method::Visibility, RGBColor(255, 127, 14)),
         (Method::RaymarchFragment, RGBColor(214, 39, 40)),
         (Method::Raymarch, RGBColor(44, 160, 44)),
         (Method::Blog, RGBColor(148, 103, 189)),

@@ -121,7 +121,7 @@ impl WorldRow {
     /// A row from a measured run: the world's last stats, the texels each frame baked (the
     /// timed frames are the last ones), and the timed frames' GPU and wall times.
     fn measured(
-        view: &str,
+        (view, method): (&str, Method),
         knob: f64,
         s: &crate::WorldStats,
         texels: &[u64],
@@ -130,9 +130,17 @@ impl WorldRow {
     ) -> Self {
         let timed = &texels[texels.len().saturating_sub(wall.len())..];
         let slot = |slot: Slot| times.iter().filter_map(move |t| t[slot as usize]);
+        // The draw: the host's pass, and the visibility method's raster and shading before it.
+        let draw = times.iter().filter_map(|t| {
+            let r = t[Slot::Render as usize]?;
+            Some(
+                r + t[Slot::Raster as usize].unwrap_or(0.0)
+                    + t[Slot::Shade as usize].unwrap_or(0.0),
+            )
+        });
         Self {
             view: view.to_owned(),
-            method: Method::Mesh,
+            method,
             pixel_error: knob,
             patch_cells: s.patch_cells,
             levels: s.levels,
@@ -141,7 +149,7 @@ impl WorldRow {
             measured: None,
             texels_median: median(timed.to_vec()).unwrap_or(0),
             texels_max: timed.iter().copied().max().unwrap_or(0),
-            render_ms: median(slot(Slot::Render).collect()),
+            render_ms: median(draw.collect()),
             bake_ms: median(slot(Slot::Bake).collect()),
             bake_max_ms: slot(Slot::Bake).reduce(f64::max),
             wall_ms: median(wall.to_vec()).unwrap_or(0.0),
@@ -232,6 +240,12 @@ pub fn run(
     let color = target.color.create_view(&Default::default());
     let mut rows = Vec::new();
     let mut references = References::default();
+    let quick = options.frames < 10;
+    let vis_knob = if quick {
+        knobs.first().copied().unwrap_or(params.pixel_error)
+    } else {
+        params.pixel_error
+    };
     let frame = |world: &mut World,
                  view: &WorldView,
                  encoder: &mut wgpu::CommandEncoder,
@@ -255,28 +269,39 @@ pub fn run(
             pixel_error: knob,
             ..*params
         };
+        // The visibility method beside the mesh at one knob: the scene's (the full run's 1 px),
+        // or the quick run's first.
+        let methods: &[Method] = if knob == vis_knob {
+            &[Method::Mesh, Method::Visibility]
+        } else {
+            &[Method::Mesh]
+        };
         for v in views(&p, size) {
-            progress(&format!("{} at {knob} px", v.name));
-            let mut world = World::new(
-                &gpu.device,
-                &gpu.queue,
-                Offscreen::targets(RENDER_SAMPLES),
-                p,
-            )?;
-            let mut texels = Vec::new();
-            let (times, wall) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
-                texels.push(frame(&mut world, &v.view, encoder, timer));
-            })?;
-            let s = world.stats();
-            let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
-            let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
-            let mut row = WorldRow::measured(v.name, knob, &s, &texels, &times, &wall);
-            row.measured = Some(measured);
-            let (image, _) = target.render_world(gpu, &mut world, &v.view, None)?;
-            progress(&format!("{} at {knob} px: the reference", v.name));
-            let reference = references.get(gpu, &p, &v, timer.as_ref())?;
-            row.against(reference, &image, &distance, size);
-            rows.push(row);
+            for &method in methods {
+                progress(&format!("{} at {knob} px ({method})", v.name));
+                let mut world = World::new(
+                    &gpu.device,
+                    &gpu.queue,
+                    Offscreen::targets(RENDER_SAMPLES),
+                    p,
+                )?;
+                world.set_method(&gpu.device, method)?;
+                let mut texels = Vec::new();
+                let (times, wall) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
+                    texels.push(frame(&mut world, &v.view, encoder, timer));
+                })?;
+                let s = world.stats();
+                let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
+                let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
+                let mut row =
+                    WorldRow::measured((v.name, method), knob, &s, &texels, &times, &wall);
+                row.measured = Some(measured);
+                let (image, _) = target.render_world(gpu, &mut world, &v.view, None)?;
+                progress(&format!("{} at {knob} px: the reference", v.name));
+                let reference = references.get(gpu, &p, &v, timer.as_ref())?;
+                row.against(reference, &image, &distance, size);
+                rows.push(row);
+            }
         }
     }
     // The reference itself and the seed's march, at the default knob's region.
@@ -324,7 +349,6 @@ pub fn run(
     // Flights at 60 frames a second, baking what the levels uncover each frame: at 300 km/h,
     // 40 m above the ground (1.4 m a frame), and along the fly-through path.
     // At the given knob, or (in the quick run) at the loosest one measured.
-    let quick = options.frames < 10;
     let p = WorldParams {
         pixel_error: if quick {
             knobs.iter().copied().fold(params.pixel_error, f64::max)
@@ -380,7 +404,14 @@ pub fn run(
             triangles.push(world.stats().triangles);
         })?;
         let s = world.stats();
-        let mut row = WorldRow::measured(name, p.pixel_error, &s, &texels, &times, &wall);
+        let mut row = WorldRow::measured(
+            (name, Method::Mesh),
+            p.pixel_error,
+            &s,
+            &texels,
+            &times,
+            &wall,
+        );
         row.triangles = median(triangles[triangles.len() - wall.len()..].to_vec()).unwrap_or(0);
         rows.push(row);
     }
@@ -510,7 +541,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
     );
     out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max\n");
     for r in rows {
-        let mesh = r.method == Method::Mesh;
+        let mesh = r.method.is_mesh();
         // Mesh-only columns are empty for the ray casters.
         let mesh_only = |text: String| if mesh { text } else { String::new() };
         let cov = |f: fn(&Coverage) -> f64| opt(r.coverage.as_ref().map(f));
@@ -576,7 +607,7 @@ where
         let mut v: Vec<&str> = Vec::new();
         for r in rows
             .iter()
-            .filter(|r| r.measured.is_some() || r.method != Method::Mesh)
+            .filter(|r| r.measured.is_some() || !r.method.is_mesh())
         {
             if !v.contains(&r.view.as_str()) {
                 v.push(&r.view);
@@ -718,6 +749,8 @@ where
             .draw_series(mine.iter().map(|p| {
                 let label = if p.2.method == Method::Mesh {
                     format!("{} px", p.2.pixel_error)
+                } else if p.2.method == Method::Visibility {
+                    format!("visibility {} px", p.2.pixel_error)
                 } else {
                     p.2.method.to_string()
                 };

@@ -1313,7 +1313,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             let view = world_view(&camera, &params, (width, height));
-            if method != crate::Method::Mesh {
+            if !method.is_mesh() {
                 let image = headless::render_world_rays(
                     &gpu,
                     &params,
@@ -1345,6 +1345,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
                 Offscreen::targets(RENDER_SAMPLES),
                 params,
             )?;
+            world.set_method(&gpu.device, method)?;
             let (pixels, t) = headless::render_world_image(
                 &gpu,
                 &mut world,
@@ -1360,6 +1361,10 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
                 for line in world.stats().lines() {
                     println!("{line}");
                 }
+                println!(
+                    "method_texture_mib {:.1}",
+                    crate::gpu::world::mib(world.method_bytes())
+                );
             }
             write_png(&out, width, height, image::ColorType::Rgba8, &pixels)
         }
@@ -1444,13 +1449,14 @@ fn render(
     let timer = timer_if(timings, &gpu);
     let view = tile_view(camera, (width, height));
     let mut drawn = None;
-    let (pixels, t) = if method == crate::Method::Mesh {
+    let (pixels, t) = if method.is_mesh() {
         let mut terrain = Terrain::new(
             &gpu.device,
             &gpu.queue,
             Offscreen::targets(RENDER_SAMPLES),
             *params,
         )?;
+        terrain.set_method(&gpu.device, method)?;
         let frame = headless::render_image(
             &gpu,
             &mut terrain,
@@ -1459,7 +1465,11 @@ fn render(
             TILE,
             timer.as_ref(),
         )?;
-        drawn = Some((terrain.world().stats(), params.size));
+        drawn = Some((
+            terrain.world().stats(),
+            params.size,
+            terrain.world().method_bytes(),
+        ));
         frame
     } else if method == crate::Method::Blog {
         let scene = (params, &Shading::default());
@@ -1483,10 +1493,14 @@ fn render(
         // The mesh's levels (the clipmap renderer's stats); the ray casters draw no triangles.
         // The tile's own textures (its heights, colour and normals) come on top of the levels'.
         match drawn {
-            Some((s, size)) => {
+            Some((s, size, method_bytes)) => {
                 s.lines().iter().for_each(|l| println!("{l}"));
                 let tile = crate::gpu::Textures::bytes(size);
                 println!("tile_texture_mib {:.1}", crate::gpu::world::mib(tile));
+                println!(
+                    "method_texture_mib {:.1}",
+                    crate::gpu::world::mib(method_bytes)
+                );
                 println!(
                     "total_texture_mib {:.1}",
                     crate::gpu::world::mib(tile + s.texture_bytes())

@@ -10,6 +10,10 @@ pub enum Method {
     /// relief's pipeline: baked textures, a displaced grid mesh, forward shading, 4x MSAA.
     #[default]
     Mesh,
+    /// The same mesh rasterised into depth and surface attributes per MSAA sample, every
+    /// sample shaded in compute and composited into the host's pass
+    /// ([`crate::gpu::visibility`]).
+    Visibility,
     /// The seed template's heightfield ray march, in a compute shader.
     Raymarch,
     /// The same march in a full-screen fragment shader, as the seed does it.
@@ -28,8 +32,9 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order of docs, charts and tables.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Mesh,
+        Method::Visibility,
         Method::Raymarch,
         Method::RaymarchFragment,
         Method::RaymarchBandlimited,
@@ -40,6 +45,7 @@ impl Method {
     /// The names `--method` takes, in [`Method::ALL`]'s order.
     pub const NAMES: &'static [&'static str] = &[
         "mesh",
+        "visibility",
         "raymarch",
         "raymarch-fragment",
         "raymarch-bandlimited",
@@ -48,13 +54,20 @@ impl Method {
     ];
 
     /// The names of the methods the tile draws ([`Method::in_tile`]), in the same order.
-    pub const TILE_NAMES: &'static [&'static str] =
-        &["mesh", "raymarch", "raymarch-fragment", "blog", "reference"];
+    pub const TILE_NAMES: &'static [&'static str] = &[
+        "mesh",
+        "visibility",
+        "raymarch",
+        "raymarch-fragment",
+        "blog",
+        "reference",
+    ];
 
     /// The names of the methods the endless world draws ([`Method::in_world`]), in the same
     /// order.
     pub const WORLD_NAMES: &'static [&'static str] = &[
         "mesh",
+        "visibility",
         "raymarch",
         "raymarch-fragment",
         "raymarch-bandlimited",
@@ -75,6 +88,7 @@ impl Method {
     pub fn doc(self) -> &'static str {
         match self {
             Method::Mesh => "the displaced grid mesh, forward shaded (relief's pipeline)",
+            Method::Visibility => "the same mesh rasterised to depth and attributes, four samples a pixel shaded in compute",
             Method::Raymarch => "the seed template's heightfield ray march, in compute",
             Method::RaymarchFragment => "the same march in a fragment shader, as the seed does it",
             Method::RaymarchBandlimited => "the march in compute, octaves finer than a pixel faded from its shading (endless world)",
@@ -86,12 +100,18 @@ impl Method {
     /// Where a ray-cast method runs (`None` for the mesh).
     pub fn ray_path(self) -> Option<RayPath> {
         match self {
-            Method::Mesh | Method::Blog => None,
+            Method::Mesh | Method::Visibility | Method::Blog => None,
             Method::Raymarch | Method::RaymarchBandlimited | Method::Reference => {
                 Some(RayPath::Compute)
             }
             Method::RaymarchFragment => Some(RayPath::Fragment),
         }
+    }
+
+    /// Whether relief's mesh (its clipmap levels, [`crate::World`]) draws it: the forward
+    /// mesh and the visibility method, which share every pass but the shading.
+    pub fn is_mesh(self) -> bool {
+        matches!(self, Method::Mesh | Method::Visibility)
     }
 
     /// Whether the tile world draws it (band-limiting is the endless world's only so far).
@@ -115,7 +135,7 @@ impl Method {
     /// its own noise, texture and grid and reads only the height scale and the snow line.
     pub fn unread_keys(self) -> &'static [&'static str] {
         match self {
-            Method::Mesh => &[],
+            Method::Mesh | Method::Visibility => &[],
             Method::Blog => &[
                 "seed",
                 "size",
@@ -143,7 +163,7 @@ impl Method {
     pub fn ray_method(self, octaves: u32) -> Option<crate::gpu::raymarch::RayMethod> {
         use crate::gpu::raymarch::RayMethod;
         match self {
-            Method::Mesh | Method::Blog => None,
+            Method::Mesh | Method::Visibility | Method::Blog => None,
             Method::Reference => Some(RayMethod::Reference),
             Method::Raymarch | Method::RaymarchFragment | Method::RaymarchBandlimited => {
                 Some(RayMethod::SeedMarch(SeedMarch {

@@ -11,15 +11,23 @@ fn is_red(p: &[u8]) -> bool {
 
 #[test]
 fn host_geometry_and_terrain_are_depth_tested_together() {
-    depth_tested_together(false);
+    depth_tested_together(false, relief::Method::Mesh);
 }
 
 #[test]
 fn host_geometry_and_the_endless_world_are_depth_tested_together() {
-    depth_tested_together(true);
+    depth_tested_together(true, relief::Method::Mesh);
 }
 
-fn depth_tested_together(endless: bool) {
+/// The visibility method keeps the middleware contract: its compute work is recorded by
+/// `encode_bake` before the host's pass, and its composite writes depth into the host's.
+#[test]
+fn the_visibility_method_is_depth_tested_with_host_geometry() {
+    depth_tested_together(false, relief::Method::Visibility);
+    depth_tested_together(true, relief::Method::Visibility);
+}
+
+fn depth_tested_together(endless: bool, method: relief::Method) {
     let gpu = Host::new().expect(
         "the embedding test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
     );
@@ -32,6 +40,7 @@ fn depth_tested_together(endless: bool) {
             host: true,
             terrain: false,
             endless,
+            method,
         },
     )
     .unwrap();
@@ -43,6 +52,7 @@ fn depth_tested_together(endless: bool) {
             host: false,
             terrain: true,
             endless,
+            method,
         },
     )
     .unwrap();
@@ -54,6 +64,7 @@ fn depth_tested_together(endless: bool) {
             host: true,
             terrain: true,
             endless,
+            method,
         },
     )
     .unwrap();

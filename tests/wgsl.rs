@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 15);
+    assert_eq!(modules.len(), 16);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -80,6 +80,32 @@ fn landscape_uniforms_match_wgsl() {
         ("level_log2", offset_of!(LandscapeUniforms, level_log2)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");
+    }
+}
+
+#[test]
+fn visibility_uniforms_match_wgsl() {
+    use relief::gpu::visibility::VisUniforms;
+    let m = parse(
+        "visibility",
+        &shader::compose(&[
+            shader::SHADE,
+            shader::LEVEL_TEXEL,
+            shader::WORLD,
+            shader::VISIBILITY,
+        ]),
+    );
+    let (size, members) = layout(&m, "VisUniforms");
+    assert_eq!(size as usize, size_of::<VisUniforms>());
+    for (name, at) in [
+        ("w_row", offset_of!(VisUniforms, w_row)),
+        ("depth", offset_of!(VisUniforms, depth)),
+        ("size", offset_of!(VisUniforms, size)),
+        ("sky", offset_of!(VisUniforms, sky)),
+        ("world", offset_of!(VisUniforms, world)),
+        ("encode_srgb", offset_of!(VisUniforms, encode_srgb)),
+    ] {
+        assert_eq!(offset(&members, name), at, "VisUniforms.{name}");
     }
 }
 

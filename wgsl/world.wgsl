@@ -123,6 +123,11 @@ fn vs_main(
     @builtin(vertex_index) vi: u32,
     @location(0) patch_instance: vec4<u32>,
 ) -> VertexOut {
+    return place(vi, patch_instance);
+}
+
+// The vertex `vi` of the patch instance: where it lies and what it carries.
+fn place(vi: u32, patch_instance: vec4<u32>) -> VertexOut {
     let level = patch_instance.x;
     let lv = w.levels[level];
     let row = w.patch_cells + 1u;
@@ -200,4 +205,42 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));
     let occl = occlusion(r, s.x, in.light.x, in.light.y);
     return vec4<f32>(shade(r, in.rel, n, s.x, s.w, occl), 1.0);
+}
+
+// The visibility method's raster pass (src/gpu/visibility.rs): the same vertices, their
+// attributes interpolated at every MSAA sample rather than once a pixel, so the compute pass
+// that shades them (wgsl/visibility.wgsl) sees each sample's own surface.
+struct SampleOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(perspective, sample) sample: vec4<f32>,
+    @location(1) @interpolate(perspective, sample) light: vec2<f32>,
+}
+
+@vertex
+fn vs_samples(
+    @builtin(vertex_index) vi: u32,
+    @location(0) patch_instance: vec4<u32>,
+) -> SampleOut {
+    let v = place(vi, patch_instance);
+    var out: SampleOut;
+    out.clip = v.clip;
+    out.sample = v.sample;
+    out.light = v.light;
+    return out;
+}
+
+// What the endless world's shading needs beyond the position (which the depth gives): the
+// slope (dh/dx, dh/dz in metres per metre), the colour channel and the horizon towards the
+// sun; and in a second target the valley depth (metres).
+struct Attributes {
+    @location(0) surface: vec4<f32>,
+    @location(1) valley: f32,
+}
+
+@fragment
+fn fs_attributes(in: SampleOut) -> Attributes {
+    var out: Attributes;
+    out.surface = vec4<f32>(in.sample.yz * w.peak, in.sample.w, in.light.x);
+    out.valley = in.light.y;
+    return out;
 }

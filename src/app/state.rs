@@ -359,6 +359,9 @@ impl State {
         let world = match (&mut self.world, fly) {
             (Some(world), Some(fly)) => {
                 let view = fly.view(size);
+                if let Err(e) = world.set_method(&self.device, Self::mesh_method(method)) {
+                    log::warn!("{e}");
+                }
                 if let Err(e) =
                     world.encode_bake_timed(&self.device, &self.queue, &mut encoder, &view, timer)
                 {
@@ -373,6 +376,12 @@ impl State {
             }
             _ => {
                 self.terrain.set_viewport(size);
+                if let Err(e) = self
+                    .terrain
+                    .set_method(&self.device, Self::mesh_method(method))
+                {
+                    log::warn!("{e}");
+                }
                 if let Err(e) = self.terrain.encode_bake_timed(
                     &self.device,
                     &self.queue,
@@ -424,6 +433,16 @@ impl State {
             }
         }
         self.finish(encoder, frame, timed)
+    }
+
+    /// How the mesh draws a frame of `method`: itself where it is one of the mesh's methods,
+    /// else the forward mesh.
+    fn mesh_method(method: Method) -> Method {
+        if method.is_mesh() {
+            method
+        } else {
+            Method::Mesh
+        }
     }
 
     /// Submits the frame's work and presents it.

@@ -661,6 +661,8 @@ impl Offscreen {
     ) -> Result<(Vec<u8>, Option<Timings>)> {
         self.check_targets(world.targets())?;
         let clear = super::clear_color(world.shading().sky_color, Self::COLOR_FORMAT);
+        // A tile of a larger image is drawn through the view's crop into this target.
+        world.set_target_size(Some((self.width, self.height)));
         if whole {
             // A still frame is drawn whole: everything the view uncovered is baked first.
             let budget = world.bake_budget();
@@ -679,8 +681,9 @@ impl Offscreen {
             timer,
             |encoder| {
                 let mut w = world.borrow_mut();
-                if !whole {
-                    w.encode_bake(&gpu.device, &gpu.queue, encoder, view)?;
+                // The visibility method records its frame's passes there.
+                if !whole || w.method() == crate::Method::Visibility {
+                    w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
                 }
                 w.prepare(&gpu.queue, view);
                 Ok(())

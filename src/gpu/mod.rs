@@ -13,6 +13,7 @@ pub(crate) mod render;
 pub mod shader;
 pub(crate) mod sky;
 pub mod timing;
+pub mod visibility;
 pub mod world;
 pub mod world_light;
 pub mod world_rays;
@@ -234,6 +235,20 @@ impl Terrain {
     /// bound ([`DEFAULT_VIEWPORT`] until told).
     pub fn set_viewport(&mut self, size: (u32, u32)) {
         self.viewport = (size.0.max(1), size.1.max(1));
+    }
+
+    /// How the mesh is drawn: [`crate::Method::Mesh`] (forward shading, the default) or
+    /// [`crate::Method::Visibility`] (shaded per MSAA sample in compute, composited into the
+    /// host's pass: [`visibility`]); see [`world::World::set_method`]. With the visibility
+    /// method [`Terrain::encode_bake`] records the frame's raster and shading passes, so call
+    /// it every frame before the host's pass, with the view drawn.
+    pub fn set_method(&mut self, device: &wgpu::Device, method: crate::Method) -> Result<()> {
+        self.world.set_method(device, method)
+    }
+
+    /// How the mesh is drawn ([`Terrain::set_method`]).
+    pub fn method(&self) -> crate::Method {
+        self.world.method()
     }
 
     /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see

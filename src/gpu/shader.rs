@@ -24,6 +24,9 @@ pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 /// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`] and
 /// [`LEVEL_TEXEL`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
+/// `wgsl/visibility.wgsl`: the visibility method's compute shading and composite (needs
+/// [`SHADE`], [`LEVEL_TEXEL`] and [`WORLD`]).
+pub const VISIBILITY: &str = include_str!("../../wgsl/visibility.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
 pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
 /// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
@@ -66,6 +69,10 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("world", compose(&[SHADE, LEVEL_TEXEL, WORLD])),
         ("sky", compose(&[SHADE, SKY])),
+        (
+            "visibility",
+            compose(&[SHADE, LEVEL_TEXEL, WORLD, VISIBILITY]),
+        ),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),
         (
             "world_rays",

@@ -14,11 +14,22 @@ pub enum Slot {
     Render = 2,
     /// The endless world's light bake (shadows and valley occlusion).
     Light = 3,
+    /// The visibility method's raster pass (depth and surface attributes per sample).
+    Raster = 4,
+    /// The visibility method's compute shading of every sample.
+    Shade = 5,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 4] = [Slot::Bake, Slot::Normals, Slot::Render, Slot::Light];
+    pub const ALL: [Slot; 6] = [
+        Slot::Bake,
+        Slot::Normals,
+        Slot::Render,
+        Slot::Light,
+        Slot::Raster,
+        Slot::Shade,
+    ];
 
     /// The slot's name as printed.
     pub fn name(self) -> &'static str {
@@ -27,12 +38,14 @@ impl Slot {
             Slot::Normals => "normals",
             Slot::Render => "render",
             Slot::Light => "light",
+            Slot::Raster => "raster",
+            Slot::Shade => "shade",
         }
     }
 }
 
 /// Durations in milliseconds per [`Slot`]; `None` where the pass did not run.
-pub type Timings = [Option<f64>; 4];
+pub type Timings = [Option<f64>; Slot::ALL.len()];
 
 /// Begin/end timestamp pairs for each [`Slot`], resolved into a buffer and read back.
 pub struct GpuTimer {

@@ -8,12 +8,14 @@ use glam::{DVec3, Mat4, Vec3, Vec4};
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
+use super::visibility::{Visibility, WorldBindings};
 use super::world_light::{LightBake, LightRect, LightUniforms};
 use super::{scoped, shader, Targets};
 use crate::camera::View;
 use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
 use crate::error::{Error, Result};
 use crate::landscape::Landscape;
+use crate::method::Method;
 use crate::params::{Shading, TerrainParams};
 use crate::sky::SkyLight;
 pub use crate::world::WorldParams;
@@ -244,6 +246,17 @@ pub struct World {
     baked_region: Option<[f64; 4]>,
     /// Rectangles the tile's square uncovered as it moved, still to bake.
     region_pending: Vec<Rect>,
+    /// The world's shader module (the visibility method's raster pass is built from it).
+    module: wgpu::ShaderModule,
+    /// How the mesh is shaded: [`Method::Mesh`] (forward) or [`Method::Visibility`].
+    method: Method,
+    /// The visibility method's pipelines and targets, once that method was chosen.
+    visibility: Option<Visibility>,
+    /// The size of the host's target when it differs from the view's (a tile of a larger
+    /// image): what the visibility method's images are made at.
+    target_size: Option<(u32, u32)>,
+    /// The size of the visibility method's last images.
+    vis_size: (u32, u32),
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -417,6 +430,11 @@ impl World {
                 tile_textures,
                 baked_region: None,
                 region_pending: Vec::new(),
+                module,
+                method: Method::Mesh,
+                visibility: None,
+                target_size: None,
+                vis_size: (0, 0),
             }
         })
     }
@@ -439,6 +457,57 @@ impl World {
     /// Replaces the shading; nothing is re-baked.
     pub fn set_shading(&mut self, shading: Shading) {
         self.shading = shading;
+    }
+
+    /// How the mesh is drawn: [`Method::Mesh`] (forward shading in the fragment shader, the
+    /// default) or [`Method::Visibility`] (a raster pass of depth and attributes per MSAA
+    /// sample, every sample shaded in compute: [`super::visibility`]). Other methods are ray
+    /// casters with their own paths and are refused.
+    pub fn set_method(&mut self, device: &wgpu::Device, method: Method) -> Result<()> {
+        match method {
+            Method::Mesh => {}
+            Method::Visibility => {
+                if self.visibility.is_none() {
+                    let vis = scoped(device, || {
+                        Visibility::new(
+                            device,
+                            (&self.module, &self.layout),
+                            &self.targets,
+                            self.tile.is_none(),
+                        )
+                    })?;
+                    self.visibility = Some(vis);
+                }
+            }
+            other => return Err(Error::invalid(
+                "method",
+                other,
+                "mesh or visibility (the ray casters and the blog draw through their own passes)",
+            )),
+        }
+        self.method = method;
+        Ok(())
+    }
+
+    /// How the mesh is drawn ([`World::set_method`]).
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The host target's size where it differs from the view's ([`WorldView::size`]): a tile
+    /// of a larger image drawn through [`WorldView::crop`]. The visibility method makes its
+    /// images at this size; `None` (the default) takes the view's.
+    pub fn set_target_size(&mut self, size: Option<(u32, u32)>) {
+        self.target_size = size;
+    }
+
+    /// GPU memory of the visibility method's own images for the last frame's size, bytes (0
+    /// for the forward mesh).
+    pub fn method_bytes(&self) -> u64 {
+        match (&self.visibility, self.method) {
+            (Some(_), Method::Visibility) => Visibility::bytes(self.vis_size, self.tile.is_none()),
+            _ => 0,
+        }
     }
 
     /// The level layout (for tests and tools).
@@ -509,6 +578,9 @@ impl World {
     /// Binds the tile's textures (after they were made, or made again at a new size).
     pub(crate) fn set_tile_textures(&mut self, device: &wgpu::Device, textures: &super::Textures) {
         self.tile_textures = TileTextures::new(device, textures);
+        if let Some(v) = &mut self.visibility {
+            v.unbind();
+        }
         self.bind_group = bind(
             device,
             &self.layout,
@@ -686,7 +758,54 @@ impl World {
             .sum();
         self.stats.texels_baked = texels;
         self.stats.texels_pending = self.map.pending_texels();
+        if self.method == Method::Visibility {
+            // The visibility method's raster and shading passes precede the host's pass: the
+            // frame is prepared here (the host's own `prepare` then writes the same).
+            self.prepare(queue, view);
+            self.encode_visibility(device, queue, encoder, view, timer);
+        }
         Ok(texels)
+    }
+
+    /// Records the visibility method's raster pass and compute shading of the last prepared
+    /// frame.
+    fn encode_visibility(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) {
+        let size = self.target_size.unwrap_or(view.size);
+        self.vis_size = size;
+        let Some(vis) = self.visibility.as_mut() else {
+            return;
+        };
+        let bindings = WorldBindings {
+            render: &self.render_uniforms,
+            world: &self.world_uniforms,
+            tile_terrain: &self.tile_textures.terrain,
+            tile_normals: &self.tile_textures.normals,
+            tile_sampler: &self.tile_textures.sampler,
+        };
+        let draw = |pass: &mut wgpu::RenderPass<'_>| {
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            draw_patches(
+                pass,
+                (&self.instances, self.instance_counts),
+                (&self.indices, self.index_counts),
+            );
+        };
+        vis.encode(
+            device,
+            queue,
+            encoder,
+            &bindings,
+            (self.matrix, size, self.shading.sky),
+            draw,
+            timer,
+        );
     }
 
     /// The tile's: where its square moved (the scroll) since the last bake, the parts of every
@@ -986,8 +1105,15 @@ impl World {
     /// Draws the patches selected by the last [`World::prepare`], and the sky behind them
     /// unless [`Shading::sky`] is off, into the host's pass (whose depth, if any, is cleared to
     /// 1.0).
+    ///
+    /// With the visibility method ([`World::set_method`]) it composites the image that
+    /// [`World::encode_bake`] shaded, colour and depth.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         self.sky.around(pass, self.shading.sky, |pass| {
+            if let (Method::Visibility, Some(vis)) = (self.method, &self.visibility) {
+                vis.composite(pass);
+                return;
+            }
             let [whole, subs] = self.instance_counts;
             if whole + subs == 0 {
                 return;
@@ -995,17 +1121,30 @@ impl World {
             pass.push_debug_group("relief:world");
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.set_vertex_buffer(0, self.instances.slice(..));
-            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-            let [patch, sub] = self.index_counts;
-            if whole > 0 {
-                pass.draw_indexed(0..patch, 0, 0..whole);
-            }
-            if subs > 0 {
-                pass.draw_indexed(patch..patch + sub, 0, whole..whole + subs);
-            }
+            draw_patches(
+                pass,
+                (&self.instances, self.instance_counts),
+                (&self.indices, self.index_counts),
+            );
             pass.pop_debug_group();
         });
+    }
+}
+
+/// Draws the patches of `instances` (whole ones, then sub-patches) with the pipeline and bind
+/// group already set.
+fn draw_patches(
+    pass: &mut wgpu::RenderPass<'_>,
+    (instances, [whole, subs]): (&wgpu::Buffer, [u32; 2]),
+    (indices, [patch, sub]): (&wgpu::Buffer, [u32; 2]),
+) {
+    pass.set_vertex_buffer(0, instances.slice(..));
+    pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+    if whole > 0 {
+        pass.draw_indexed(0..patch, 0, 0..whole);
+    }
+    if subs > 0 {
+        pass.draw_indexed(patch..patch + sub, 0, whole..whole + subs);
     }
 }
 

@@ -1,0 +1,515 @@
+//! The method `visibility`: the mesh rasterised into relief's own 4x MSAA targets (depth, and
+//! for the endless world each sample's slope, colour channel, horizon and valley depth), every
+//! sample shaded in one compute pass (`wgsl/visibility.wgsl`) with the shading every method
+//! shares, the samples of a pixel averaged in linear light, and the result composited, colour
+//! and depth, into the host's render pass.
+//!
+//! Why: on a compute chip the mesh's forward shading in the fragment shader is what a frame
+//! costs (the same arithmetic runs some 30 times slower in a fragment shader than in compute on
+//! an H100), and shading once a pixel leaves detail finer than a pixel aliased. Here the raster
+//! pass does no shading at all and the compute pass shades four samples a pixel.
+//!
+//! The middleware contract holds: [`crate::World::encode_bake`] records the raster and compute
+//! passes into the host's encoder (before the host's render pass), and
+//! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
+//! geometry and terrain occlude each other.
+
+use super::render::RenderUniforms;
+use super::timing::{GpuTimer, Slot};
+use super::world::WorldUniforms;
+use super::Targets;
+
+/// MSAA samples of the raster pass, each shaded (the standard 4x pattern).
+pub const SAMPLES: u32 = 4;
+/// Depth of the raster pass.
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Per sample: slope in x and z, colour channel, horizon (the endless world).
+const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Per sample: valley depth in metres (the endless world).
+const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
+/// The shaded image: premultiplied linear colour and coverage.
+const SHADED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The nearest covered sample's depth per pixel (1: none).
+const SHADED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+
+/// Mirrors `VisUniforms` in `wgsl/visibility.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VisUniforms {
+    /// Inverse of the camera-relative projection times view.
+    pub inv: [[f32; 4]; 4],
+    /// Row 3 of the projection times view (clip w).
+    pub w_row: [f32; 4],
+    /// Clip w from depth d: `depth[1] / (d + depth[0])`.
+    pub depth: [f32; 4],
+    /// Image size in pixels.
+    pub size: [u32; 2],
+    /// 1 where the sky fills uncovered samples.
+    pub sky: u32,
+    /// 1 for the endless world's attributes, 0 for the tile's textures.
+    pub world: u32,
+    /// 1 where the host's target is not sRGB and the composite encodes.
+    pub encode_srgb: u32,
+    /// Padding.
+    pub _pad: [u32; 3],
+}
+
+impl VisUniforms {
+    /// The uniforms for a camera-relative perspective `matrix` (the eye at the origin) and an
+    /// image of `size`.
+    pub fn new(matrix: glam::Mat4, size: (u32, u32), sky: bool, world: bool, encode: bool) -> Self {
+        let m = matrix.as_dmat4();
+        let (row2, row3) = (m.row(2), m.row(3));
+        // A perspective projection after an affine view: row 2 = -a row 3 + b e4, and clip w
+        // from depth d is b / (d + a). Read `a` where row 3 is largest.
+        let k = (0..3)
+            .max_by(|&i, &j| row3[i].abs().total_cmp(&row3[j].abs()))
+            .unwrap_or(2);
+        let a = if row3[k] != 0.0 {
+            -row2[k] / row3[k]
+        } else {
+            0.0
+        };
+        let b = row2.w + a * row3.w;
+        Self {
+            inv: m.inverse().as_mat4().to_cols_array_2d(),
+            w_row: row3.as_vec4().to_array(),
+            depth: [a as f32, b as f32, 0.0, 0.0],
+            size: [size.0.max(1), size.1.max(1)],
+            sky: u32::from(sky),
+            world: u32::from(world),
+            encode_srgb: u32::from(encode),
+            _pad: [0; 3],
+        }
+    }
+}
+
+/// What the compute pass reads of the world beside its own images.
+pub(crate) struct WorldBindings<'a> {
+    pub render: &'a wgpu::Buffer,
+    pub world: &'a wgpu::Buffer,
+    pub tile_terrain: &'a wgpu::TextureView,
+    pub tile_normals: &'a wgpu::TextureView,
+    pub tile_sampler: &'a wgpu::Sampler,
+}
+
+/// The targets of one image size.
+struct Images {
+    size: (u32, u32),
+    depth: wgpu::TextureView,
+    surface: wgpu::TextureView,
+    valley: wgpu::TextureView,
+    compute_group: wgpu::BindGroup,
+    composite_group: wgpu::BindGroup,
+}
+
+/// The visibility method's pipelines and targets for one world (see the module docs).
+pub struct Visibility {
+    world: bool,
+    raster: wgpu::RenderPipeline,
+    compute: wgpu::ComputePipeline,
+    compute_layout: wgpu::BindGroupLayout,
+    composite: wgpu::RenderPipeline,
+    composite_layout: wgpu::BindGroupLayout,
+    uniforms: wgpu::Buffer,
+    images: Option<Images>,
+    encode_srgb: bool,
+}
+
+fn ms_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: true,
+        },
+        count: None,
+    }
+}
+
+fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
+}
+
+fn ms_texture(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: SAMPLES,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource }
+}
+
+impl Visibility {
+    /// The pipelines for a world drawn by `module` (`wgsl/world.wgsl` composed) with the
+    /// bind group `layout`, compositing into the host's `targets`. `world`: the endless world's
+    /// attributes; otherwise the tile, shaded from its textures.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
+        targets: &Targets,
+        world: bool,
+    ) -> Self {
+        let raster_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:visibility:raster-layout"),
+            bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+        let attributes = [Some(SURFACE_FORMAT.into()), Some(VALLEY_FORMAT.into())];
+        let raster = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("relief:visibility:raster"),
+            layout: Some(&raster_layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some(if world { "vs_samples" } else { "vs_main" }),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<crate::clipmap::Patch>() as u64,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: SAMPLES,
+                ..Default::default()
+            },
+            // The tile's raster pass writes depth alone: its shading reads its textures.
+            fragment: world.then(|| wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_attributes"),
+                compilation_options: Default::default(),
+                targets: &attributes,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
+        let vis_module = super::shader::module(
+            device,
+            "relief:visibility:shader",
+            &super::shader::compose(&[
+                super::shader::SHADE,
+                super::shader::LEVEL_TEXEL,
+                super::shader::WORLD,
+                super::shader::VISIBILITY,
+            ]),
+        );
+        let c = wgpu::ShaderStages::COMPUTE;
+        let float = wgpu::TextureSampleType::Float { filterable: false };
+        let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:visibility:compute-layout"),
+            entries: &[
+                super::uniform_entry::<RenderUniforms>(0, c),
+                super::uniform_entry::<WorldUniforms>(1, c),
+                super::texture_entry(4, c, false),
+                super::texture_entry(5, c, true),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 6,
+                    visibility: c,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                ms_entry(7, wgpu::TextureSampleType::Depth),
+                ms_entry(8, float),
+                ms_entry(9, float),
+                storage_entry(10, SHADED_FORMAT),
+                storage_entry(11, SHADED_DEPTH_FORMAT),
+                super::uniform_entry::<VisUniforms>(12, c),
+            ],
+        });
+        let compute = super::compute_pipeline(
+            device,
+            "relief:visibility:shade",
+            &compute_layout,
+            &vis_module,
+            "shade_samples",
+        );
+        let f = wgpu::ShaderStages::FRAGMENT;
+        let composite_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:visibility:composite-layout"),
+            entries: &[
+                super::uniform_entry::<VisUniforms>(12, f),
+                super::texture_entry(13, f, false),
+                super::texture_entry(14, f, false),
+            ],
+        });
+        let composite = composite_pipeline(device, &composite_layout, &vis_module, targets);
+        Self {
+            world,
+            raster,
+            compute,
+            compute_layout,
+            composite,
+            composite_layout,
+            uniforms: super::uniform_buffer::<VisUniforms>(device, "relief:visibility:uniforms"),
+            images: None,
+            encode_srgb: !targets.color_format.is_srgb(),
+        }
+    }
+
+    /// Forgets the bind groups (the world's textures were made again).
+    pub(crate) fn unbind(&mut self) {
+        self.images = None;
+    }
+
+    /// GPU memory of the method's own images at `size`, bytes.
+    pub fn bytes(size: (u32, u32), world: bool) -> u64 {
+        let pixels = u64::from(size.0) * u64::from(size.1);
+        let bytes = super::texel_bytes;
+        // Depth32Float: 4 bytes a sample.
+        let mut per_pixel =
+            u64::from(SAMPLES) * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
+        if world {
+            per_pixel += u64::from(SAMPLES) * (bytes(SURFACE_FORMAT) + bytes(VALLEY_FORMAT));
+        }
+        pixels * per_pixel
+    }
+
+    fn images(&mut self, device: &wgpu::Device, size: (u32, u32), world: &WorldBindings<'_>) {
+        if self.images.as_ref().is_some_and(|i| i.size == size) {
+            return;
+        }
+        // The tile's raster pass writes no attributes: 1x1 stand-ins keep one layout.
+        let attr_size = if self.world { size } else { (1, 1) };
+        let depth = ms_texture(device, "relief:visibility:depth", size, DEPTH_FORMAT);
+        let surface = ms_texture(
+            device,
+            "relief:visibility:surface",
+            attr_size,
+            SURFACE_FORMAT,
+        );
+        let valley = ms_texture(device, "relief:visibility:valley", attr_size, VALLEY_FORMAT);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let shaded = super::texture_2d(
+            device,
+            "relief:visibility:shaded",
+            size,
+            SHADED_FORMAT,
+            usage,
+        )
+        .create_view(&Default::default());
+        let shaded_depth = super::texture_2d(
+            device,
+            "relief:visibility:shaded-depth",
+            size,
+            SHADED_DEPTH_FORMAT,
+            usage,
+        )
+        .create_view(&Default::default());
+        use wgpu::BindingResource::{Sampler, TextureView};
+        let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:visibility:compute-group"),
+            layout: &self.compute_layout,
+            entries: &[
+                entry(0, world.render.as_entire_binding()),
+                entry(1, world.world.as_entire_binding()),
+                entry(4, TextureView(world.tile_terrain)),
+                entry(5, TextureView(world.tile_normals)),
+                entry(6, Sampler(world.tile_sampler)),
+                entry(7, TextureView(&depth)),
+                entry(8, TextureView(&surface)),
+                entry(9, TextureView(&valley)),
+                entry(10, TextureView(&shaded)),
+                entry(11, TextureView(&shaded_depth)),
+                entry(12, self.uniforms.as_entire_binding()),
+            ],
+        });
+        let composite_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:visibility:composite-group"),
+            layout: &self.composite_layout,
+            entries: &[
+                entry(12, self.uniforms.as_entire_binding()),
+                entry(13, TextureView(&shaded)),
+                entry(14, TextureView(&shaded_depth)),
+            ],
+        });
+        self.images = Some(Images {
+            size,
+            depth,
+            surface,
+            valley,
+            compute_group,
+            composite_group,
+        });
+    }
+
+    /// Records the raster pass (`draw` draws the patches with the world's bind group at 0) and
+    /// the compute shading for an image of `size` seen through the camera-relative `matrix`.
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the world's resources, the frame and the timer, each needed once"
+    )]
+    pub(crate) fn encode(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        world: &WorldBindings<'_>,
+        (matrix, size, sky): (glam::Mat4, (u32, u32), bool),
+        draw: impl FnOnce(&mut wgpu::RenderPass<'_>),
+        timer: Option<&GpuTimer>,
+    ) {
+        let size = (size.0.max(1), size.1.max(1));
+        self.images(device, size, world);
+        let u = VisUniforms::new(matrix, size, sky, self.world, self.encode_srgb);
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        let Some(images) = &self.images else {
+            return;
+        };
+        let clear = wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        };
+        let attachments = [
+            Some(wgpu::RenderPassColorAttachment {
+                view: &images.surface,
+                depth_slice: None,
+                resolve_target: None,
+                ops: clear,
+            }),
+            Some(wgpu::RenderPassColorAttachment {
+                view: &images.valley,
+                depth_slice: None,
+                resolve_target: None,
+                ops: clear,
+            }),
+        ];
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("relief:visibility:raster-pass"),
+                color_attachments: if self.world { &attachments } else { &[] },
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &images.depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.map(|t| t.render_writes(Slot::Raster)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.raster);
+            draw(&mut pass);
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:visibility:shade-pass"),
+            timestamp_writes: timer.map(|t| t.compute_writes(Slot::Shade)),
+        });
+        pass.set_pipeline(&self.compute);
+        pass.set_bind_group(0, &images.compute_group, &[]);
+        pass.dispatch_workgroups(
+            size.0.div_ceil(super::WORKGROUP),
+            size.1.div_ceil(super::WORKGROUP),
+            1,
+        );
+    }
+
+    /// Draws the last shaded image into the host's pass (nothing before the first
+    /// [`Visibility::encode`]).
+    pub(crate) fn composite(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let Some(images) = &self.images else {
+            return;
+        };
+        pass.push_debug_group("relief:visibility:composite");
+        pass.set_pipeline(&self.composite);
+        pass.set_bind_group(0, &images.composite_group, &[]);
+        pass.draw(0..3, 0..1);
+        pass.pop_debug_group();
+    }
+}
+
+/// The composite's pipeline into the host's targets: premultiplied colour over what is there,
+/// and the nearest sample's depth, tested and written, where the host's pass has depth.
+fn composite_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    targets: &Targets,
+) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("relief:visibility:composite-layout"),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("relief:visibility:composite"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("composite_vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: targets.sample_count,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(if targets.depth_format.is_some() {
+                "composite_fs"
+            } else {
+                "composite_fs_color"
+            }),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: targets.color_format,
+                blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

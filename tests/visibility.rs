@@ -1,0 +1,139 @@
+//! The visibility method (`--method visibility`): the mesh rasterised to depth and attributes
+//! per sample, every sample shaded in compute. It draws the same terrain as the forward mesh,
+//! through the same `Offscreen` path as `relief render`, and shading four samples a pixel brings
+//! it at least as close to the reference ray cast as the mesh's one shade a pixel.
+
+use relief::gpu::headless::{self, Gpu, Offscreen, RENDER_SAMPLES};
+use relief::metrics::{image_error, rgb};
+use relief::{Method, OrbitCamera, Shading, Terrain, TerrainParams, World, WorldParams, WorldView};
+
+const W: u32 = 256;
+const H: u32 = 144;
+
+fn gpu() -> Gpu {
+    Gpu::new().expect(
+        "the visibility tests need a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
+    )
+}
+
+fn scene(seed: u32) -> TerrainParams {
+    TerrainParams {
+        size: 256,
+        grid: 128,
+        seed,
+        ..Default::default()
+    }
+}
+
+fn tile(gpu: &Gpu, params: TerrainParams, method: Method) -> Vec<u8> {
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        params,
+    )
+    .unwrap();
+    terrain.set_method(&gpu.device, method).unwrap();
+    let view = OrbitCamera::default().view(W as f32 / H as f32);
+    headless::render_image(gpu, &mut terrain, &view, (W, H), headless::TILE, None)
+        .unwrap()
+        .0
+}
+
+fn flip(a: &[u8], b: &[u8]) -> f64 {
+    image_error(&rgb(a), &rgb(b), W, H).0
+}
+
+#[test]
+fn visibility_draws_the_tiles_mesh_closer_to_the_reference() {
+    let gpu = gpu();
+    let mesh = tile(&gpu, scene(1), Method::Mesh);
+    let vis = tile(&gpu, scene(1), Method::Visibility);
+    let other = tile(&gpu, scene(2), Method::Visibility);
+    let view = OrbitCamera::default().view(W as f32 / H as f32);
+    let (reference, _) = headless::render_rays(
+        &gpu,
+        &scene(1),
+        &Shading::default(),
+        &view,
+        (W, H),
+        Method::Reference,
+        None,
+    )
+    .unwrap();
+    let same = flip(&mesh, &vis);
+    let control = flip(&vis, &other);
+    let (mesh_ref, vis_ref) = (flip(&reference, &mesh), flip(&reference, &vis));
+    eprintln!(
+        "tile: visibility vs mesh {same:.4}, vs another seed {control:.4}; against the reference: mesh {mesh_ref:.4}, visibility {vis_ref:.4}"
+    );
+    assert!(
+        same < 0.06,
+        "visibility must draw the mesh's terrain: FLIP {same:.4} against the forward mesh"
+    );
+    assert!(
+        control > 3.0 * same,
+        "another seed must score far worse ({control:.4}) than the mesh ({same:.4})"
+    );
+    assert!(
+        vis_ref <= mesh_ref + 0.002,
+        "four shaded samples a pixel must be no further from the reference ({vis_ref:.4}) than one ({mesh_ref:.4})"
+    );
+}
+
+fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {
+    let mut world = World::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        params,
+    )
+    .unwrap();
+    world.set_method(&gpu.device, method).unwrap();
+    let (eye, at) = relief::gpu::world::default_camera(&params.land);
+    let view = WorldView::look_at(eye, at, 0.8, (W, H));
+    headless::render_world_image(gpu, &mut world, &view, (W, H), headless::TILE, None)
+        .unwrap()
+        .0
+}
+
+#[test]
+fn visibility_draws_the_endless_worlds_mesh() {
+    let gpu = gpu();
+    let params = WorldParams {
+        pixel_error: 4.0,
+        ..Default::default()
+    };
+    let mesh = world(&gpu, params, Method::Mesh);
+    let vis = world(&gpu, params, Method::Visibility);
+    let mut other = params;
+    other.land.seed += 1;
+    let moved = world(&gpu, other, Method::Visibility);
+    let (same, control) = (flip(&mesh, &vis), flip(&vis, &moved));
+    eprintln!("endless world: visibility vs mesh {same:.4}, vs another seed {control:.4}");
+    assert!(
+        same < 0.06,
+        "visibility must draw the mesh's world, look and all: FLIP {same:.4}"
+    );
+    assert!(
+        control > 2.0 * same,
+        "another seed must score far worse ({control:.4}) than the mesh ({same:.4})"
+    );
+}
+
+#[test]
+fn the_ray_casters_are_not_mesh_methods() {
+    let gpu = gpu();
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        scene(1),
+    )
+    .unwrap();
+    let e = terrain
+        .set_method(&gpu.device, Method::Raymarch)
+        .unwrap_err();
+    assert!(e.to_string().contains("mesh or visibility"), "{e}");
+    assert_eq!(terrain.method(), Method::Mesh);
+}
