@@ -25,6 +25,8 @@ pub struct Config {
     pub params: TerrainParams,
     /// The ray march's knobs (ray methods only).
     pub march: SeedMarch,
+    /// Samples a pixel the visibility method rasterises and shades (that method only).
+    pub samples: u32,
 }
 
 impl Config {
@@ -40,12 +42,13 @@ impl Config {
     /// A few words naming the configuration, for progress and chart labels.
     pub fn label(&self) -> String {
         match self.method {
-            Method::Mesh | Method::Visibility => format!(
-                "{} {} / {} / {}",
-                self.method.name(),
-                self.params.size,
-                self.params.grid,
-                self.params.normals
+            Method::Mesh => format!(
+                "mesh {} / {} / {}",
+                self.params.size, self.params.grid, self.params.normals
+            ),
+            Method::Visibility => format!(
+                "visibility {} / {} / {} / {}x",
+                self.params.size, self.params.grid, self.params.normals, self.samples
             ),
             Method::Blog => format!("blog {} / {} / rgba8", self.params.size, self.params.grid),
             m => format!(
@@ -139,6 +142,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
                         ..base
                     },
                     march: SeedMarch::default(),
+                    samples: crate::gpu::visibility::SAMPLES,
                 });
             }
         }
@@ -146,16 +150,24 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
     // The visibility method: the same mesh, shaded per sample in compute, at the default and
     // at finer textures and grids.
     let d = TerrainParams::default();
-    let visibility: &[(u32, u32)] = if quick {
-        &[(d.size, d.grid)]
+    // One sample a pixel (a quarter of the raster work, edges aliased) at the default.
+    let visibility: &[(u32, u32, u32)] = if quick {
+        &[(d.size, d.grid, 4)]
     } else {
-        &[(d.size, d.grid), (d.size, 1024), (2048, 512), (4096, 1024)]
+        &[
+            (d.size, d.grid, 4),
+            (d.size, d.grid, 1),
+            (d.size, 1024, 4),
+            (2048, 512, 4),
+            (4096, 1024, 4),
+        ]
     };
-    for &(size, grid) in visibility {
+    for &(size, grid, samples) in visibility {
         out.push(Config {
             method: Method::Visibility,
             params: TerrainParams { size, grid, ..base },
             march: SeedMarch::default(),
+            samples,
         });
     }
     for method in [Method::RaymarchFragment, Method::Raymarch] {
@@ -176,6 +188,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
                         normal_octaves: base.octaves,
                         ..SeedMarch::default()
                     },
+                    samples: crate::gpu::visibility::SAMPLES,
                 });
             }
         }
@@ -191,6 +204,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
             ..base
         },
         march: SeedMarch::default(),
+        samples: crate::gpu::visibility::SAMPLES,
     });
     out
 }
@@ -378,7 +392,7 @@ fn mesh_row(
     timer: Option<&GpuTimer>,
     reference: &Reference,
 ) -> Result<Row> {
-    let samples = crate::gpu::headless::RENDER_SAMPLES;
+    let samples = crate::gpu::headless::render_samples(config.method);
     let target = Offscreen::new(&gpu.device, options.width, options.height, samples)?;
     let mut terrain = Terrain::new(
         &gpu.device,
@@ -386,6 +400,7 @@ fn mesh_row(
         Offscreen::targets(samples),
         config.params,
     )?;
+    terrain.set_visibility_samples(config.samples)?;
     terrain.set_method(&gpu.device, config.method)?;
     let color_view = target.color.create_view(&Default::default());
     terrain.set_viewport((options.width, options.height));
@@ -611,7 +626,7 @@ fn opt(v: Option<f64>) -> String {
 /// device and backend.
 pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
-        "device,backend,method,default,width,height,seed,frequency,gain,height_scale,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,\
+        "device,backend,method,default,width,height,seed,frequency,gain,height_scale,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,samples,\
          bake_ms,normals_ms,render_ms,frame_gpu_ms,wall_ms,mesh_rms,mesh_max,mesh_rms_px,mesh_max_px,normal_mean_deg,normal_p99_deg,\
          flip_mean,flip_p99,missed,extra,wrong_depth\n",
     );
@@ -622,7 +637,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
         let own = c.method == Method::Blog;
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
             quote(device),
             quote(backend),
             c.method.name(),
@@ -642,6 +657,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
             if ray { c.march.hit_k.to_string() } else { String::new() },
             if ray { c.march.march_octaves.to_string() } else { String::new() },
             if ray { c.march.normal_octaves.to_string() } else { String::new() },
+            if c.method == Method::Visibility { c.samples.to_string() } else { String::new() },
             opt(r.bake_ms),
             opt(r.normals_ms),
             opt(r.render_ms),

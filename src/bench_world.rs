@@ -9,7 +9,7 @@ use crate::bench::{log_ticks, measure, tick_label, Options, CHART_SIZE};
 use crate::error::Result;
 use crate::gpu::headless::{
     render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen, RayImage,
-    ScreenError, RENDER_SAMPLES,
+    render_samples, ScreenError, RENDER_SAMPLES,
 };
 use crate::gpu::raymarch::{RayMarcher, RayScene};
 use crate::gpu::timing::{GpuTimer, Slot};
@@ -236,8 +236,12 @@ pub fn run(
 ) -> Result<Vec<WorldRow>> {
     let size = (options.width, options.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
-    let target = Offscreen::new(&gpu.device, size.0, size.1, RENDER_SAMPLES)?;
-    let color = target.color.create_view(&Default::default());
+    // The mesh's 4x target, and the single-sampled one the visibility method composites into.
+    let targets = [
+        Offscreen::new(&gpu.device, size.0, size.1, RENDER_SAMPLES)?,
+        Offscreen::new(&gpu.device, size.0, size.1, 1)?,
+    ];
+    let target_for = |method: Method| &targets[usize::from(render_samples(method) == 1)];
     let mut rows = Vec::new();
     let mut references = References::default();
     let quick = options.frames < 10;
@@ -255,6 +259,8 @@ pub fn run(
             .encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)
             .unwrap_or(0);
         world.prepare(&gpu.queue, view);
+        let target = target_for(world.method());
+        let color = target.color.create_view(&Default::default());
         let mut pass = target.begin_pass(
             encoder,
             &color,
@@ -282,7 +288,7 @@ pub fn run(
                 let mut world = World::new(
                     &gpu.device,
                     &gpu.queue,
-                    Offscreen::targets(RENDER_SAMPLES),
+                    Offscreen::targets(render_samples(method)),
                     p,
                 )?;
                 world.set_method(&gpu.device, method)?;
@@ -296,7 +302,7 @@ pub fn run(
                 let mut row =
                     WorldRow::measured((v.name, method), knob, &s, &texels, &times, &wall);
                 row.measured = Some(measured);
-                let (image, _) = target.render_world(gpu, &mut world, &v.view, None)?;
+                let (image, _) = target_for(method).render_world(gpu, &mut world, &v.view, None)?;
                 progress(&format!("{} at {knob} px: the reference", v.name));
                 let reference = references.get(gpu, &p, &v, timer.as_ref())?;
                 row.against(reference, &image, &distance, size);

@@ -6,7 +6,7 @@
 
 use crate::app::{AppOptions, Script, OPTIONS};
 use crate::error::{Error, Result};
-use crate::gpu::headless::{self, Gpu, Offscreen, MAX_IMAGE, RENDER_SAMPLES, TILE};
+use crate::gpu::headless::{self, Gpu, Offscreen, MAX_IMAGE, TILE};
 use crate::gpu::timing::{GpuTimer, Slot, Timings};
 use crate::params::{params, srgb_to_linear, SceneParam, Shading, TerrainParams};
 use crate::scene::BakeInfo;
@@ -1342,7 +1342,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             let mut world = World::new(
                 &gpu.device,
                 &gpu.queue,
-                Offscreen::targets(RENDER_SAMPLES),
+                Offscreen::targets(headless::render_samples(method)),
                 params,
             )?;
             world.set_method(&gpu.device, method)?;
@@ -1453,7 +1453,7 @@ fn render(
         let mut terrain = Terrain::new(
             &gpu.device,
             &gpu.queue,
-            Offscreen::targets(RENDER_SAMPLES),
+            Offscreen::targets(headless::render_samples(method)),
             *params,
         )?;
         terrain.set_method(&gpu.device, method)?;

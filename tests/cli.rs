@@ -439,6 +439,48 @@ fn render_writes_a_png_and_reports_timings() {
 }
 
 #[test]
+fn render_visibility_times_its_passes_and_counts_its_images() {
+    let dir = scratch("render-visibility");
+    let out = dir.join("frame.png");
+    let run = |method: &str, world: &[&str]| {
+        let mut args = vec![
+            "render",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "96",
+            "--height",
+            "64",
+            "--method",
+            method,
+            "--timings",
+            "--stats",
+        ];
+        args.extend_from_slice(world);
+        let (code, stdout, err) = relief(&args);
+        assert_eq!(code, 0, "{err}");
+        stdout
+    };
+    for world in [&[][..], &["--world", "endless", "--pixel-error", "8"][..]] {
+        let vis = run("visibility", world);
+        let mesh = run("mesh", world);
+        // Its raster pass and its compute shading are timed beside the host's pass.
+        if !vis.contains("no timestamp queries") {
+            assert!(
+                vis.contains("raster ") && vis.contains("shade "),
+                "{vis}"
+            );
+            assert!(!mesh.contains("raster ") && !mesh.contains("shade "), "{mesh}");
+        }
+        // Its own images: 96x64 pixels of 4 depth samples and the shaded image and depth (the
+        // endless world adds 4 samples of its attributes).
+        let own = stat(&stats_of(&vis), "method_texture_mib");
+        assert!(own > 0.1 && own < 1.0, "{vis}");
+        assert_eq!(stat(&stats_of(&mesh), "method_texture_mib"), 0.0, "{mesh}");
+    }
+}
+
+#[test]
 fn bench_quick_writes_a_csv_and_a_chart() {
     let dir = scratch("bench");
     // Scene flags set the benchmark's scene (they were once silently ignored).
@@ -480,8 +522,8 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     }
     assert_eq!(
         lines.len(),
-        1 + 8,
-        "eight configurations in the quick sweep"
+        1 + 9,
+        "nine configurations in the quick sweep"
     );
     let rows: Vec<Vec<String>> = lines[1..].iter().map(|l| csv_fields(l)).collect();
     for row in &rows {
@@ -489,7 +531,7 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     }
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
-    for m in ["mesh", "raymarch-fragment", "raymarch", "blog"] {
+    for m in ["mesh", "visibility", "raymarch-fragment", "raymarch", "blog"] {
         assert!(methods.contains(&m), "no {m} row");
     }
     for row in &rows {
@@ -1283,12 +1325,21 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
-    // Three views at two knobs, the four ray casters on each view, and two flights.
-    assert_eq!(rows.len(), 1 + 3 * 2 + 3 * 4 + 2, "{csv}");
+    // Three views at two knobs, the visibility method beside the mesh at the first, the four
+    // ray casters on each view, and two flights.
+    assert_eq!(rows.len(), 1 + 3 * 3 + 3 * 4 + 2, "{csv}");
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    for row in &rows[1..7] {
+    let meshes: Vec<&str> = rows[1..10]
+        .iter()
+        .map(|r| r.split(',').nth(col("method")).unwrap())
+        .collect();
+    assert_eq!(
+        meshes,
+        ["mesh", "visibility", "mesh", "visibility", "mesh", "visibility", "mesh", "mesh", "mesh"],
+        "{csv}"
+    );
+    for row in &rows[1..10] {
         let v: Vec<&str> = row.split(',').collect();
-        assert_eq!(v[col("method")], "mesh", "{row}");
         let measured: f64 = v[col("measured_max_px")].parse().unwrap();
         let bound: f64 = v[col("error_bound_px")].parse().unwrap();
         assert!(measured <= bound, "{row}");
@@ -1306,7 +1357,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         "raymarch-fragment",
         "raymarch-bandlimited",
     ];
-    for (row, method) in rows[7..19].iter().zip(casters.iter().cycle()) {
+    for (row, method) in rows[10..22].iter().zip(casters.iter().cycle()) {
         let v: Vec<&str> = row.split(',').collect();
         assert_eq!(v[col("method")], *method, "{row}");
         assert_eq!(v[col("triangles")], "0", "{row}");
@@ -1316,8 +1367,8 @@ fn bench_world_endless_quick_writes_landscape_csv() {
             assert!(v[col("flip_mean")].parse::<f64>().unwrap() < 0.25, "{row}");
         }
     }
-    assert!(rows[19].starts_with("flight,"), "{csv}");
-    assert!(rows[20].starts_with("path,"), "{csv}");
+    assert!(rows[22].starts_with("flight,"), "{csv}");
+    assert!(rows[23].starts_with("path,"), "{csv}");
 }
 
 #[test]

@@ -312,6 +312,17 @@ fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
         at(fine),
         at(row(4, 512))
     );
+    // Four shaded samples a pixel (the visibility method, the same mesh) follow the mesh's FLIP
+    // on every row: what stands between the mesh and the reference on this axis is what the
+    // texels hold, not how often a pixel is shaded.
+    for r in &rows {
+        let vis = r.flip_visibility.expect("visibility FLIP measured");
+        assert!(
+            (vis - flip(r)).abs() < 0.01,
+            "detail axis, visibility against the mesh: {}",
+            at(r)
+        );
+    }
     // The LOD knob: a 32² mesh grid loses the shape a 256² grid draws.
     let knob = |grid: u32| {
         rows.iter()

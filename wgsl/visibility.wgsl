@@ -33,6 +33,10 @@ struct VisUniforms {
 @group(0) @binding(10) var shaded: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(11) var shaded_depth: texture_storage_2d<r32float, write>;
 @group(0) @binding(12) var<uniform> vis: VisUniforms;
+// The same targets single-sampled (the method at one sample a pixel).
+@group(0) @binding(15) var depth_1: texture_depth_2d;
+@group(0) @binding(16) var surface_1: texture_2d<f32>;
+@group(0) @binding(17) var valley_1: texture_2d<f32>;
 
 // The standard 4x MSAA sample positions within a pixel (WebGPU and Vulkan fix them).
 const SAMPLES: array<vec2<f32>, 4> = array<vec2<f32>, 4>(
@@ -55,54 +59,88 @@ fn point_at(dir: vec3<f32>, d: f32) -> vec3<f32> {
     return dir * ((clip_w - vis.w_row.w) / dot(vis.w_row.xyz, dir));
 }
 
+// The colour (linear, tone-mapped) of one sample at `pixel` (pixels from the top left) whose
+// depth is `d` (1: no terrain, the sky), with the endless world's attributes `s` and `valley`.
+fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, valley: f32) -> vec3<f32> {
+    let dir = sample_ray(pixel);
+    if d >= 1.0 {
+        return sky_pixel(lin, dir);
+    }
+    let rel = point_at(dir, d);
+    if vis.world != 0u {
+        let h = (rel.y + w.eye.y) / w.peak;
+        let n = normalize(vec3<f32>(-s.x, 1.0, -s.y));
+        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley));
+    }
+    let uv = (rel.xz + w.tile_eye) * w.tile_inv + r.shift;
+    let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);
+    let t = tile_terrain_at(uv);
+    return shade(lin, rel, n, t.x, t.y, unshadowed(lin, t.x));
+}
+
+// Linear output: the composite encodes for the target, after the samples are averaged.
+fn linear_uniforms() -> RenderUniforms {
+    var lin = r;
+    lin.encode_srgb = 0u;
+    return lin;
+}
+
+// Stores a pixel: `sum` of `n` samples' colours of which `covered` hit terrain, premultiplied
+// (opaque where the sky fills the rest, else by coverage), and the nearest hit's depth.
+fn store_pixel(px: vec2<i32>, sum: vec3<f32>, n: u32, covered: u32, nearest: f32) {
+    var alpha = f32(covered) / f32(n);
+    if vis.sky != 0u {
+        alpha = 1.0;
+    }
+    textureStore(shaded, px, vec4<f32>(sum / f32(n), alpha));
+    textureStore(shaded_depth, px, vec4<f32>(nearest, 0.0, 0.0, 0.0));
+}
+
 @compute @workgroup_size(8, 8)
 fn shade_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= vis.size.x || id.y >= vis.size.y {
         return;
     }
     let px = vec2<i32>(id.xy);
-    // Linear output: the composite encodes for the target, after the samples are averaged.
-    var lin = r;
-    lin.encode_srgb = 0u;
+    let lin = linear_uniforms();
     var sum = vec3<f32>(0.0);
     var covered = 0u;
     var nearest = 1.0;
-    for (var i = 0u; i < 4u; i++) {
-        let d = textureLoad(depth_ms, px, i32(i));
-        let dir = sample_ray(vec2<f32>(id.xy) + SAMPLES[i]);
-        if d >= 1.0 {
-            if vis.sky != 0u {
-                sum += sky_pixel(lin, dir);
-            }
+    for (var i = 0; i < 4; i++) {
+        let d = textureLoad(depth_ms, px, i);
+        if d < 1.0 {
+            covered += 1u;
+            nearest = min(nearest, d);
+        } else if vis.sky == 0u {
             continue;
         }
-        covered += 1u;
-        nearest = min(nearest, d);
-        let rel = point_at(dir, d);
-        if vis.world != 0u {
-            let s = textureLoad(surface_ms, px, i32(i));
-            let valley = textureLoad(valley_ms, px, i32(i)).x;
-            let h = (rel.y + w.eye.y) / w.peak;
-            let n = normalize(vec3<f32>(-s.x, 1.0, -s.y));
-            sum += shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley));
-        } else {
-            let uv = (rel.xz + w.tile_eye) * w.tile_inv + r.shift;
-            let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);
-            let t = tile_terrain_at(uv);
-            sum += shade(lin, rel, n, t.x, t.y, unshadowed(lin, t.x));
-        }
+        let s = textureLoad(surface_ms, px, i);
+        let valley = textureLoad(valley_ms, px, i).x;
+        sum += shade_sample(lin, vec2<f32>(id.xy) + SAMPLES[i], d, s, valley);
     }
-    // Premultiplied: opaque where the sky fills the rest, else covered / 4.
-    var alpha = f32(covered) * 0.25;
-    if vis.sky != 0u && covered > 0u {
-        alpha = 1.0;
-    }
-    textureStore(shaded, px, vec4<f32>(sum * 0.25, alpha));
-    textureStore(shaded_depth, px, vec4<f32>(nearest, 0.0, 0.0, 0.0));
+    store_pixel(px, sum, 4u, covered, nearest);
 }
 
-// The composite: one full-screen triangle; each pixel the terrain covers takes its shaded colour
-// (blended over what is there by its coverage) and its nearest sample's depth.
+@compute @workgroup_size(8, 8)
+fn shade_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
+    }
+    let px = vec2<i32>(id.xy);
+    let d = textureLoad(depth_1, px, 0);
+    let covered = u32(d < 1.0);
+    var color = vec3<f32>(0.0);
+    if covered != 0u || vis.sky != 0u {
+        let s = textureLoad(surface_1, px, 0);
+        let valley = textureLoad(valley_1, px, 0).x;
+        color = shade_sample(linear_uniforms(), vec2<f32>(id.xy) + 0.5, d, s, valley);
+    }
+    store_pixel(px, color, 1u, covered, d);
+}
+
+// The composite: one full-screen triangle; each pixel takes its shaded colour (blended over what
+// is there by its coverage where there is no sky) and its nearest sample's depth (1 for sky,
+// which the host's less-or-equal test lets through only where nothing was drawn).
 @group(0) @binding(13) var shown: texture_2d<f32>;
 @group(0) @binding(14) var shown_depth: texture_2d<f32>;
 
@@ -127,22 +165,22 @@ fn composite_color(c: vec4<f32>) -> vec4<f32> {
 @fragment
 fn composite_fs(@builtin(position) position: vec4<f32>) -> CompositeOut {
     let px = vec2<i32>(floor(position.xy));
-    let d = textureLoad(shown_depth, px, 0).x;
-    if d >= 1.0 {
+    let c = textureLoad(shown, px, 0);
+    if c.a <= 0.0 {
         discard;
     }
     var out: CompositeOut;
-    out.color = composite_color(textureLoad(shown, px, 0));
-    out.depth = d;
+    out.color = composite_color(c);
+    out.depth = textureLoad(shown_depth, px, 0).x;
     return out;
 }
 
 // The same for a host pass without depth.
 @fragment
 fn composite_fs_color(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let px = vec2<i32>(floor(position.xy));
-    if textureLoad(shown_depth, px, 0).x >= 1.0 {
+    let c = textureLoad(shown, vec2<i32>(floor(position.xy)), 0);
+    if c.a <= 0.0 {
         discard;
     }
-    return composite_color(textureLoad(shown, px, 0));
+    return composite_color(c);
 }

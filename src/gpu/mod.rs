@@ -251,6 +251,12 @@ impl Terrain {
         self.world.method()
     }
 
+    /// Samples a pixel of the visibility method (see [`world::World::set_visibility_samples`]);
+    /// takes effect with the next [`Terrain::set_method`].
+    pub fn set_visibility_samples(&mut self, samples: u32) -> Result<()> {
+        self.world.set_visibility_samples(samples)
+    }
+
     /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see
     /// [`world::World::set_bake_budget`]; everything, to start).
     pub fn bake_budget(&self) -> u64 {

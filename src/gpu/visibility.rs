@@ -1,8 +1,9 @@
 //! The method `visibility`: the mesh rasterised into relief's own 4x MSAA targets (depth, and
 //! for the endless world each sample's slope, colour channel, horizon and valley depth), every
 //! sample shaded in one compute pass (`wgsl/visibility.wgsl`) with the shading every method
-//! shares, the samples of a pixel averaged in linear light, and the result composited, colour
-//! and depth, into the host's render pass.
+//! shares (the sky too, where no terrain covers a sample), the samples of a pixel averaged in
+//! linear light, and the result composited, colour and depth, into the host's render pass in
+//! one full-screen draw.
 //!
 //! Why: on a compute chip the mesh's forward shading in the fragment shader is what a frame
 //! costs (the same arithmetic runs some 30 times slower in a fragment shader than in compute on
@@ -19,7 +20,9 @@ use super::timing::{GpuTimer, Slot};
 use super::world::WorldUniforms;
 use super::Targets;
 
-/// MSAA samples of the raster pass, each shaded (the standard 4x pattern).
+/// Samples a pixel of the raster pass, each shaded, by default: the standard 4x MSAA pattern.
+/// One sample a pixel ([`crate::World::set_visibility_samples`]) rasterises a quarter of the
+/// samples and draws edges without anti-aliasing.
 pub const SAMPLES: u32 = 4;
 /// Depth of the raster pass.
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -106,26 +109,45 @@ struct Images {
 /// The visibility method's pipelines and targets for one world (see the module docs).
 pub struct Visibility {
     world: bool,
+    samples: u32,
     raster: wgpu::RenderPipeline,
     compute: wgpu::ComputePipeline,
     compute_layout: wgpu::BindGroupLayout,
-    composite: wgpu::RenderPipeline,
+    /// The composite blending by coverage (no sky), and opaque (the sky fills every pixel: no
+    /// blend, which on an H100 saves a read of the host's target a pixel).
+    composite: [wgpu::RenderPipeline; 2],
     composite_layout: wgpu::BindGroupLayout,
+    /// Whether the last encoded frame had the sky (every pixel opaque).
+    opaque: bool,
     uniforms: wgpu::Buffer,
     images: Option<Images>,
     encode_srgb: bool,
 }
 
-fn ms_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
+fn sampled_entry(
+    binding: u32,
+    sample_type: wgpu::TextureSampleType,
+    multisampled: bool,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Texture {
             sample_type,
             view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: true,
+            multisampled,
         },
         count: None,
+    }
+}
+
+/// The bindings of the raster pass's targets in `wgsl/visibility.wgsl`: multisampled, or
+/// single-sampled at one sample a pixel.
+fn target_bindings(samples: u32) -> [u32; 3] {
+    if samples > 1 {
+        [7, 8, 9]
+    } else {
+        [15, 16, 17]
     }
 }
 
@@ -144,7 +166,7 @@ fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLa
 
 fn ms_texture(
     device: &wgpu::Device,
-    label: &str,
+    (label, samples): (&str, u32),
     (width, height): (u32, u32),
     format: wgpu::TextureFormat,
 ) -> wgpu::TextureView {
@@ -157,7 +179,7 @@ fn ms_texture(
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
-            sample_count: SAMPLES,
+            sample_count: samples,
             dimension: wgpu::TextureDimension::D2,
             format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
@@ -173,12 +195,13 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
 impl Visibility {
     /// The pipelines for a world drawn by `module` (`wgsl/world.wgsl` composed) with the
     /// bind group `layout`, compositing into the host's `targets`. `world`: the endless world's
-    /// attributes; otherwise the tile, shaded from its textures.
+    /// attributes; otherwise the tile, shaded from its textures. `samples`: 1 or [`SAMPLES`] a
+    /// pixel.
     pub(crate) fn new(
         device: &wgpu::Device,
         (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
         targets: &Targets,
-        world: bool,
+        (world, samples): (bool, u32),
     ) -> Self {
         let raster_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("relief:visibility:raster-layout"),
@@ -211,7 +234,7 @@ impl Visibility {
                 bias: Default::default(),
             }),
             multisample: wgpu::MultisampleState {
-                count: SAMPLES,
+                count: samples,
                 ..Default::default()
             },
             // The tile's raster pass writes depth alone: its shading reads its textures.
@@ -237,6 +260,8 @@ impl Visibility {
         );
         let c = wgpu::ShaderStages::COMPUTE;
         let float = wgpu::TextureSampleType::Float { filterable: false };
+        let ms = samples > 1;
+        let [depth_at, surface_at, valley_at] = target_bindings(samples);
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:visibility:compute-layout"),
             entries: &[
@@ -250,9 +275,9 @@ impl Visibility {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
-                ms_entry(7, wgpu::TextureSampleType::Depth),
-                ms_entry(8, float),
-                ms_entry(9, float),
+                sampled_entry(depth_at, wgpu::TextureSampleType::Depth, ms),
+                sampled_entry(surface_at, float, ms),
+                sampled_entry(valley_at, float, ms),
                 storage_entry(10, SHADED_FORMAT),
                 storage_entry(11, SHADED_DEPTH_FORMAT),
                 super::uniform_entry::<VisUniforms>(12, c),
@@ -263,7 +288,7 @@ impl Visibility {
             "relief:visibility:shade",
             &compute_layout,
             &vis_module,
-            "shade_samples",
+            if ms { "shade_samples" } else { "shade_pixels" },
         );
         let f = wgpu::ShaderStages::FRAGMENT;
         let composite_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -274,14 +299,18 @@ impl Visibility {
                 super::texture_entry(14, f, false),
             ],
         });
-        let composite = composite_pipeline(device, &composite_layout, &vis_module, targets);
+        let composite = [false, true].map(|opaque| {
+            composite_pipeline(device, &composite_layout, &vis_module, (targets, opaque))
+        });
         Self {
             world,
+            samples,
             raster,
             compute,
             compute_layout,
             composite,
             composite_layout,
+            opaque: false,
             uniforms: super::uniform_buffer::<VisUniforms>(device, "relief:visibility:uniforms"),
             images: None,
             encode_srgb: !targets.color_format.is_srgb(),
@@ -293,15 +322,20 @@ impl Visibility {
         self.images = None;
     }
 
+    /// Samples a pixel.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
     /// GPU memory of the method's own images at `size`, bytes.
-    pub fn bytes(size: (u32, u32), world: bool) -> u64 {
+    pub fn bytes(&self, size: (u32, u32)) -> u64 {
         let pixels = u64::from(size.0) * u64::from(size.1);
         let bytes = super::texel_bytes;
+        let samples = u64::from(self.samples);
         // Depth32Float: 4 bytes a sample.
-        let mut per_pixel =
-            u64::from(SAMPLES) * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
-        if world {
-            per_pixel += u64::from(SAMPLES) * (bytes(SURFACE_FORMAT) + bytes(VALLEY_FORMAT));
+        let mut per_pixel = samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
+        if self.world {
+            per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(VALLEY_FORMAT));
         }
         pixels * per_pixel
     }
@@ -312,14 +346,21 @@ impl Visibility {
         }
         // The tile's raster pass writes no attributes: 1x1 stand-ins keep one layout.
         let attr_size = if self.world { size } else { (1, 1) };
-        let depth = ms_texture(device, "relief:visibility:depth", size, DEPTH_FORMAT);
+        let n = self.samples;
+        let depth = ms_texture(device, ("relief:visibility:depth", n), size, DEPTH_FORMAT);
         let surface = ms_texture(
             device,
-            "relief:visibility:surface",
+            ("relief:visibility:surface", n),
             attr_size,
             SURFACE_FORMAT,
         );
-        let valley = ms_texture(device, "relief:visibility:valley", attr_size, VALLEY_FORMAT);
+        let valley = ms_texture(
+            device,
+            ("relief:visibility:valley", n),
+            attr_size,
+            VALLEY_FORMAT,
+        );
+        let [depth_at, surface_at, valley_at] = target_bindings(n);
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let shaded = super::texture_2d(
             device,
@@ -347,9 +388,9 @@ impl Visibility {
                 entry(4, TextureView(world.tile_terrain)),
                 entry(5, TextureView(world.tile_normals)),
                 entry(6, Sampler(world.tile_sampler)),
-                entry(7, TextureView(&depth)),
-                entry(8, TextureView(&surface)),
-                entry(9, TextureView(&valley)),
+                entry(depth_at, TextureView(&depth)),
+                entry(surface_at, TextureView(&surface)),
+                entry(valley_at, TextureView(&valley)),
                 entry(10, TextureView(&shaded)),
                 entry(11, TextureView(&shaded_depth)),
                 entry(12, self.uniforms.as_entire_binding()),
@@ -393,6 +434,7 @@ impl Visibility {
         let size = (size.0.max(1), size.1.max(1));
         self.images(device, size, world);
         let u = VisUniforms::new(matrix, size, sky, self.world, self.encode_srgb);
+        self.opaque = sky;
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         let Some(images) = &self.images else {
             return;
@@ -454,20 +496,22 @@ impl Visibility {
             return;
         };
         pass.push_debug_group("relief:visibility:composite");
-        pass.set_pipeline(&self.composite);
+        pass.set_pipeline(&self.composite[usize::from(self.opaque)]);
         pass.set_bind_group(0, &images.composite_group, &[]);
         pass.draw(0..3, 0..1);
         pass.pop_debug_group();
     }
 }
 
-/// The composite's pipeline into the host's targets: premultiplied colour over what is there,
-/// and the nearest sample's depth, tested and written, where the host's pass has depth.
+/// The composite's pipeline into the host's targets: premultiplied colour over what is there
+/// (or opaque),
+/// and the nearest sample's depth, tested (less or equal: the sky's 1 passes where nothing was
+/// drawn) and written, where the host's pass has depth.
 fn composite_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     module: &wgpu::ShaderModule,
-    targets: &Targets,
+    (targets, opaque): (&Targets, bool),
 ) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("relief:visibility:composite-layout"),
@@ -487,7 +531,7 @@ fn composite_pipeline(
         depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
             format,
             depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_compare: Some(wgpu::CompareFunction::LessEqual),
             stencil: Default::default(),
             bias: Default::default(),
         }),
@@ -505,7 +549,7 @@ fn composite_pipeline(
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.color_format,
-                blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                blend: (!opaque).then_some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
                 write_mask: wgpu::ColorWrites::ALL,
             })],
         }),

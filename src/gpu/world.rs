@@ -252,6 +252,8 @@ pub struct World {
     method: Method,
     /// The visibility method's pipelines and targets, once that method was chosen.
     visibility: Option<Visibility>,
+    /// Samples a pixel the visibility method rasterises and shades.
+    vis_samples: u32,
     /// The size of the host's target when it differs from the view's (a tile of a larger
     /// image): what the visibility method's images are made at.
     target_size: Option<(u32, u32)>,
@@ -433,6 +435,7 @@ impl World {
                 module,
                 method: Method::Mesh,
                 visibility: None,
+                vis_samples: super::visibility::SAMPLES,
                 target_size: None,
                 vis_size: (0, 0),
             }
@@ -467,13 +470,14 @@ impl World {
         match method {
             Method::Mesh => {}
             Method::Visibility => {
-                if self.visibility.is_none() {
+                let samples = self.vis_samples;
+                if self.visibility.as_ref().map(Visibility::samples) != Some(samples) {
                     let vis = scoped(device, || {
                         Visibility::new(
                             device,
                             (&self.module, &self.layout),
                             &self.targets,
-                            self.tile.is_none(),
+                            (self.tile.is_none(), samples),
                         )
                     })?;
                     self.visibility = Some(vis);
@@ -494,6 +498,17 @@ impl World {
         self.method
     }
 
+    /// Samples a pixel the visibility method rasterises and shades: 4 (the default, the
+    /// standard MSAA pattern, edges anti-aliased) or 1 (a quarter of the raster work, edges
+    /// aliased). Takes effect with the next [`World::set_method`].
+    pub fn set_visibility_samples(&mut self, samples: u32) -> Result<()> {
+        if !matches!(samples, 1 | 4) {
+            return Err(Error::invalid("visibility samples", samples, "1 or 4"));
+        }
+        self.vis_samples = samples;
+        Ok(())
+    }
+
     /// The host target's size where it differs from the view's ([`WorldView::size`]): a tile
     /// of a larger image drawn through [`WorldView::crop`]. The visibility method makes its
     /// images at this size; `None` (the default) takes the view's.
@@ -505,7 +520,7 @@ impl World {
     /// for the forward mesh).
     pub fn method_bytes(&self) -> u64 {
         match (&self.visibility, self.method) {
-            (Some(_), Method::Visibility) => Visibility::bytes(self.vis_size, self.tile.is_none()),
+            (Some(v), Method::Visibility) => v.bytes(self.vis_size),
             _ => 0,
         }
     }
@@ -1109,11 +1124,12 @@ impl World {
     /// With the visibility method ([`World::set_method`]) it composites the image that
     /// [`World::encode_bake`] shaded, colour and depth.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        if let (Method::Visibility, Some(vis)) = (self.method, &self.visibility) {
+            // Its compute pass shaded the sky too: one full-screen draw.
+            vis.composite(pass);
+            return;
+        }
         self.sky.around(pass, self.shading.sky, |pass| {
-            if let (Method::Visibility, Some(vis)) = (self.method, &self.visibility) {
-                vis.composite(pass);
-                return;
-            }
             let [whole, subs] = self.instance_counts;
             if whole + subs == 0 {
                 return;

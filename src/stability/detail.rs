@@ -13,7 +13,9 @@
 //!   the first, and it is the slope that shading sees).
 //! - **FLIP** (on the GPU, [`detail_flip`]): the tile's mesh with those octaves and texels,
 //!   drawn from the benchmark's view, against the reference ray cast of the same surface; and
-//!   the LOD knob (the mesh's `grid`, its finest vertex spacing) swept at the scene's octaves.
+//!   the LOD knob (the mesh's `grid`, its finest vertex spacing) swept at the scene's octaves;
+//!   each drawn by the forward mesh (shaded once a pixel) and by the visibility method (the
+//!   same mesh, four samples a pixel shaded).
 
 use crate::error::Result;
 use crate::gpu::headless::{Gpu, Offscreen};
@@ -68,6 +70,8 @@ pub struct DetailRow {
     pub grid: u32,
     /// Mean FLIP of the mesh against the reference ([`detail_flip`]; None until measured).
     pub flip: Option<f64>,
+    /// The same for the visibility method (the mesh shaded at four samples a pixel).
+    pub flip_visibility: Option<f64>,
     /// Angle between the difference normal and the analytic one, degrees: mean, 99th
     /// percentile, largest.
     pub angle_mean_deg: f64,
@@ -129,6 +133,7 @@ pub fn detail(params: &TerrainParams, options: &DetailOptions) -> Result<Vec<Det
             size,
             grid,
             flip: None,
+            flip_visibility: None,
             angle_mean_deg,
             angle_p99_deg,
             angle_max_deg,
@@ -174,14 +179,14 @@ pub fn detail_flip(
             };
             let mut terrain =
                 crate::Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), p)?;
-            let (image, _) = target.render(gpu, &mut terrain, &view, None)?;
-            let (flip, _) = crate::metrics::image_error(
-                &reference.rgb,
-                &crate::metrics::rgb(&image),
-                width,
-                height,
-            );
-            r.flip = Some(flip);
+            let score = |terrain: &mut crate::Terrain| -> Result<f64> {
+                let (image, _) = target.render(gpu, terrain, &view, None)?;
+                let rgb = crate::metrics::rgb(&image);
+                Ok(crate::metrics::image_error(&reference.rgb, &rgb, width, height).0)
+            };
+            r.flip = Some(score(&mut terrain)?);
+            terrain.set_method(&gpu.device, crate::Method::Visibility)?;
+            r.flip_visibility = Some(score(&mut terrain)?);
         }
     }
     Ok(())
@@ -190,12 +195,12 @@ pub fn detail_flip(
 /// The CSV: a header and a row per octave count and side, with the scene.
 pub fn detail_csv(rows: &[DetailRow], params: &TerrainParams) -> String {
     let mut out = String::from(
-        "axis,octaves,size,grid,seed,frequency,gain,height_scale,normal_error_mean_deg,normal_error_p99_deg,normal_error_max_deg,energy_above_nyquist,slope_energy_above_nyquist,flip_mean\n",
+        "axis,octaves,size,grid,seed,frequency,gain,height_scale,normal_error_mean_deg,normal_error_p99_deg,normal_error_max_deg,energy_above_nyquist,slope_energy_above_nyquist,flip_mean,flip_visibility_mean\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "detail,{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.6},{:.4},{}",
+            "detail,{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.6},{:.4},{},{}",
             r.octaves,
             r.size,
             r.grid,
@@ -208,7 +213,9 @@ pub fn detail_csv(rows: &[DetailRow], params: &TerrainParams) -> String {
             r.angle_max_deg,
             r.above_nyquist,
             r.slope_above_nyquist,
-            r.flip.map_or(String::new(), |f| format!("{f:.4}"))
+            r.flip.map_or(String::new(), |f| format!("{f:.4}")),
+            r.flip_visibility
+                .map_or(String::new(), |f| format!("{f:.4}"))
         );
     }
     out
@@ -232,6 +239,10 @@ fn knob_rows(rows: &[DetailRow]) -> Vec<&DetailRow> {
 /// Nyquist / FLIP), then the LOD knob's rows.
 pub fn detail_table(rows: &[DetailRow], options: &DetailOptions) -> String {
     let flip = |r: &DetailRow| r.flip.map_or("-".to_owned(), |f| format!("{f:.3}"));
+    let vis = |r: &DetailRow| {
+        r.flip_visibility
+            .map_or("-".to_owned(), |f| format!("{f:.3}"))
+    };
     let knob = knob_rows(rows);
     // The octaves-by-sides rows, at the scene's grid (the first row's).
     let main: Vec<&DetailRow> = rows.iter().filter(|r| r.grid == rows[0].grid).collect();
@@ -263,6 +274,18 @@ pub fn detail_table(rows: &[DetailRow], options: &DetailOptions) -> String {
         out.push('\n');
     }
     out.push_str("cells: normal error p99 (differences of the baked heights against the analytic normal) / share of the height's variance above Nyquist / of the slope's / FLIP of the mesh against the reference\n");
+    let vis_line: Vec<String> = main
+        .iter()
+        .filter(|r| r.flip_visibility.is_some())
+        .map(|r| format!("{}@{}² {} (mesh {})", r.octaves, r.size, vis(r), flip(r)))
+        .collect();
+    if !vis_line.is_empty() {
+        let _ = writeln!(
+            out,
+            "FLIP of the visibility method (octaves@texels): {}",
+            vis_line.join(", ")
+        );
+    }
     if let Some(k) = knob.first() {
         let _ = writeln!(
             out,
@@ -270,7 +293,7 @@ pub fn detail_table(rows: &[DetailRow], options: &DetailOptions) -> String {
             k.octaves,
             k.size,
             knob.iter()
-                .map(|r| format!("{} FLIP {}", r.grid, flip(r)))
+                .map(|r| format!("{} FLIP {} (visibility {})", r.grid, flip(r), vis(r)))
                 .collect::<Vec<_>>()
                 .join(", ")
         );
@@ -321,7 +344,7 @@ where
         &left,
         &main,
         scene,
-        (y_normal, &|r| Some(r.angle_p99_deg)),
+        (y_normal, &|r| Some(r.angle_p99_deg), None),
         (SeriesLabelPosition::UpperLeft, 1.15),
     )?;
     let knob = knob_rows(rows);
@@ -331,7 +354,11 @@ where
             &top,
             &main,
             scene,
-            ("FLIP against the reference", &|r| r.flip),
+            (
+                "FLIP against the reference (dashed: visibility)",
+                &|r| r.flip,
+                Some(&|r| r.flip_visibility),
+            ),
             // Head room for the legend above lines that rise to the right.
             (SeriesLabelPosition::UpperLeft, 1.7),
         )?;
@@ -345,7 +372,7 @@ fn by_octaves<DB: plotters::prelude::DrawingBackend>(
     area: &Area<DB>,
     rows: &[&DetailRow],
     (scene_octaves, scene_size): (u32, u32),
-    (y_desc, value): (&str, &Pick),
+    (y_desc, value, dashed): (&str, &Pick, Option<&Pick>),
     (legend, headroom): (plotters::chart::SeriesLabelPosition, f64),
 ) -> std::result::Result<(), String>
 where
@@ -354,7 +381,12 @@ where
     use plotters::prelude::*;
     let o0 = rows.iter().map(|r| r.octaves).min().unwrap_or(1);
     let o1 = rows.iter().map(|r| r.octaves).max().unwrap_or(1);
-    let top = rows.iter().filter_map(|r| value(r)).fold(1e-3, f64::max) * headroom;
+    let top = rows
+        .iter()
+        .flat_map(|r| [value(r), dashed.and_then(|d| d(r))])
+        .flatten()
+        .fold(1e-3, f64::max)
+        * headroom;
     let mut chart = ChartBuilder::on(area)
         .margin(16)
         .x_label_area_size(48)
@@ -389,6 +421,16 @@ where
         chart
             .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
             .map_err(|e| e.to_string())?;
+        if let Some(dashed) = dashed {
+            let line: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.size == size)
+                .filter_map(|r| dashed(r).map(|v| (f64::from(r.octaves), v)))
+                .collect();
+            chart
+                .draw_series(DashedLineSeries::new(line, 8, 5, color.stroke_width(2)))
+                .map_err(|e| e.to_string())?;
+        }
     }
     if let Some((r, v)) = rows
         .iter()
@@ -420,14 +462,22 @@ where
     DB::ErrorType: 'static,
 {
     use plotters::prelude::*;
-    let points: Vec<(f64, f64)> = knob
-        .iter()
-        .filter_map(|r| r.flip.map(|f| (f64::from(r.grid).log2(), f)))
-        .collect();
+    let series = |pick: &Pick| -> Vec<(f64, f64)> {
+        knob.iter()
+            .filter_map(|r| pick(r).map(|f| (f64::from(r.grid).log2(), f)))
+            .collect()
+    };
+    let points = series(&|r| r.flip);
+    let visibility = series(&|r| r.flip_visibility);
     let (Some(first), Some(last)) = (points.first(), points.last()) else {
         return Ok(());
     };
-    let top = points.iter().map(|p| p.1).fold(1e-3, f64::max) * 1.15;
+    let top = points
+        .iter()
+        .chain(&visibility)
+        .map(|p| p.1)
+        .fold(1e-3, f64::max)
+        * 1.15;
     let caption = format!(
         "the LOD knob at {} octaves, {}² texels",
         knob[0].octaves, knob[0].size
@@ -449,13 +499,20 @@ where
         .axis_desc_style(("sans-serif", 15))
         .draw()
         .map_err(|e| e.to_string())?;
-    let color = Palette99::pick(0).to_rgba();
-    chart
-        .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-        .map_err(|e| e.to_string())?;
-    chart
-        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-        .map_err(|e| e.to_string())?;
+    for (i, (name, line)) in [("mesh", &points), ("visibility", &visibility)]
+        .into_iter()
+        .enumerate()
+    {
+        let color = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
+            .map_err(|e| e.to_string())?
+            .label(name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        chart
+            .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(|e| e.to_string())?;
+    }
     let scene = f64::from(scene_grid).log2();
     if let Some(&p) = points.iter().find(|p| p.0 == scene) {
         chart
@@ -463,7 +520,6 @@ where
             .map_err(|e| e.to_string())?
             .label(format!("the scene: grid {scene_grid}"))
             .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
-        crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     }
-    Ok(())
+    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
