@@ -8,8 +8,8 @@
 use crate::bench::{log_ticks, measure, tick_label, Options, CHART_SIZE};
 use crate::error::Result;
 use crate::gpu::headless::{
-    render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen, RayImage,
-    render_samples, ScreenError, RENDER_SAMPLES,
+    render_samples, render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen,
+    RayImage, ScreenError, RENDER_SAMPLES,
 };
 use crate::gpu::raymarch::{RayMarcher, RayScene};
 use crate::gpu::timing::{GpuTimer, Slot};
