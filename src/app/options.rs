@@ -626,7 +626,8 @@ mod tests {
         assert_eq!(ignored.len(), 1, "{ignored:?}");
         let reason = &ignored[0].reason;
         assert!(
-            reason.contains("raymarch-bandlimited") && reason.contains("allowed: mesh, raymarch"),
+            reason.contains("raymarch-bandlimited")
+                && reason.contains("allowed: mesh, visibility, raymarch"),
             "{ignored:?}"
         );
         assert!(!reason.contains("or raymarch-bandlimited"), "{ignored:?}");

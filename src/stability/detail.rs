@@ -355,7 +355,7 @@ where
             &main,
             scene,
             (
-                "FLIP against the reference (dashed: visibility)",
+                "FLIP vs reference (dashed: visibility)",
                 &|r| r.flip,
                 Some(&|r| r.flip_visibility),
             ),

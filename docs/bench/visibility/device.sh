@@ -3,7 +3,9 @@
 # repository root: the release binary in .devbin/relief and the Vulkan loader's .debs in .gl/
 # carried (see the tool's README). `device.sh render` times one frame of each mesh method in
 # both worlds at 1080p (twice) and runs `relief bench`; `device.sh world` runs
-# `relief bench --world endless`. Everything lands in $OUT/visibility.tar.gz.
+# `relief bench --world endless`; `device.sh stability` runs `relief stability` (the detail
+# axis draws the visibility method beside the mesh). Everything lands in
+# $OUT/visibility.tar.gz.
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -28,6 +30,9 @@ render)
 world)
     $R bench --world endless --out-dir "$out/landscape" >"$out/landscape-stdout.txt" 2>"$out/landscape-stderr.txt"
     ;;
+stability)
+    $R stability --out-dir "$out/stability" >"$out/stability-stdout.txt" 2>"$out/stability-stderr.txt"
+    ;;
 esac
-tail -5 "$out"/*stdout.txt
+for f in "$out"/*stdout.txt; do tail -n 5 "$f"; done
 tar -czf "$OUT/visibility.tar.gz" -C /tmp visibility
