@@ -139,6 +139,17 @@ await withBrowser(webgpu, async (browser) => {
   check(named && !blogShot.equals(first) && bcontrol === "blog" && bq.includes("method=blog"),
     `method=blog draws the blog's pipeline, and the readout and control say so (${bcontrol})`);
 
+  // The visibility method through the URL: the mesh rasterised, its samples shaded in compute
+  // (run.sh compares the canvas with `relief render --method visibility` of the same scene).
+  const vis = await openPage(browser, `${base}/index.html?${SCENE}&method=visibility`, errors3);
+  await waitFrames(vis, 3);
+  const visShot = await shot(vis, "page-visibility.png");
+  const vcontrol = await vis.evaluate(() => document.querySelector('[data-key="method"]')?.value);
+  const vq = await vis.evaluate(() => document.body.dataset.query || "");
+  const verror = await vis.evaluate(() => document.body.dataset.error || "");
+  check(verror === "" && visShot.length > 1000 && vcontrol === "visibility" && vq.includes("method=visibility"),
+    `method=visibility draws, and the control and URL say so (${vcontrol}, error: ${verror || "none"})`);
+
   // The page's costs, on SwiftShader (Chromium's CPU WebGPU: not what a GPU's browser measures):
   // the wasm's size, the time from navigation to the first frame, the wasm's CPU time a frame.
   const anim = await openPage(browser, `${base}/index.html?seed=7&size=256&grid=128`, errors3);

@@ -63,6 +63,17 @@ cat "$out/control.txt"
 control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control.txt")
 awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell seed 8 from seed 7"; exit 1 } }'
 
+echo "== the page's visibility method against relief render --method visibility (FLIP)"
+cargo run --locked --quiet --bin relief -- render --out "$out/native-visibility.png" --width 256 \
+    --height 192 --seed 7 --size 256 --grid 128 --method visibility
+cargo run --locked --quiet --example flip -- "$out/native-visibility.png" "$out/page-visibility.png" \
+    --max-mean "$max_mean" --diff "$out/page-vs-native-visibility.png"
+cargo run --locked --quiet --example flip -- "$out/native-visibility.png" "$out/page-seed8.png" \
+    > "$out/control-visibility.txt"
+cat "$out/control-visibility.txt"
+control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control-visibility.txt")
+awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell seed 8 from the visibility method'"'"'s seed 7"; exit 1 } }'
+
 echo "== the endless world's page against relief render (FLIP)"
 cargo run --locked --quiet --bin relief -- render --out "$out/native-endless.png" --width 256 \
     --height 192 --world endless --seed 3 --pixel-error 16
