@@ -667,7 +667,34 @@ pub(crate) fn render_pipeline(
     targets: &Targets,
     topology: wgpu::PrimitiveTopology,
     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    depth: (bool, wgpu::CompareFunction),
+) -> wgpu::RenderPipeline {
+    blended_pipeline(
+        device,
+        (label, layout, module, (vertex, fragment)),
+        targets,
+        (topology, buffers),
+        depth,
+        None,
+    )
+}
+
+/// [`render_pipeline`] with the colour target's `blend`.
+pub(crate) fn blended_pipeline(
+    device: &wgpu::Device,
+    (label, layout, module, (vertex, fragment)): (
+        &str,
+        &wgpu::BindGroupLayout,
+        &wgpu::ShaderModule,
+        (&str, &str),
+    ),
+    targets: &Targets,
+    (topology, buffers): (
+        wgpu::PrimitiveTopology,
+        &[Option<wgpu::VertexBufferLayout<'_>>],
+    ),
     (depth_write, depth_compare): (bool, wgpu::CompareFunction),
+    blend: Option<wgpu::BlendState>,
 ) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&format!("{label}:pipeline-layout")),
@@ -705,13 +732,30 @@ pub(crate) fn render_pipeline(
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.color_format,
-                blend: None,
+                blend,
                 write_mask: wgpu::ColorWrites::ALL,
             })],
         }),
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// A write-only storage texture of `format` at `binding`, for compute.
+pub(crate) fn storage_entry(
+    binding: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
 }
 
 /// A uniform buffer of `count` slots of `T`, each at a multiple of the device's dynamic-offset

@@ -235,16 +235,7 @@ impl RayMarcher {
             super::uniform_entry::<RenderUniforms>(0, both),
             scene.uniform_entry(both),
         ];
-        let storage = |binding, format| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::StorageTexture {
-                access: wgpu::StorageTextureAccess::WriteOnly,
-                format,
-                view_dimension: wgpu::TextureViewDimension::D2,
-            },
-            count: None,
-        };
+        let storage = super::storage_entry;
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:raymarch:compute-layout"),
             entries: &[

@@ -151,19 +151,6 @@ fn target_bindings(samples: u32) -> [u32; 3] {
     }
 }
 
-fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::StorageTexture {
-            access: wgpu::StorageTextureAccess::WriteOnly,
-            format,
-            view_dimension: wgpu::TextureViewDimension::D2,
-        },
-        count: None,
-    }
-}
-
 fn ms_texture(
     device: &wgpu::Device,
     (label, samples): (&str, u32),
@@ -278,8 +265,8 @@ impl Visibility {
                 sampled_entry(depth_at, wgpu::TextureSampleType::Depth, ms),
                 sampled_entry(surface_at, float, ms),
                 sampled_entry(valley_at, float, ms),
-                storage_entry(10, SHADED_FORMAT),
-                storage_entry(11, SHADED_DEPTH_FORMAT),
+                super::storage_entry(10, SHADED_FORMAT),
+                super::storage_entry(11, SHADED_DEPTH_FORMAT),
                 super::uniform_entry::<VisUniforms>(12, c),
             ],
         });
@@ -504,56 +491,30 @@ impl Visibility {
 }
 
 /// The composite's pipeline into the host's targets: premultiplied colour over what is there
-/// (or opaque),
-/// and the nearest sample's depth, tested (less or equal: the sky's 1 passes where nothing was
-/// drawn) and written, where the host's pass has depth.
+/// (or opaque), and the nearest sample's depth, tested (less or equal: the sky's 1 passes where
+/// nothing was drawn) and written, where the host's pass has depth.
 fn composite_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     module: &wgpu::ShaderModule,
     (targets, opaque): (&Targets, bool),
 ) -> wgpu::RenderPipeline {
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("relief:visibility:composite-layout"),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("relief:visibility:composite"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
+    let fragment = if targets.depth_format.is_some() {
+        "composite_fs"
+    } else {
+        "composite_fs_color"
+    };
+    super::blended_pipeline(
+        device,
+        (
+            "relief:visibility:composite",
+            layout,
             module,
-            entry_point: Some("composite_vs"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: targets.depth_format.map(|format| wgpu::DepthStencilState {
-            format,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::LessEqual),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: wgpu::MultisampleState {
-            count: targets.sample_count,
-            ..Default::default()
-        },
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some(if targets.depth_format.is_some() {
-                "composite_fs"
-            } else {
-                "composite_fs_color"
-            }),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: targets.color_format,
-                blend: (!opaque).then_some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+            ("composite_vs", fragment),
+        ),
+        targets,
+        (wgpu::PrimitiveTopology::TriangleList, &[]),
+        (true, wgpu::CompareFunction::LessEqual),
+        (!opaque).then_some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+    )
 }
