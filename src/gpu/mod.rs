@@ -241,7 +241,8 @@ impl Terrain {
     /// [`crate::Method::Visibility`] (shaded per MSAA sample in compute, composited into the
     /// host's pass: [`visibility`]); see [`world::World::set_method`]. With the visibility
     /// method [`Terrain::encode_bake`] records the frame's raster and shading passes, so call
-    /// it every frame before the host's pass, with the view drawn.
+    /// it every frame before the host's pass, with the view drawn; its images are made at the
+    /// viewport's size ([`Terrain::set_viewport`]), which must be the host target's.
     pub fn set_method(&mut self, device: &wgpu::Device, method: crate::Method) -> Result<()> {
         self.world.set_method(device, method)
     }

@@ -113,8 +113,8 @@ pub struct Visibility {
     raster: wgpu::RenderPipeline,
     compute: wgpu::ComputePipeline,
     compute_layout: wgpu::BindGroupLayout,
-    /// The composite blending by coverage (no sky), and opaque (the sky fills every pixel: no
-    /// blend, which on an H100 saves a read of the host's target a pixel).
+    /// The composite blending by coverage (no sky), and opaque (the sky fills every pixel, so
+    /// nothing is blended; on the H100 the two measured the same).
     composite: [wgpu::RenderPipeline; 2],
     composite_layout: wgpu::BindGroupLayout,
     /// Whether the last encoded frame had the sky (every pixel opaque).
