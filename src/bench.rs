@@ -218,7 +218,8 @@ pub struct Row {
     pub bake_ms: Option<f64>,
     /// Median GPU time of the normal pass (mesh only).
     pub normals_ms: Option<f64>,
-    /// Median GPU time of drawing one frame (the render pass or the ray cast).
+    /// Median GPU time of drawing one frame: the render pass (and, for the visibility method,
+    /// its raster and shading passes), or the ray cast and its image shown in the target.
     pub render_ms: Option<f64>,
     /// Median wall time of a whole frame (submit to completion), bake included for the mesh.
     pub wall_ms: f64,
@@ -588,12 +589,19 @@ fn ray_row(
     };
     rm.prepare(&gpu.queue, &config.params, shading, view, rays);
     let path = config.method.ray_path().unwrap_or(RayPath::Compute);
+    // A frame is the cast and its image shown in a target (the full-screen draw the window
+    // makes of it), as the mesh methods' frames end in theirs.
+    let shown = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
+    let shown_view = shown.color.create_view(&Default::default());
+    let blit = crate::gpu::blit::Blit::new(&gpu.device, Offscreen::COLOR_FORMAT);
+    let group = blit.bind(&gpu.device, &rm.color);
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
-        rm.encode(encoder, path, timer)
+        rm.encode(encoder, path, timer);
+        blit.encode(&gpu.queue, encoder, (&group, 1), &shown_view, timer);
     })?;
     let render: Vec<f64> = times
         .iter()
-        .filter_map(|t| t[Slot::Render as usize])
+        .filter_map(|t| Some(t[Slot::Render as usize]? + t[Slot::Show as usize].unwrap_or(0.0)))
         .collect();
     let image = headless::read_texture(&gpu.device, &gpu.queue, &rm.color)?;
     let distance = headless::read_texture(&gpu.device, &gpu.queue, &rm.distance)?;

@@ -579,7 +579,8 @@ impl State {
         }
         rays.caster
             .encode(encoder, path, self.timer.as_ref().filter(|_| timed));
-        blit.encode(&self.queue, encoder, &rays.shown, ss, target);
+        let timer = self.timer.as_ref().filter(|_| timed);
+        blit.encode(&self.queue, encoder, (&rays.shown, ss), target, timer);
         Ok(())
     }
 }

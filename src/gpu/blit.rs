@@ -2,6 +2,7 @@
 //! (`wgsl/blit.wgsl`): what the window and the page draw when their method is a ray caster.
 
 use super::shader;
+use super::timing::{GpuTimer, Slot};
 
 /// Mirrors `BlitUniforms` in `wgsl/blit.wgsl`.
 #[repr(C)]
@@ -76,14 +77,14 @@ impl Blit {
     }
 
     /// Records a pass drawing the image of `group` ([`Blit::bind`]; `ss` x `ss` texels a pixel)
-    /// over all of `target`.
+    /// over all of `target`, timed as [`Slot::Show`] into `timer`.
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        group: &wgpu::BindGroup,
-        ss: u32,
+        (group, ss): (&wgpu::BindGroup, u32),
         target: &wgpu::TextureView,
+        timer: Option<&GpuTimer>,
     ) {
         let u = BlitUniforms {
             ss: ss.max(1),
@@ -103,7 +104,7 @@ impl Blit {
                 },
             })],
             depth_stencil_attachment: None,
-            timestamp_writes: None,
+            timestamp_writes: timer.map(|t| t.render_writes(Slot::Show)),
             occlusion_query_set: None,
             multiview_mask: None,
         });

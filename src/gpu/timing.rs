@@ -18,17 +18,20 @@ pub enum Slot {
     Raster = 4,
     /// The visibility method's compute shading of every sample.
     Shade = 5,
+    /// A ray-cast image shown in the target (the window's, the benchmark's): a full-screen draw.
+    Show = 6,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 6] = [
+    pub const ALL: [Slot; 7] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
         Slot::Light,
         Slot::Raster,
         Slot::Shade,
+        Slot::Show,
     ];
 
     /// The slot's name as printed.
@@ -40,6 +43,7 @@ impl Slot {
             Slot::Light => "light",
             Slot::Raster => "raster",
             Slot::Shade => "shade",
+            Slot::Show => "show",
         }
     }
 }
