@@ -677,7 +677,9 @@ where
             let color = colors[i % colors.len()];
             let pts: Vec<(f64, f64, f64)> = rows
                 .iter()
-                .filter(|r| r.view == *view && r.measured.is_some())
+                // The knob's line is the mesh's; the visibility method's rows (the same
+                // triangles) are in the panel below.
+                .filter(|r| r.view == *view && r.measured.is_some() && r.method == Method::Mesh)
                 .filter_map(|r| pick(r).map(|y| (r.triangles as f64, y.max(1e-4), r.pixel_error)))
                 .collect();
             chart
