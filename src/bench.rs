@@ -266,7 +266,7 @@ pub fn run(
     for (i, config) in configs.iter().enumerate() {
         progress.start(i, configs.len(), config);
         rows.push(match config.method {
-            Method::Mesh | Method::Visibility => {
+            Method::Mesh | Method::Visibility | Method::Hybrid => {
                 mesh_row(gpu, config, options, &view, timer.as_ref(), &reference)?
             }
             Method::Blog => blog_row(gpu, config, options, &view, &shading, timer.as_ref())?,

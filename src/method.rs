@@ -14,6 +14,11 @@ pub enum Method {
     /// sample shaded in compute and composited into the host's pass
     /// ([`crate::gpu::visibility`]).
     Visibility,
+    /// The mesh, each level raised by a bound on how far the continuous surface rises above
+    /// it, rasterised as [`Method::Visibility`] does; from where each sample's ray meets it, a
+    /// short conservative march in compute finds the continuous surface, which is shaded
+    /// ([`crate::gpu::visibility`]; the endless world only so far).
+    Hybrid,
     /// The seed template's heightfield ray march, in a compute shader.
     Raymarch,
     /// The same march in a full-screen fragment shader, as the seed does it.
@@ -32,9 +37,10 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order of docs, charts and tables.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Mesh,
         Method::Visibility,
+        Method::Hybrid,
         Method::Raymarch,
         Method::RaymarchFragment,
         Method::RaymarchBandlimited,
@@ -46,6 +52,7 @@ impl Method {
     pub const NAMES: &'static [&'static str] = &[
         "mesh",
         "visibility",
+        "hybrid",
         "raymarch",
         "raymarch-fragment",
         "raymarch-bandlimited",
@@ -68,6 +75,7 @@ impl Method {
     pub const WORLD_NAMES: &'static [&'static str] = &[
         "mesh",
         "visibility",
+        "hybrid",
         "raymarch",
         "raymarch-fragment",
         "raymarch-bandlimited",
@@ -89,6 +97,7 @@ impl Method {
         match self {
             Method::Mesh => "the displaced grid mesh, forward shaded (relief's pipeline)",
             Method::Visibility => "the same mesh rasterised to depth and attributes, four samples a pixel shaded in compute",
+            Method::Hybrid => "the mesh raised to bound the surface from above, rasterised, each sample's ray refined to the continuous surface in compute (endless world)",
             Method::Raymarch => "the seed template's heightfield ray march, in compute",
             Method::RaymarchFragment => "the same march in a fragment shader, as the seed does it",
             Method::RaymarchBandlimited => "the march in compute, octaves finer than a pixel faded from its shading (endless world)",
@@ -100,7 +109,7 @@ impl Method {
     /// Where a ray-cast method runs (`None` for the mesh).
     pub fn ray_path(self) -> Option<RayPath> {
         match self {
-            Method::Mesh | Method::Visibility | Method::Blog => None,
+            Method::Mesh | Method::Visibility | Method::Hybrid | Method::Blog => None,
             Method::Raymarch | Method::RaymarchBandlimited | Method::Reference => {
                 Some(RayPath::Compute)
             }
@@ -109,14 +118,15 @@ impl Method {
     }
 
     /// Whether relief's mesh (its clipmap levels, [`crate::World`]) draws it: the forward
-    /// mesh and the visibility method, which share every pass but the shading.
+    /// mesh, the visibility method and the hybrid, which share the levels and the raster.
     pub fn is_mesh(self) -> bool {
-        matches!(self, Method::Mesh | Method::Visibility)
+        matches!(self, Method::Mesh | Method::Visibility | Method::Hybrid)
     }
 
-    /// Whether the tile world draws it (band-limiting is the endless world's only so far).
+    /// Whether the tile world draws it (band-limiting and the hybrid's refinement against the
+    /// continuous surface are the endless world's only so far).
     pub fn in_tile(self) -> bool {
-        self != Method::RaymarchBandlimited
+        !matches!(self, Method::RaymarchBandlimited | Method::Hybrid)
     }
 
     /// Whether the endless world draws it (the blog's pipeline draws its own tile).
@@ -135,7 +145,7 @@ impl Method {
     /// its own noise, texture and grid and reads only the height scale and the snow line.
     pub fn unread_keys(self) -> &'static [&'static str] {
         match self {
-            Method::Mesh | Method::Visibility => &[],
+            Method::Mesh | Method::Visibility | Method::Hybrid => &[],
             Method::Blog => &[
                 "seed",
                 "size",
@@ -163,7 +173,7 @@ impl Method {
     pub fn ray_method(self, octaves: u32) -> Option<crate::gpu::raymarch::RayMethod> {
         use crate::gpu::raymarch::RayMethod;
         match self {
-            Method::Mesh | Method::Visibility | Method::Blog => None,
+            Method::Mesh | Method::Visibility | Method::Hybrid | Method::Blog => None,
             Method::Reference => Some(RayMethod::Reference),
             Method::Raymarch | Method::RaymarchFragment | Method::RaymarchBandlimited => {
                 Some(RayMethod::SeedMarch(SeedMarch {

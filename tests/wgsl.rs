@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 16);
+    assert_eq!(modules.len(), 17);
     for (name, source) in modules {
         parse(name, &source);
     }
@@ -92,6 +92,7 @@ fn visibility_uniforms_match_wgsl() {
             shader::SHADE,
             shader::LEVEL_TEXEL,
             shader::WORLD,
+            shader::VIS_COMMON,
             shader::VISIBILITY,
         ]),
     );
@@ -200,6 +201,8 @@ fn world_uniforms_match_wgsl() {
         ("coarse", offset_of!(LevelUniforms, coarse)),
         ("has_coarse", offset_of!(LevelUniforms, has_coarse)),
         ("eye_local", offset_of!(LevelUniforms, eye_local)),
+        ("clip", offset_of!(LevelUniforms, clip)),
+        ("raise", offset_of!(LevelUniforms, raise)),
     ] {
         assert_eq!(offset(&members, name), at, "{name}");
     }

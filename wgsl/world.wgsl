@@ -28,6 +28,12 @@ struct Level {
     // The drawn bounds in this level's samples, from its first sample (x0, z0, x1, z1): vertices
     // are clamped into them (the tile's square; huge for the endless world).
     clip: vec4<f32>,
+    // Metres the level's vertices are raised by: 0, or for the hybrid method a bound on how far
+    // the continuous surface rises above the level's mesh, so the mesh lies on or above it.
+    raise: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct WorldUniforms {
@@ -150,13 +156,16 @@ fn place(vi: u32, patch_instance: vec4<u32>) -> VertexOut {
     let q = (vec2<f32>(lv.delta) + p) * 0.5;
     var s = sample_level(lv, p, false);
     var light = sample_level(lv, p, true).xy;
+    var raise = lv.raise;
     if alpha > 0.0 {
         s = morph_blend(s, sample_level(clv, q, false), alpha);
         light = morph_blend(vec4<f32>(light, 0.0, 0.0), sample_level(clv, q, true), alpha).xy;
+        // Both levels' raised surfaces lie on or above the continuous one: so does their blend.
+        raise = mix(lv.raise, clv.raise, alpha);
     }
     let scale = f32(1u << lv.shift);
     let xz = (vec2<f32>(lv.origin_rel) + p * scale) * w.eye.w - w.eye.xz;
-    let rel = vec3<f32>(xz.x, s.x * w.peak - w.eye.y, xz.y);
+    let rel = vec3<f32>(xz.x, s.x * w.peak + raise - w.eye.y, xz.y);
     var out: VertexOut;
     out.clip = r.view_proj * vec4<f32>(rel, 1.0);
     out.rel = rel;

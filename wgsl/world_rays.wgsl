@@ -1,6 +1,8 @@
 // Ray casting of the endless world's continuous surface (src/landscape.rs): no texture, no
-// mesh. Composed after noise.wgsl, shade.wgsl and landscape.wgsl, and before rays.wgsl (the
-// entry points). Two methods, chosen by `ray.method`, as for the tile (raymarch.wgsl):
+// mesh. Composed after noise.wgsl, shade.wgsl and landscape.wgsl, and before march.wgsl and
+// rays.wgsl (the entry points); it declares no bindings (`r` and `ray` come from
+// world_rays_io.wgsl for the casters, from hybrid.wgsl for the hybrid method). Two methods,
+// chosen by `ray.method`, as for the tile (raymarch.wgsl):
 //
 //   0, the reference: every octave, steps bounded by the surface's slope so that they do not
 //      pass through it, bisection to the crossing, normals from the analytic gradient. Stepping
@@ -60,11 +62,6 @@ struct WorldRayUniforms {
     // y, bound in metres on what the octaves after them add.
     prefix: array<vec4<f32>, 24>,
 }
-
-@group(0) @binding(0) var<uniform> r: RenderUniforms;
-@group(0) @binding(1) var<uniform> ray: WorldRayUniforms;
-@group(0) @binding(2) var color_out: texture_storage_2d<rgba8unorm, write>;
-@group(0) @binding(3) var distance_out: texture_storage_2d<r32float, write>;
 
 // Octave `o`'s lattice cell and fraction at `p` (metres from the reference sample).
 fn ray_split(p: vec2<f32>, o: u32) -> Split {

@@ -24,17 +24,27 @@ pub const SHADE: &str = include_str!("../../wgsl/shade.wgsl");
 /// `wgsl/world.wgsl`: the endless world's clipmap render pass (needs [`SHADE`] and
 /// [`LEVEL_TEXEL`]).
 pub const WORLD: &str = include_str!("../../wgsl/world.wgsl");
+/// `wgsl/vis_common.wgsl`: what the visibility method's and the hybrid's compute passes share
+/// (after [`WORLD`] or [`WORLD_SURFACE`]).
+pub const VIS_COMMON: &str = include_str!("../../wgsl/vis_common.wgsl");
 /// `wgsl/visibility.wgsl`: the visibility method's compute shading and composite (needs
-/// [`SHADE`], [`LEVEL_TEXEL`] and [`WORLD`]).
+/// [`SHADE`], [`LEVEL_TEXEL`], [`WORLD`] and [`VIS_COMMON`]).
 pub const VISIBILITY: &str = include_str!("../../wgsl/visibility.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
 pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
 /// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
 /// [`NOISE`] and [`SHADE`], then [`RAYS`]).
 pub const RAYMARCH: &str = include_str!("../../wgsl/raymarch.wgsl");
-/// `wgsl/world_rays.wgsl`: the endless world's ray casters (needs [`NOISE`], [`SHADE`] and
-/// [`LANDSCAPE`], then [`RAYS`]).
-pub const WORLD_RAYS: &str = include_str!("../../wgsl/world_rays.wgsl");
+/// `wgsl/world_rays.wgsl` and `wgsl/world_rays_io.wgsl`: the endless world's ray casters and
+/// their bindings (needs [`NOISE`], [`SHADE`] and [`LANDSCAPE`], then [`RAYS`]).
+pub const WORLD_RAYS: &str = concat!(
+    include_str!("../../wgsl/world_rays.wgsl"),
+    "\n",
+    include_str!("../../wgsl/world_rays_io.wgsl")
+);
+/// `wgsl/world_rays.wgsl` alone: the endless world's continuous surface, its reference ray
+/// cast and shading, without the casters' bindings (the hybrid method declares its own).
+pub const WORLD_SURFACE: &str = include_str!("../../wgsl/world_rays.wgsl");
 /// `wgsl/horizon_probe.wgsl`: the world's ray casters' sun horizon at given points (needs
 /// [`WORLD_RAYS`] and [`RAYS`]).
 pub const HORIZON_PROBE: &str = include_str!("../../wgsl/horizon_probe.wgsl");
@@ -45,8 +55,18 @@ pub const WORLD_LIGHT: &str = include_str!("../../wgsl/world_light.wgsl");
 pub const BLIT: &str = include_str!("../../wgsl/blit.wgsl");
 /// `wgsl/blog.wgsl`: the seed blog's pipeline, the benchmark peer `blog` (stands alone).
 pub const BLOG: &str = include_str!("../../wgsl/blog.wgsl");
-/// `wgsl/rays.wgsl`: the ray casters' entry points, composed after a caster's file.
-pub const RAYS: &str = include_str!("../../wgsl/rays.wgsl");
+/// `wgsl/march.wgsl`: the ray casters' march and bisection (after a caster's file).
+pub const MARCH: &str = include_str!("../../wgsl/march.wgsl");
+/// `wgsl/march.wgsl` and `wgsl/rays.wgsl`: the ray casters' march and entry points, composed
+/// after a caster's file.
+pub const RAYS: &str = concat!(
+    include_str!("../../wgsl/march.wgsl"),
+    "\n",
+    include_str!("../../wgsl/rays.wgsl")
+);
+/// `wgsl/hybrid.wgsl`: the hybrid method's refinement and shading (needs [`SHADE`],
+/// [`NOISE`], [`LANDSCAPE`], [`WORLD_SURFACE`], [`MARCH`] and [`VIS_COMMON`]).
+pub const HYBRID: &str = include_str!("../../wgsl/hybrid.wgsl");
 
 /// Joins shared WGSL files and a pass's file into one module source.
 pub fn compose(parts: &[&str]) -> String {
@@ -71,7 +91,19 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("sky", compose(&[SHADE, SKY])),
         (
             "visibility",
-            compose(&[SHADE, LEVEL_TEXEL, WORLD, VISIBILITY]),
+            compose(&[SHADE, LEVEL_TEXEL, WORLD, VIS_COMMON, VISIBILITY]),
+        ),
+        (
+            "hybrid",
+            compose(&[
+                SHADE,
+                NOISE,
+                LANDSCAPE,
+                WORLD_SURFACE,
+                MARCH,
+                VIS_COMMON,
+                HYBRID,
+            ]),
         ),
         ("raymarch", compose(&[NOISE, SHADE, RAYMARCH, RAYS])),
         (

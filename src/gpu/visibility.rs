@@ -10,6 +10,12 @@
 //! an H100), and shading once a pixel leaves detail finer than a pixel aliased. Here the raster
 //! pass does no shading at all and the compute pass shades four samples a pixel.
 //!
+//! The hybrid method ([`crate::Method::Hybrid`], the endless world) is the same passes with
+//! the levels' vertices raised by a bound on how far the continuous surface rises above them
+//! ([`crate::clipmap::level_error`]) and another compute pass (`wgsl/hybrid.wgsl`): from where
+//! each sample's ray meets the raised mesh, a short conservative march finds the continuous
+//! surface, which is shaded and whose depth is composited.
+//!
 //! The middleware contract holds: [`crate::World::encode_bake`] records the raster and compute
 //! passes into the host's encoder (before the host's render pass), and
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
@@ -18,6 +24,7 @@
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 use super::world::WorldUniforms;
+use super::world_rays::WorldRayUniforms;
 use super::Targets;
 
 /// Samples a pixel of the raster pass, each shaded, by default: the standard 4x MSAA pattern.
@@ -110,6 +117,10 @@ struct Images {
 pub struct Visibility {
     world: bool,
     samples: u32,
+    /// The hybrid method: the compute pass refines each sample to the continuous surface.
+    hybrid: bool,
+    /// The hybrid's ray uniforms (the continuous surface, the eye, the drawn region).
+    ray_uniforms: Option<wgpu::Buffer>,
     raster: wgpu::RenderPipeline,
     compute: wgpu::ComputePipeline,
     compute_layout: wgpu::BindGroupLayout,
@@ -183,12 +194,12 @@ impl Visibility {
     /// The pipelines for a world drawn by `module` (`wgsl/world.wgsl` composed) with the
     /// bind group `layout`, compositing into the host's `targets`. `world`: the endless world's
     /// attributes; otherwise the tile, shaded from its textures. `samples`: 1 or [`SAMPLES`] a
-    /// pixel.
+    /// pixel. `hybrid`: the hybrid method's refinement (the endless world's).
     pub(crate) fn new(
         device: &wgpu::Device,
         (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
         targets: &Targets,
-        (world, samples): (bool, u32),
+        (world, samples, hybrid): (bool, u32, bool),
     ) -> Self {
         let raster_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("relief:visibility:raster-layout"),
@@ -235,23 +246,33 @@ impl Visibility {
             cache: None,
         });
 
-        let vis_module = super::shader::module(
+        use super::shader as s;
+        let vis_module = s::module(
             device,
             "relief:visibility:shader",
-            &super::shader::compose(&[
-                super::shader::SHADE,
-                super::shader::LEVEL_TEXEL,
-                super::shader::WORLD,
-                super::shader::VISIBILITY,
-            ]),
+            &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::VIS_COMMON, s::VISIBILITY]),
         );
+        // The hybrid's compute pass: a module of its own, with only what it needs.
+        let hybrid_module = hybrid.then(|| {
+            s::module(
+                device,
+                "relief:hybrid:shader",
+                &s::compose(&[
+                    s::SHADE,
+                    s::NOISE,
+                    s::LANDSCAPE,
+                    s::WORLD_SURFACE,
+                    s::MARCH,
+                    s::VIS_COMMON,
+                    s::HYBRID,
+                ]),
+            )
+        });
         let c = wgpu::ShaderStages::COMPUTE;
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let ms = samples > 1;
         let [depth_at, surface_at, valley_at] = target_bindings(samples);
-        let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("relief:visibility:compute-layout"),
-            entries: &[
+        let mut entries = vec![
                 super::uniform_entry::<RenderUniforms>(0, c),
                 super::uniform_entry::<WorldUniforms>(1, c),
                 super::texture_entry(4, c, false),
@@ -268,14 +289,26 @@ impl Visibility {
                 super::storage_entry(10, SHADED_FORMAT),
                 super::storage_entry(11, SHADED_DEPTH_FORMAT),
                 super::uniform_entry::<VisUniforms>(12, c),
-            ],
+        ];
+        if hybrid {
+            entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
+        }
+        let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:visibility:compute-layout"),
+            entries: &entries,
         });
+        let entry_point = match (hybrid, ms) {
+            (false, true) => "shade_samples",
+            (false, false) => "shade_pixels",
+            (true, true) => "hybrid_samples",
+            (true, false) => "hybrid_pixels",
+        };
         let compute = super::compute_pipeline(
             device,
             "relief:visibility:shade",
             &compute_layout,
-            &vis_module,
-            if ms { "shade_samples" } else { "shade_pixels" },
+            hybrid_module.as_ref().unwrap_or(&vis_module),
+            entry_point,
         );
         let f = wgpu::ShaderStages::FRAGMENT;
         let composite_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -292,6 +325,10 @@ impl Visibility {
         Self {
             world,
             samples,
+            hybrid,
+            ray_uniforms: hybrid.then(|| {
+                super::uniform_buffer::<WorldRayUniforms>(device, "relief:hybrid:ray-uniforms")
+            }),
             raster,
             compute,
             compute_layout,
@@ -312,6 +349,11 @@ impl Visibility {
     /// Samples a pixel.
     pub fn samples(&self) -> u32 {
         self.samples
+    }
+
+    /// Whether this is the hybrid method's.
+    pub fn hybrid(&self) -> bool {
+        self.hybrid
     }
 
     /// GPU memory of the method's own images at `size`, bytes.
@@ -366,10 +408,7 @@ impl Visibility {
         )
         .create_view(&Default::default());
         use wgpu::BindingResource::{Sampler, TextureView};
-        let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("relief:visibility:compute-group"),
-            layout: &self.compute_layout,
-            entries: &[
+        let mut entries = vec![
                 entry(0, world.render.as_entire_binding()),
                 entry(1, world.world.as_entire_binding()),
                 entry(4, TextureView(world.tile_terrain)),
@@ -381,7 +420,14 @@ impl Visibility {
                 entry(10, TextureView(&shaded)),
                 entry(11, TextureView(&shaded_depth)),
                 entry(12, self.uniforms.as_entire_binding()),
-            ],
+            ];
+        if let Some(rays) = &self.ray_uniforms {
+            entries.push(entry(18, rays.as_entire_binding()));
+        }
+        let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:visibility:compute-group"),
+            layout: &self.compute_layout,
+            entries: &entries,
         });
         let composite_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:visibility:composite-group"),
@@ -403,7 +449,8 @@ impl Visibility {
     }
 
     /// Records the raster pass (`draw` draws the patches with the world's bind group at 0) and
-    /// the compute shading for an image of `size` seen through the camera-relative `matrix`.
+    /// the compute shading for an image of `size` seen through the camera-relative `matrix`;
+    /// the hybrid method's refinement reads `rays` (ignored by the visibility method).
     #[expect(
         clippy::too_many_arguments,
         reason = "the world's resources, the frame and the timer, each needed once"
@@ -415,7 +462,7 @@ impl Visibility {
         encoder: &mut wgpu::CommandEncoder,
         world: &WorldBindings<'_>,
         (matrix, size, sky): (glam::Mat4, (u32, u32), bool),
-        draw: impl FnOnce(&mut wgpu::RenderPass<'_>),
+        (draw, rays): (impl FnOnce(&mut wgpu::RenderPass<'_>), Option<&WorldRayUniforms>),
         timer: Option<&GpuTimer>,
     ) {
         let size = (size.0.max(1), size.1.max(1));
@@ -423,6 +470,9 @@ impl Visibility {
         let u = VisUniforms::new(matrix, size, sky, self.world, self.encode_srgb);
         self.opaque = sky;
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(rays));
+        }
         let Some(images) = &self.images else {
             return;
         };

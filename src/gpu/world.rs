@@ -167,6 +167,11 @@ pub struct LevelUniforms {
     /// The drawn bounds in this level's samples from its first sample (x0, z0, x1, z1):
     /// vertices are clamped into them (huge for the endless world).
     pub clip: [f32; 4],
+    /// Metres the vertices are raised by: 0, or for [`Method::Hybrid`] the level's
+    /// error bound ([`World::level_raise`]: the mesh then bounds the surface from above).
+    pub raise: f32,
+    /// Padding to 16 bytes.
+    pub _pad: [u32; 3],
 }
 
 /// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
@@ -463,21 +468,32 @@ impl World {
     }
 
     /// How the mesh is drawn: [`Method::Mesh`] (forward shading in the fragment shader, the
-    /// default) or [`Method::Visibility`] (a raster pass of depth and attributes per MSAA
-    /// sample, every sample shaded in compute: [`super::visibility`]). Other methods are ray
+    /// default), [`Method::Visibility`] (a raster pass of depth and attributes per MSAA
+    /// sample, every sample shaded in compute: [`super::visibility`]) or, in the endless world,
+    /// [`Method::Hybrid`] (the same raster of the levels raised to bound the surface from
+    /// above, each sample refined to the continuous surface in compute). Other methods are ray
     /// casters with their own paths and are refused.
     pub fn set_method(&mut self, device: &wgpu::Device, method: Method) -> Result<()> {
         match method {
             Method::Mesh => {}
-            Method::Visibility => {
+            Method::Hybrid if self.tile.is_some() => {
+                return Err(Error::invalid(
+                    "method",
+                    method,
+                    "mesh or visibility for the tile (the hybrid refines to the endless world's surface)",
+                ))
+            }
+            Method::Visibility | Method::Hybrid => {
                 let samples = self.vis_samples;
-                if self.visibility.as_ref().map(Visibility::samples) != Some(samples) {
+                let hybrid = method == Method::Hybrid;
+                let built = self.visibility.as_ref().map(|v| (v.samples(), v.hybrid()));
+                if built != Some((samples, hybrid)) {
                     let vis = scoped(device, || {
                         Visibility::new(
                             device,
                             (&self.module, &self.layout),
                             &self.targets,
-                            (self.tile.is_none(), samples),
+                            (self.tile.is_none(), samples, hybrid),
                         )
                     })?;
                     self.visibility = Some(vis);
@@ -486,11 +502,25 @@ impl World {
             other => return Err(Error::invalid(
                 "method",
                 other,
-                "mesh or visibility (the ray casters and the blog draw through their own passes)",
+                "mesh, visibility or hybrid (the ray casters and the blog draw through their own passes)",
             )),
         }
         self.method = method;
         Ok(())
+    }
+
+    /// Metres the level spaced `2^spacing_log2` metres is raised by: for the hybrid method its
+    /// error bound ([`crate::clipmap::level_error`], the measured bound on how far the
+    /// continuous surface strays from that level's mesh, which the level of detail is chosen
+    /// by), so the mesh lies on or above the surface; 0 for the other methods.
+    pub fn level_raise(&self, spacing_log2: i32) -> f64 {
+        if self.method != Method::Hybrid {
+            return 0.0;
+        }
+        self.errors
+            .iter()
+            .find(|(l, _)| *l == spacing_log2)
+            .map_or(0.0, |(_, e)| *e)
     }
 
     /// How the mesh is drawn ([`World::set_method`]).
@@ -520,7 +550,7 @@ impl World {
     /// for the forward mesh).
     pub fn method_bytes(&self) -> u64 {
         match (&self.visibility, self.method) {
-            (Some(v), Method::Visibility) => v.bytes(self.vis_size),
+            (Some(v), Method::Visibility | Method::Hybrid) => v.bytes(self.vis_size),
             _ => 0,
         }
     }
@@ -614,6 +644,7 @@ impl World {
             if self.tile.is_none() {
                 self.slopes = params.land.slope_bounds();
             }
+
         }
         self.params = params;
         if relayout {
@@ -773,11 +804,11 @@ impl World {
             .sum();
         self.stats.texels_baked = texels;
         self.stats.texels_pending = self.map.pending_texels();
-        if self.method == Method::Visibility {
+        if matches!(self.method, Method::Visibility | Method::Hybrid) {
             // The visibility method's raster and shading passes precede the host's pass: the
             // frame is prepared here (the host's own `prepare` then writes the same).
             self.prepare(queue, view);
-            self.encode_visibility(device, queue, encoder, view, timer);
+            self.encode_visibility(device, queue, encoder, view, timer)?;
         }
         Ok(texels)
     }
@@ -791,11 +822,23 @@ impl World {
         encoder: &mut wgpu::CommandEncoder,
         view: &WorldView,
         timer: Option<&GpuTimer>,
-    ) {
+    ) -> Result<()> {
         let size = self.target_size.unwrap_or(view.size);
         self.vis_size = size;
+        let rays = if self.method == Method::Hybrid {
+            let region = super::world_rays::drawn_region(&self.params, view);
+            let method = super::raymarch::RayMethod::Reference;
+            Some(super::world_rays::WorldRayUniforms::with_slopes(
+                &self.params,
+                view,
+                (method, size, region),
+                &self.slopes,
+            )?)
+        } else {
+            None
+        };
         let Some(vis) = self.visibility.as_mut() else {
-            return;
+            return Ok(());
         };
         let bindings = WorldBindings {
             render: &self.render_uniforms,
@@ -818,9 +861,10 @@ impl World {
             encoder,
             &bindings,
             (self.matrix, size, self.shading.sky),
-            draw,
+            (draw, rays.as_ref()),
             timer,
         );
+        Ok(())
     }
 
     /// The tile's: where its square moved (the scroll) since the last bake, the parts of every
@@ -1046,6 +1090,8 @@ impl World {
                         local(bounds[3], level.origin[1]),
                     ]
                 },
+                raise: self.level_raise(level.spacing_log2) as f32,
+                _pad: [0; 3],
             };
         }
         let world = WorldUniforms {
@@ -1124,7 +1170,7 @@ impl World {
     /// With the visibility method ([`World::set_method`]) it composites the image that
     /// [`World::encode_bake`] shaded, colour and depth.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        if let (Method::Visibility, Some(vis)) = (self.method, &self.visibility) {
+        if let (Method::Visibility | Method::Hybrid, Some(vis)) = (self.method, &self.visibility) {
             // Its compute pass shaded the sky too: one full-screen draw.
             vis.composite(pass);
             return;
