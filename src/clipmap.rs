@@ -174,9 +174,33 @@ pub fn finest_log2(land: &Landscape) -> i32 {
 /// misses. The fBm is statistically the same everywhere, so this holds across the world; it is
 /// a measured bound, not a proof.
 pub fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
+    1.5 * scattered_worst(land, spacing_log2, |x, z, mesh| {
+        (land.height_at(x, z) - mesh).abs()
+    })
+}
+
+/// How far the continuous surface can rise above the mesh of a grid spaced `2^spacing_log2`
+/// metres, in metres: what the hybrid method raises that level by, so the rasterised mesh lies
+/// on or above the surface. Twice the most it rises at [`level_error`]'s scattered points, plus
+/// a millionth of the peak for the levels' 24-bit heights: measured, as the level errors are,
+/// not proven (the proven bound on the octaves a coarse level drops is most of the peak, and a
+/// shell that thick would take the refinement hundreds of steps).
+pub fn level_raise(land: &Landscape, spacing_log2: i32) -> f64 {
+    let above = scattered_worst(land, spacing_log2, |x, z, mesh| land.height_at(x, z) - mesh);
+    2.0 * above.max(0.0) + 1e-6 * land.peak_height
+}
+
+/// The largest `measure(x, z, mesh)` over 1024 scattered points (x, z) in metres, where `mesh`
+/// is the height there of the mesh of a grid spaced `2^spacing_log2` metres (the octaves it
+/// keeps at its samples, on the GPU's triangles).
+fn scattered_worst(
+    land: &Landscape,
+    spacing_log2: i32,
+    measure: impl Fn(f64, f64, f64) -> f64,
+) -> f64 {
     let s = 2f64.powi(spacing_log2);
     let octaves = land.octaves_for_level(spacing_log2);
-    let mut worst: f64 = 0.0;
+    let mut worst = f64::NEG_INFINITY;
     let mut state = 0x9e37_79b9u32 ^ land.seed;
     let mut next = || {
         state = crate::noise::pcg(state);
@@ -202,10 +226,9 @@ pub fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
         } else {
             a + fz * (c - a) + fx * (d - c)
         };
-        let truth = land.height_at((ci + fx) * s, (cj + fz) * s);
-        worst = worst.max((truth - mesh).abs());
+        worst = worst.max(measure((ci + fx) * s, (cj + fz) * s, mesh));
     }
-    1.5 * worst
+    worst
 }
 
 impl Clipmap {

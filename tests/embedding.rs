@@ -27,6 +27,12 @@ fn the_visibility_method_is_depth_tested_with_host_geometry() {
     depth_tested_together(true, relief::Method::Visibility);
 }
 
+/// So does the hybrid (the endless world's): the depth it composites is the refined surface's.
+#[test]
+fn the_hybrid_method_is_depth_tested_with_host_geometry() {
+    depth_tested_together(true, relief::Method::Hybrid);
+}
+
 fn depth_tested_together(endless: bool, method: relief::Method) {
     let gpu = Host::new().expect(
         "the embedding test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",

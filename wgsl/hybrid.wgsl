@@ -1,6 +1,6 @@
 // The hybrid method (src/gpu/visibility.rs, the endless world): the clipmap mesh, each level's
 // vertices raised by a bound on how far the continuous surface rises above that level's mesh
-// (clipmap::level_error), is rasterised by the visibility method's raster pass. Where a
+// (clipmap::level_raise), is rasterised by the visibility method's raster pass. Where a
 // sample's ray meets the raised mesh it is in front of the surface, so a short march in compute
 // from there finds the continuous surface (every octave): the reference's conservative steps
 // (world_rays.wgsl's safe_step), each at least HYBRID_FLOOR of a pixel's footprint, and the
@@ -19,10 +19,13 @@
 
 // Steps a ray may take from the raised mesh; one that has not met the surface by then is drawn
 // where it stopped.
-const HYBRID_STEPS: u32 = 64u;
-// The shortest step, in pixel footprints along the ray: a bump narrower than that along the
-// ray can be stepped over.
+const HYBRID_STEPS: u32 = 96u;
+// The shortest step, in pixel footprints along the ray, at first: a bump narrower than that
+// along the ray can be stepped over. It grows by HYBRID_FLOOR_GROWTH a step, so that a grazing
+// ray, which can skim a thick shell for hundreds of footprints, meets the surface within the
+// step limit (at the price of coarser steps the longer it skims).
 const HYBRID_FLOOR: f32 = 0.5;
+const HYBRID_FLOOR_GROWTH: f32 = 1.05;
 // Halvings of the last step: a 128th of a footprint.
 const HYBRID_HALVINGS: u32 = 7u;
 
@@ -37,6 +40,7 @@ fn refine(dir: vec3<f32>, t0: f32) -> f32 {
     var t = max(t0, span.x);
     var t_prev = t;
     var crossed = false;
+    var floor = HYBRID_FLOOR * ray.pixel_angle;
     for (var i = 0u; i < HYBRID_STEPS; i++) {
         let step = safe_step(ro + t * dir, slope, dir.y, false);
         crossed = step <= 0.0;
@@ -45,7 +49,8 @@ fn refine(dir: vec3<f32>, t0: f32) -> f32 {
             break;
         }
         t_prev = t;
-        t += max(step, HYBRID_FLOOR * ray.pixel_angle * t);
+        t += max(step, floor * t);
+        floor *= HYBRID_FLOOR_GROWTH;
     }
     var hit = t;
     if crossed {

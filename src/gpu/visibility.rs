@@ -12,7 +12,7 @@
 //!
 //! The hybrid method ([`crate::Method::Hybrid`], the endless world) is the same passes with
 //! the levels' vertices raised by a bound on how far the continuous surface rises above them
-//! ([`crate::clipmap::level_error`]) and another compute pass (`wgsl/hybrid.wgsl`): from where
+//! ([`crate::clipmap::level_raise`]) and another compute pass (`wgsl/hybrid.wgsl`): from where
 //! each sample's ray meets the raised mesh, a short conservative march finds the continuous
 //! surface, which is shaded and whose depth is composited.
 //!

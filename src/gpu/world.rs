@@ -264,6 +264,9 @@ pub struct World {
     target_size: Option<(u32, u32)>,
     /// The size of the visibility method's last images.
     vis_size: (u32, u32),
+    /// The hybrid method's raise per level spacing (log2 metres, metres), measured when the
+    /// method is first chosen and again when the landscape changes under it.
+    raises: Vec<(i32, f64)>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -443,6 +446,7 @@ impl World {
                 vis_samples: super::visibility::SAMPLES,
                 target_size: None,
                 vis_size: (0, 0),
+                raises: Vec::new(),
             }
         })
     }
@@ -498,6 +502,9 @@ impl World {
                     })?;
                     self.visibility = Some(vis);
                 }
+                if hybrid && self.raises.is_empty() {
+                    self.raises = level_raises(&self.params.land);
+                }
             }
             other => return Err(Error::invalid(
                 "method",
@@ -509,18 +516,17 @@ impl World {
         Ok(())
     }
 
-    /// Metres the level spaced `2^spacing_log2` metres is raised by: for the hybrid method its
-    /// error bound ([`crate::clipmap::level_error`], the measured bound on how far the
-    /// continuous surface strays from that level's mesh, which the level of detail is chosen
-    /// by), so the mesh lies on or above the surface; 0 for the other methods.
+    /// Metres the level spaced `2^spacing_log2` metres is raised by: for the hybrid method
+    /// [`crate::clipmap::level_raise`], a bound on how far the continuous surface rises above
+    /// that level's mesh, so the mesh lies on or above the surface; 0 for the other methods.
     pub fn level_raise(&self, spacing_log2: i32) -> f64 {
         if self.method != Method::Hybrid {
             return 0.0;
         }
-        self.errors
+        self.raises
             .iter()
             .find(|(l, _)| *l == spacing_log2)
-            .map_or(0.0, |(_, e)| *e)
+            .map_or(0.0, |(_, r)| *r)
     }
 
     /// How the mesh is drawn ([`World::set_method`]).
@@ -644,6 +650,11 @@ impl World {
             if self.tile.is_none() {
                 self.slopes = params.land.slope_bounds();
             }
+            self.raises = if self.method == Method::Hybrid {
+                level_raises(&params.land)
+            } else {
+                Vec::new()
+            };
 
         }
         self.params = params;
@@ -1376,6 +1387,14 @@ fn subtract(a: Rect, b: Option<Rect>) -> Vec<Rect> {
 }
 
 /// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
+/// The hybrid method's raise for every level spacing a clipmap of `land` can have.
+fn level_raises(land: &Landscape) -> Vec<(i32, f64)> {
+    let finest = crate::clipmap::finest_log2(land);
+    (0..MAX_LEVELS as i32)
+        .map(|l| (finest + l, crate::clipmap::level_raise(land, finest + l)))
+        .collect()
+}
+
 fn level_errors(land: &Landscape, floor: Option<i32>) -> Vec<(i32, f64)> {
     let finest = crate::clipmap::finest_log2(land).max(floor.unwrap_or(i32::MIN));
     (0..MAX_LEVELS as i32)
