@@ -115,6 +115,9 @@ pub struct WorldRow {
     pub light_ms_mean: Option<f64>,
     /// Largest light pass time, ms.
     pub light_ms_max: Option<f64>,
+    /// Samples a pixel the visibility method or the hybrid rasterised and shaded (`None` for
+    /// the forward mesh, 4x MSAA, and the ray casters).
+    pub samples: Option<u32>,
 }
 
 impl WorldRow {
@@ -161,6 +164,7 @@ impl WorldRow {
             converged: None,
             light_ms_mean: mean_slot(times, Slot::Light),
             light_ms_max: slot(Slot::Light).reduce(f64::max),
+            samples: None,
         }
     }
 
@@ -189,6 +193,7 @@ impl WorldRow {
             converged: None,
             light_ms_mean: None,
             light_ms_max: None,
+            samples: None,
         }
     }
 
@@ -276,22 +281,29 @@ pub fn run(
             ..*params
         };
         // The visibility method beside the mesh at one knob: the scene's (the full run's 1 px),
-        // or the quick run's first; the hybrid at every knob (its accuracy should not follow
-        // the mesh's as the mesh coarsens).
-        let methods: &[Method] = if knob == vis_knob {
-            &[Method::Mesh, Method::Visibility, Method::Hybrid]
+        // or the quick run's first; the hybrid at every knob, at four samples a pixel and one
+        // (its accuracy should not follow the mesh's as the mesh coarsens).
+        let hybrid = [(Method::Hybrid, 4), (Method::Hybrid, 1)];
+        let methods = if knob == vis_knob {
+            [&[(Method::Mesh, 4), (Method::Visibility, 4)][..], &hybrid].concat()
         } else {
-            &[Method::Mesh, Method::Hybrid]
+            [&[(Method::Mesh, 4)][..], &hybrid].concat()
         };
         for v in views(&p, size) {
-            for &method in methods {
-                progress(&format!("{} at {knob} px ({method})", v.name));
+            for &(method, samples) in &methods {
+                let named = if method == Method::Hybrid {
+                    format!("{method}, {samples} a pixel")
+                } else {
+                    method.to_string()
+                };
+                progress(&format!("{} at {knob} px ({named})", v.name));
                 let mut world = World::new(
                     &gpu.device,
                     &gpu.queue,
                     Offscreen::targets(render_samples(method)),
                     p,
                 )?;
+                world.set_visibility_samples(samples)?;
                 world.set_method(&gpu.device, method)?;
                 let mut texels = Vec::new();
                 let (times, wall) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
@@ -302,6 +314,7 @@ pub fn run(
                 let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
                 let mut row =
                     WorldRow::measured((v.name, method), knob, &s, &texels, &times, &wall);
+                row.samples = (method != Method::Mesh).then_some(samples);
                 row.measured = Some(measured);
                 let (image, _) = target_for(method).render_world(gpu, &mut world, &v.view, None)?;
                 progress(&format!("{} at {knob} px: the reference", v.name));
@@ -552,7 +565,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         "# relief bench --world endless on {device}, {}x{}, {} timed frames after {} ms warm-up\n",
         options.width, options.height, options.frames, options.warmup_ms
     );
-    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max\n");
+    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max,samples\n");
     for r in rows {
         let mesh = r.method.is_mesh();
         // Mesh-only columns are empty for the ray casters.
@@ -587,6 +600,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
             opt(r.converged.map(|f| f.1)),
             opt(r.light_ms_mean),
             opt(r.light_ms_max),
+            r.samples.map_or(String::new(), |n| n.to_string()),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');
@@ -764,6 +778,9 @@ where
             .draw_series(mine.iter().map(|p| {
                 let label = if p.2.method == Method::Mesh {
                     format!("{} px", p.2.pixel_error)
+                } else if p.2.method == Method::Hybrid {
+                    let n = p.2.samples.unwrap_or(4);
+                    format!("hybrid {n}x {} px", p.2.pixel_error)
                 } else if p.2.method.is_mesh() {
                     format!("{} {} px", p.2.method, p.2.pixel_error)
                 } else {

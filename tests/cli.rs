@@ -481,7 +481,10 @@ fn render_visibility_times_its_passes_and_counts_its_images() {
     // The hybrid (the endless world's): the same passes and images, its shading refining rays.
     let hybrid = run("hybrid", &["--world", "endless", "--pixel-error", "8"]);
     if !hybrid.contains("no timestamp queries") {
-        assert!(hybrid.contains("raster ") && hybrid.contains("shade "), "{hybrid}");
+        assert!(
+            hybrid.contains("raster ") && hybrid.contains("shade "),
+            "{hybrid}"
+        );
     }
     let own = stat(&stats_of(&hybrid), "method_texture_mib");
     assert!(own > 0.1 && own < 1.0, "{hybrid}");
@@ -1334,16 +1337,25 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     );
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
     let header: Vec<&str> = rows[0].split(',').collect();
-    // Three views at two knobs: the mesh and the hybrid at each, the visibility method beside
-    // them at the first; the four ray casters on each view, and two flights.
-    assert_eq!(rows.len(), 1 + 3 * 3 + 3 * 2 + 3 * 4 + 2, "{csv}");
+    // Three views at two knobs: the mesh and the hybrid (at four samples a pixel and one) at
+    // each, the visibility method beside them at the first; the four ray casters on each view,
+    // and two flights.
+    assert_eq!(rows.len(), 1 + 3 * 4 + 3 * 3 + 3 * 4 + 2, "{csv}");
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let meshes: Vec<&str> = rows[1..16]
+    let meshes: Vec<(&str, &str)> = rows[1..22]
         .iter()
-        .map(|r| r.split(',').nth(col("method")).unwrap())
+        .map(|r| {
+            let v: Vec<&str> = r.split(',').collect();
+            (v[col("method")], v[col("samples")])
+        })
         .collect();
-    let first = ["mesh", "visibility", "hybrid"];
-    let second = ["mesh", "hybrid"];
+    let first = [
+        ("mesh", ""),
+        ("visibility", "4"),
+        ("hybrid", "4"),
+        ("hybrid", "1"),
+    ];
+    let second = [("mesh", ""), ("hybrid", "4"), ("hybrid", "1")];
     assert_eq!(
         meshes,
         [&first[..], &first, &first, &second, &second, &second].concat(),
@@ -1354,16 +1366,20 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         v[col("flip_mean")].parse().unwrap()
     };
     // From the same coarse mesh, the hybrid's refined surface is closer to the reference than
-    // the mesh on every view at both knobs (on lavapipe: 2.2-3.6 times).
-    for (mesh, hybrid) in [(1, 3), (4, 6), (7, 9), (10, 11), (12, 13), (14, 15)] {
-        assert!(
-            flip_of(rows[hybrid]) < flip_of(rows[mesh]),
-            "{}\n{}",
-            rows[mesh],
-            rows[hybrid]
-        );
+    // the mesh on every view at both knobs, at four samples a pixel and at one.
+    let first_knob = (0..3).map(|v| (1 + 4 * v, [3 + 4 * v, 4 + 4 * v]));
+    let second_knob = (0..3).map(|v| (13 + 3 * v, [14 + 3 * v, 15 + 3 * v]));
+    for (mesh, hybrids) in first_knob.chain(second_knob) {
+        for hybrid in hybrids {
+            assert!(
+                flip_of(rows[hybrid]) < flip_of(rows[mesh]),
+                "{}\n{}",
+                rows[mesh],
+                rows[hybrid]
+            );
+        }
     }
-    for row in &rows[1..16] {
+    for row in &rows[1..22] {
         let v: Vec<&str> = row.split(',').collect();
         if v[col("method")] == "hybrid" {
             // Its surface is the continuous one: the mesh's screen error and depth are not
@@ -1391,7 +1407,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         "raymarch-fragment",
         "raymarch-bandlimited",
     ];
-    for (row, method) in rows[16..28].iter().zip(casters.iter().cycle()) {
+    for (row, method) in rows[22..34].iter().zip(casters.iter().cycle()) {
         let v: Vec<&str> = row.split(',').collect();
         assert_eq!(v[col("method")], *method, "{row}");
         assert_eq!(v[col("triangles")], "0", "{row}");
@@ -1401,8 +1417,8 @@ fn bench_world_endless_quick_writes_landscape_csv() {
             assert!(v[col("flip_mean")].parse::<f64>().unwrap() < 0.25, "{row}");
         }
     }
-    assert!(rows[28].starts_with("flight,"), "{csv}");
-    assert!(rows[29].starts_with("path,"), "{csv}");
+    assert!(rows[34].starts_with("flight,"), "{csv}");
+    assert!(rows[35].starts_with("path,"), "{csv}");
 }
 
 #[test]

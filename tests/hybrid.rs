@@ -6,8 +6,8 @@
 mod common;
 
 use relief::gpu::headless::{self, Gpu, Offscreen, RENDER_SAMPLES};
-use relief::noise::Channel;
 use relief::metrics::{image_error, rgb};
+use relief::noise::Channel;
 use relief::{Method, Shading, Terrain, TerrainParams, World, WorldParams, WorldView};
 
 const W: u32 = 256;
@@ -27,9 +27,16 @@ fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {
     )
     .unwrap();
     world.set_method(&gpu.device, method).unwrap();
-    headless::render_world_image(gpu, &mut world, &view(&params), (W, H), headless::TILE, None)
-        .unwrap()
-        .0
+    headless::render_world_image(
+        gpu,
+        &mut world,
+        &view(&params),
+        (W, H),
+        headless::TILE,
+        None,
+    )
+    .unwrap()
+    .0
 }
 
 fn flip(a: &[u8], b: &[u8]) -> f64 {
@@ -60,7 +67,11 @@ fn from_a_coarse_mesh_the_hybrid_draws_the_continuous_surface() {
     other.land.seed += 1;
     let moved = world(&gpu, other, Method::Hybrid);
     let truth = &reference.rgba;
-    let (h, m, control) = (flip(truth, &hybrid), flip(truth, &mesh), flip(&hybrid, &moved));
+    let (h, m, control) = (
+        flip(truth, &hybrid),
+        flip(truth, &mesh),
+        flip(&hybrid, &moved),
+    );
     eprintln!("against the reference: hybrid {h:.4}, mesh {m:.4}; another seed {control:.4}");
     assert!(
         h < m,
@@ -90,7 +101,8 @@ fn the_raise_bounds_the_surface_above_every_levels_mesh() {
         let raise = relief::clipmap::level_raise(&land, log2);
         let s = 2f64.powi(log2);
         let kept = land.octaves_for_level(log2);
-        let height = |x: f64, z: f64| land.peak_height * land.sample(Channel::Height, x, z, kept).value;
+        let height =
+            |x: f64, z: f64| land.peak_height * land.sample(Channel::Height, x, z, kept).value;
         let mut worst: f64 = 0.0;
         let mut through = 0;
         for _ in 0..POINTS {

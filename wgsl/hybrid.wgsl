@@ -19,15 +19,15 @@
 
 // Steps a ray may take from the raised mesh; one that has not met the surface by then is drawn
 // where it stopped.
-const HYBRID_STEPS: u32 = 96u;
+const HYBRID_STEPS: u32 = 64u;
 // The shortest step, in pixel footprints along the ray, at first: a bump narrower than that
 // along the ray can be stepped over. It grows by HYBRID_FLOOR_GROWTH a step, so that a grazing
 // ray, which can skim a thick shell for hundreds of footprints, meets the surface within the
 // step limit (at the price of coarser steps the longer it skims).
-const HYBRID_FLOOR: f32 = 0.5;
-const HYBRID_FLOOR_GROWTH: f32 = 1.05;
-// Halvings of the last step: a 128th of a footprint.
-const HYBRID_HALVINGS: u32 = 7u;
+const HYBRID_FLOOR: f32 = 2.0;
+const HYBRID_FLOOR_GROWTH: f32 = 1.15;
+// Halvings of the last step: an eighth of a footprint at first.
+const HYBRID_HALVINGS: u32 = 4u;
 
 // Distance along the unit camera-relative `dir` to the continuous surface, searched from `t0`
 // (where the ray meets the raised mesh), or MISS where it leaves the drawn region first. Where

@@ -250,7 +250,13 @@ impl Visibility {
         let vis_module = s::module(
             device,
             "relief:visibility:shader",
-            &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::VIS_COMMON, s::VISIBILITY]),
+            &s::compose(&[
+                s::SHADE,
+                s::LEVEL_TEXEL,
+                s::WORLD,
+                s::VIS_COMMON,
+                s::VISIBILITY,
+            ]),
         );
         // The hybrid's compute pass: a module of its own, with only what it needs.
         let hybrid_module = hybrid.then(|| {
@@ -273,22 +279,22 @@ impl Visibility {
         let ms = samples > 1;
         let [depth_at, surface_at, valley_at] = target_bindings(samples);
         let mut entries = vec![
-                super::uniform_entry::<RenderUniforms>(0, c),
-                super::uniform_entry::<WorldUniforms>(1, c),
-                super::texture_entry(4, c, false),
-                super::texture_entry(5, c, true),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 6,
-                    visibility: c,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-                sampled_entry(depth_at, wgpu::TextureSampleType::Depth, ms),
-                sampled_entry(surface_at, float, ms),
-                sampled_entry(valley_at, float, ms),
-                super::storage_entry(10, SHADED_FORMAT),
-                super::storage_entry(11, SHADED_DEPTH_FORMAT),
-                super::uniform_entry::<VisUniforms>(12, c),
+            super::uniform_entry::<RenderUniforms>(0, c),
+            super::uniform_entry::<WorldUniforms>(1, c),
+            super::texture_entry(4, c, false),
+            super::texture_entry(5, c, true),
+            wgpu::BindGroupLayoutEntry {
+                binding: 6,
+                visibility: c,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+            sampled_entry(depth_at, wgpu::TextureSampleType::Depth, ms),
+            sampled_entry(surface_at, float, ms),
+            sampled_entry(valley_at, float, ms),
+            super::storage_entry(10, SHADED_FORMAT),
+            super::storage_entry(11, SHADED_DEPTH_FORMAT),
+            super::uniform_entry::<VisUniforms>(12, c),
         ];
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
@@ -409,18 +415,18 @@ impl Visibility {
         .create_view(&Default::default());
         use wgpu::BindingResource::{Sampler, TextureView};
         let mut entries = vec![
-                entry(0, world.render.as_entire_binding()),
-                entry(1, world.world.as_entire_binding()),
-                entry(4, TextureView(world.tile_terrain)),
-                entry(5, TextureView(world.tile_normals)),
-                entry(6, Sampler(world.tile_sampler)),
-                entry(depth_at, TextureView(&depth)),
-                entry(surface_at, TextureView(&surface)),
-                entry(valley_at, TextureView(&valley)),
-                entry(10, TextureView(&shaded)),
-                entry(11, TextureView(&shaded_depth)),
-                entry(12, self.uniforms.as_entire_binding()),
-            ];
+            entry(0, world.render.as_entire_binding()),
+            entry(1, world.world.as_entire_binding()),
+            entry(4, TextureView(world.tile_terrain)),
+            entry(5, TextureView(world.tile_normals)),
+            entry(6, Sampler(world.tile_sampler)),
+            entry(depth_at, TextureView(&depth)),
+            entry(surface_at, TextureView(&surface)),
+            entry(valley_at, TextureView(&valley)),
+            entry(10, TextureView(&shaded)),
+            entry(11, TextureView(&shaded_depth)),
+            entry(12, self.uniforms.as_entire_binding()),
+        ];
         if let Some(rays) = &self.ray_uniforms {
             entries.push(entry(18, rays.as_entire_binding()));
         }
@@ -462,7 +468,10 @@ impl Visibility {
         encoder: &mut wgpu::CommandEncoder,
         world: &WorldBindings<'_>,
         (matrix, size, sky): (glam::Mat4, (u32, u32), bool),
-        (draw, rays): (impl FnOnce(&mut wgpu::RenderPass<'_>), Option<&WorldRayUniforms>),
+        (draw, rays): (
+            impl FnOnce(&mut wgpu::RenderPass<'_>),
+            Option<&WorldRayUniforms>,
+        ),
         timer: Option<&GpuTimer>,
     ) {
         let size = (size.0.max(1), size.1.max(1));
