@@ -239,6 +239,17 @@ await withBrowser(webgpu, async (browser) => {
   check(mq.includes("method=raymarch") && mcontrol === "raymarch",
     `the method reaches the URL and its control (${mcontrol})`);
 
+  // The hybrid (the endless world's): the raised mesh rasterised, each sample refined to the
+  // continuous surface in compute; run.sh compares the canvas with `relief render --method hybrid`.
+  const hybrid = await openPage(browser, `${base}/index.html?${ENDLESS}&method=hybrid`, errors);
+  await waitFrames(hybrid, 2);
+  const hq = await hybrid.evaluate(() => document.body.dataset.query || "");
+  const hcontrol = await hybrid.evaluate(() => document.querySelector('[data-key="method"]')?.value);
+  const herror = await hybrid.evaluate(() => document.body.dataset.error || "");
+  await shot(hybrid, "page-endless-hybrid.png");
+  check(herror === "" && hq.includes("method=hybrid") && hcontrol === "hybrid",
+    `method=hybrid draws the endless world, and the URL and control say so (${hcontrol}, error: ${herror || "none"})`);
+
   // On the path, the URL holds the camera mode and the time along it, and the time runs.
   const onPath = await openPage(browser, `${base}/index.html?${ENDLESS}&camera=path&time=5`, errors);
   await waitFrames(onPath, 3);

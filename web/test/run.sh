@@ -93,4 +93,9 @@ cargo run --locked --quiet --example flip -- "$out/native-endless-raymarch.png" 
 cargo run --locked --quiet --example flip -- "$out/native-endless.png" "$out/page-endless-raymarch.png" \
     > "$out/control-raymarch.txt"
 cat "$out/control-raymarch.txt"
+echo "== the page's hybrid against relief render --method hybrid (FLIP)"
+cargo run --locked --quiet --bin relief -- render --out "$out/native-endless-hybrid.png" --width 256 \
+    --height 192 --world endless --seed 3 --pixel-error 16 --method hybrid
+cargo run --locked --quiet --example flip -- "$out/native-endless-hybrid.png" \
+    "$out/page-endless-hybrid.png" --max-mean "$max_mean" --diff "$out/page-vs-native-hybrid.png"
 echo "web tests passed"
