@@ -338,7 +338,7 @@ fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
 }
 
 #[test]
-fn on_the_endless_world_neither_the_mesh_nor_the_reference_loses_grazing_terrain() {
+fn on_the_endless_world_neither_the_mesh_the_hybrid_nor_the_reference_loses_grazing_terrain() {
     use relief::stability::world_grazing::{world_grazing, world_options};
     let gpu = common::gpu();
     let world = small_world();
@@ -363,6 +363,13 @@ fn on_the_endless_world_neither_the_mesh_nor_the_reference_loses_grazing_terrain
             Method::Mesh => {
                 assert_eq!(r.tunnelled, 0, "{at}: {r:?}");
                 assert!(r.depth_error_max < 0.05, "{at}: {r:?}");
+            }
+            // The hybrid refines from the raised mesh to the continuous surface: it loses no
+            // terrain either, and its depth is the surface's to a fraction of a percent (on
+            // lavapipe at most 0.23%, where the mesh's reaches a few percent).
+            Method::Hybrid => {
+                assert_eq!(r.tunnelled, 0, "{at}: {r:?}");
+                assert!(r.depth_error_max < 0.005, "{at}: {r:?}");
             }
             _ => {}
         }
