@@ -29,6 +29,8 @@ fn heights_and_colors_match_twin() {
     let cases = [
         (1, 1, 3, 0.5, [0.0, 0.0]),
         (7, 8, 4, 0.5, [0.0, 0.0]),
+        // Baked by 2x2 quads of texels: each octave's cells span an even number of texels.
+        (9, 6, 4, 0.5, [0.0, 0.0]),
         (123_456, 12, 2, 0.6, [0.3, 0.71]),
         (u32::MAX, 5, 7, 0.45, [1e6 + 0.25, -1e6 - 0.125]),
         (42, 16, 1, 0.5, [-3.75, 2.5]),

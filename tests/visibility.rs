@@ -166,6 +166,6 @@ fn the_ray_casters_are_not_mesh_methods() {
     let e = terrain
         .set_method(&gpu.device, Method::Raymarch)
         .unwrap_err();
-    assert!(e.to_string().contains("mesh or visibility"), "{e}");
+    assert!(e.to_string().contains("mesh, visibility or hybrid"), "{e}");
     assert_eq!(terrain.method(), Method::Mesh);
 }

@@ -76,23 +76,6 @@ fn cell_noise_d(cell: vec2<i32>, f: vec2<f32>, stream: u32) -> NoiseD {
     return corner_noise_d(vec4<u32>(c, c + 1u), f, stream);
 }
 
-// The gradients at a cell's corners (x0 y0, x1 y0, x0 y1, x1 y1) for one hash stream.
-struct CornerGradients {
-    ga: vec2<f32>,
-    gb: vec2<f32>,
-    gc: vec2<f32>,
-    gd: vec2<f32>,
-}
-
-fn corner_gradients(corners: vec4<u32>, stream: u32) -> CornerGradients {
-    return CornerGradients(
-        gradient(lattice_hash(corners.x, corners.y, stream)),
-        gradient(lattice_hash(corners.z, corners.y, stream)),
-        gradient(lattice_hash(corners.x, corners.w, stream)),
-        gradient(lattice_hash(corners.z, corners.w, stream)),
-    );
-}
-
 // The noise in the cell whose corners hash as (x0, y0, x1, y1).
 fn corner_noise_d(corners: vec4<u32>, f: vec2<f32>, stream: u32) -> NoiseD {
     return gradient_noise_d(corner_gradients(corners, stream), f);

@@ -49,17 +49,45 @@ fn fade(t: vec2<f32>) -> vec2<f32> {
     return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
-// Gradient noise at lattice cell `cell` (already in 0..period) and offset `f` in [0,1)^2.
-fn periodic_noise(cell: vec2<u32>, f: vec2<f32>, period: u32, stream: u32) -> f32 {
-    // The corner past the period's last cell is its first (no integer division).
+// The gradients at a cell's corners (x0 y0, x1 y0, x0 y1, x1 y1) for one hash stream, from the
+// corners' coordinates as hashed (x0, y0, x1, y1).
+struct CornerGradients {
+    ga: vec2<f32>,
+    gb: vec2<f32>,
+    gc: vec2<f32>,
+    gd: vec2<f32>,
+}
+
+fn corner_gradients(corners: vec4<u32>, stream: u32) -> CornerGradients {
+    return CornerGradients(
+        gradient(lattice_hash(corners.x, corners.y, stream)),
+        gradient(lattice_hash(corners.z, corners.y, stream)),
+        gradient(lattice_hash(corners.x, corners.w, stream)),
+        gradient(lattice_hash(corners.z, corners.w, stream)),
+    );
+}
+
+// The corners of lattice cell `cell` (already in 0..period) as hashed: the corner past the
+// period's last cell is its first (no integer division).
+fn periodic_corners(cell: vec2<u32>, period: u32) -> vec4<u32> {
     let x1 = select(cell.x + 1u, 0u, cell.x + 1u == period);
     let y1 = select(cell.y + 1u, 0u, cell.y + 1u == period);
-    let n00 = dot(gradient(lattice_hash(cell.x, cell.y, stream)), f);
-    let n10 = dot(gradient(lattice_hash(x1, cell.y, stream)), f - vec2<f32>(1.0, 0.0));
-    let n01 = dot(gradient(lattice_hash(cell.x, y1, stream)), f - vec2<f32>(0.0, 1.0));
-    let n11 = dot(gradient(lattice_hash(x1, y1, stream)), f - vec2<f32>(1.0, 1.0));
+    return vec4<u32>(cell, x1, y1);
+}
+
+// Gradient noise's value at offset `f` in [0,1)^2 of a cell with corner gradients `g`.
+fn corner_value(g: CornerGradients, f: vec2<f32>) -> f32 {
+    let n00 = dot(g.ga, f);
+    let n10 = dot(g.gb, f - vec2<f32>(1.0, 0.0));
+    let n01 = dot(g.gc, f - vec2<f32>(0.0, 1.0));
+    let n11 = dot(g.gd, f - vec2<f32>(1.0, 1.0));
     let u = fade(f);
     return mix(mix(n00, n10, u.x), mix(n01, n11, u.x), u.y);
+}
+
+// Gradient noise at lattice cell `cell` (already in 0..period) and offset `f` in [0,1)^2.
+fn periodic_noise(cell: vec2<u32>, f: vec2<f32>, period: u32, stream: u32) -> f32 {
+    return corner_value(corner_gradients(periodic_corners(cell, period), stream), f);
 }
 
 // fBm of both channels (height, colour) at the centre of texel `texel` of a `size` x `size`
