@@ -332,10 +332,11 @@ fn bake_in_passes(
 pub const RENDER_SAMPLES: u32 = 4;
 
 /// The MSAA samples of the target `relief render` and the benchmarks draw `method` into: the
-/// visibility method anti-aliases in its own compute pass, so the host's pass it composites
-/// into needs none (on an H100 a 4x target costs that full-screen draw some 1.5 ms at 1080p).
+/// visibility method and the hybrid anti-alias in their own compute pass, so the host's pass
+/// they composite into needs none (on an H100 a 4x target costs that full-screen draw some
+/// 1.8 ms at 1080p).
 pub fn render_samples(method: crate::Method) -> u32 {
-    if method == crate::Method::Visibility {
+    if matches!(method, crate::Method::Visibility | crate::Method::Hybrid) {
         1
     } else {
         RENDER_SAMPLES
