@@ -1809,7 +1809,8 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
         ]
     );
     // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the
-    // default world's refusal 10^9 m out, the flights (2 speeds, the morph on and off).
+    // default world's refusal 10^9 m out, the flights (2 speeds: the mesh with the morph on
+    // and off, the hybrid).
     let lines = |name: &str| {
         std::fs::read_to_string(dir.join(name))
             .unwrap()
@@ -1817,7 +1818,7 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             .count()
     };
     assert_eq!(lines("shadow.csv"), 1 + 9);
-    assert_eq!(lines("motion.csv"), 1 + 4);
+    assert_eq!(lines("motion.csv"), 1 + 6);
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance

@@ -10,10 +10,15 @@
 //! - **popping**: the largest FLIP between consecutive frames over their median (motion alone
 //!   changes each frame about equally; a pop stands out);
 //! - **falling behind**: frames drawn with texels still unbaked, and the most waiting.
+//!
+//! The mesh flies at each knob with the morph on, and at the world's knob with it off; the
+//! hybrid (one sample a pixel) flies at the world's knob with the morph on: it draws the
+//! continuous surface, refined from the levels' raised mesh.
 
 use crate::error::Result;
 use crate::gpu::headless::{Gpu, Offscreen};
 use crate::gpu::world::World;
+use crate::method::Method;
 use crate::metrics;
 use crate::world::WorldParams;
 use crate::WorldView;
@@ -64,9 +69,11 @@ impl MotionOptions {
     }
 }
 
-/// One flight: a speed, a knob, the morph on or off.
+/// One flight: a method, a speed, a knob, the morph on or off.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionRow {
+    /// The mesh or the hybrid.
+    pub method: Method,
     /// Metres a frame.
     pub speed: f64,
     /// The LOD knob, pixels.
@@ -114,18 +121,21 @@ pub fn motion(
 ) -> Result<Vec<MotionRow>> {
     let mut knobs = vec![params.pixel_error];
     knobs.extend(options.knobs.iter().filter(|&&k| k != params.pixel_error));
-    let mut flights: Vec<(f64, f64, bool)> = Vec::new();
+    let mut flights: Vec<(f64, f64, bool, Method)> = Vec::new();
     for &knob in &knobs {
         for &speed in &options.speeds {
-            flights.push((speed, knob, true));
+            flights.push((speed, knob, true, Method::Mesh));
         }
     }
     for &speed in &options.speeds {
-        flights.push((speed, params.pixel_error, false));
+        flights.push((speed, params.pixel_error, false, Method::Mesh));
+    }
+    for &speed in &options.speeds {
+        flights.push((speed, params.pixel_error, true, Method::Hybrid));
     }
     let target = Offscreen::new(&gpu.device, options.size.0, options.size.1, 1)?;
     let mut rows = Vec::new();
-    for (done, &(speed, knob, morphing)) in flights.iter().enumerate() {
+    for (done, &(speed, knob, morphing, method)) in flights.iter().enumerate() {
         let p = WorldParams {
             pixel_error: knob,
             ..*params
@@ -134,6 +144,10 @@ pub fn motion(
         let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
         world.set_morphing(morphing);
         world.set_bake_budget(options.budget);
+        if method == Method::Hybrid {
+            world.set_visibility_samples(1)?;
+            world.set_method(&gpu.device, method)?;
+        }
         let at = |i: usize| eye_at(&p, options.height, speed * i as f64, options.size);
         // The first frame whole, as after a window's first bake; then frame by frame.
         let (mut last, _) = target.render_world(gpu, &mut world, &at(0), None)?;
@@ -155,6 +169,7 @@ pub fn motion(
         }
         flips.sort_by(f64::total_cmp);
         rows.push(MotionRow {
+            method,
             speed,
             knob,
             morphing,
@@ -172,12 +187,12 @@ pub fn motion(
 /// The CSV: a header and a row per flight, with the device and backend.
 pub fn motion_csv(rows: &[MotionRow], device: &str, backend: &str) -> String {
     let mut out = String::from(
-        "speed_m_per_frame,knob_px,morphing,frames,flip_median,flip_max,pop,frames_behind,pending_max,device,backend\n",
+        "speed_m_per_frame,knob_px,morphing,frames,flip_median,flip_max,pop,frames_behind,pending_max,method,device,backend\n",
     );
     for r in rows {
         let _ = writeln!(
             out,
-            "{},{},{},{},{:.5},{:.5},{:.3},{},{},{device},{backend}",
+            "{},{},{},{},{:.5},{:.5},{:.3},{},{},{},{device},{backend}",
             r.speed,
             r.knob,
             r.morphing,
@@ -186,7 +201,8 @@ pub fn motion_csv(rows: &[MotionRow], device: &str, backend: &str) -> String {
             r.flip_max,
             r.pop(),
             r.frames_behind,
-            r.pending_max
+            r.pending_max,
+            r.method
         );
     }
     out
@@ -194,12 +210,14 @@ pub fn motion_csv(rows: &[MotionRow], device: &str, backend: &str) -> String {
 
 /// The table: a row per flight.
 pub fn motion_table(rows: &[MotionRow]) -> String {
-    let mut out =
-        String::from("m/frame   knob  morph   FLIP median    max     pop  behind  most waiting\n");
+    let mut out = String::from(
+        "method  m/frame   knob  morph   FLIP median    max     pop  behind  most waiting\n",
+    );
     for r in rows {
         let _ = writeln!(
             out,
-            "{:<9} {:>4}  {:<5} {:>11.4} {:>6.4} {:>7.2} {:>4}/{:<3} {:>12}",
+            "{:<7} {:<9} {:>4}  {:<5} {:>11.4} {:>6.4} {:>7.2} {:>4}/{:<3} {:>12}",
+            r.method.to_string(),
             r.speed,
             r.knob,
             if r.morphing { "on" } else { "off" },
@@ -216,7 +234,7 @@ pub fn motion_table(rows: &[MotionRow]) -> String {
 }
 
 /// The chart: pop against speed (log), a line per knob with the morph on and one with it off,
-/// and the frames drawn behind as a share, the world's knob marked.
+/// and the hybrid's, the frames drawn behind as hollow markers, the world's knob marked.
 pub fn motion_chart(
     rows: &[MotionRow],
     default_knob: f64,
@@ -256,21 +274,21 @@ where
             "pop: largest frame-to-frame FLIP / median",
         ),
     )?;
-    let mut lines: Vec<(f64, bool)> = Vec::new();
+    let mut lines: Vec<(f64, bool, Method)> = Vec::new();
     for r in rows {
-        if !lines.contains(&(r.knob, r.morphing)) {
-            lines.push((r.knob, r.morphing));
+        if !lines.contains(&(r.knob, r.morphing, r.method)) {
+            lines.push((r.knob, r.morphing, r.method));
         }
     }
-    for (i, &(knob, morphing)) in lines.iter().enumerate() {
-        let color = if knob == default_knob && morphing {
+    for (i, &(knob, morphing, method)) in lines.iter().enumerate() {
+        let color = if knob == default_knob && morphing && method == Method::Mesh {
             BLACK.to_rgba()
         } else {
             Palette99::pick(i).to_rgba()
         };
         let mine: Vec<&MotionRow> = rows
             .iter()
-            .filter(|r| r.knob == knob && r.morphing == morphing)
+            .filter(|r| r.knob == knob && r.morphing == morphing && r.method == method)
             .collect();
         let line: Vec<(f64, f64)> = mine.iter().map(|r| (r.speed, r.pop())).collect();
         let default = if knob == default_knob {
@@ -283,7 +301,7 @@ where
             .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
             .map_err(|e| e.to_string())?
             .label(format!(
-                "knob {knob} px{default}, {morph}; hollow: baking behind"
+                "{method}, knob {knob} px{default}, {morph}; hollow: baking behind"
             ))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
         // A hollow marker where frames were drawn with texels unbaked.
