@@ -8,35 +8,13 @@ mod common;
 use relief::gpu::headless::{self, Gpu, Offscreen, RENDER_SAMPLES};
 use relief::metrics::{image_error, rgb};
 use relief::noise::Channel;
-use relief::{Method, Shading, Terrain, TerrainParams, World, WorldParams, WorldView};
+use relief::{Method, Shading, Terrain, TerrainParams, WorldParams};
 
 const W: u32 = 256;
 const H: u32 = 144;
 
-fn view(params: &WorldParams) -> WorldView {
-    let (eye, at) = relief::gpu::world::default_camera(&params.land);
-    WorldView::look_at(eye, at, 0.8, (W, H))
-}
-
 fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {
-    let mut world = World::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        params,
-    )
-    .unwrap();
-    world.set_method(&gpu.device, method).unwrap();
-    headless::render_world_image(
-        gpu,
-        &mut world,
-        &view(&params),
-        (W, H),
-        headless::TILE,
-        None,
-    )
-    .unwrap()
-    .0
+    common::world_image(gpu, params, method, (W, H))
 }
 
 fn flip(a: &[u8], b: &[u8]) -> f64 {
@@ -57,7 +35,7 @@ fn from_a_coarse_mesh_the_hybrid_draws_the_continuous_surface() {
         &gpu,
         &params,
         &Shading::default(),
-        &view(&params),
+        &common::world_view(&params, (W, H)),
         Method::Reference,
         None,
     )

@@ -4,9 +4,11 @@
 //! mesh is (on this scene what keeps both from it is what the texels hold, not the shading rate:
 //! the stability detail axis shows the same).
 
+mod common;
+
 use relief::gpu::headless::{self, Gpu, Offscreen, RENDER_SAMPLES};
 use relief::metrics::{image_error, rgb};
-use relief::{Method, OrbitCamera, Shading, Terrain, TerrainParams, World, WorldParams, WorldView};
+use relief::{Method, OrbitCamera, Shading, Terrain, TerrainParams, WorldParams};
 
 const W: u32 = 256;
 const H: u32 = 144;
@@ -114,19 +116,7 @@ fn one_sample_a_pixel_draws_the_same_tile_and_other_counts_are_refused() {
 }
 
 fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {
-    let mut world = World::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        params,
-    )
-    .unwrap();
-    world.set_method(&gpu.device, method).unwrap();
-    let (eye, at) = relief::gpu::world::default_camera(&params.land);
-    let view = WorldView::look_at(eye, at, 0.8, (W, H));
-    headless::render_world_image(gpu, &mut world, &view, (W, H), headless::TILE, None)
-        .unwrap()
-        .0
+    common::world_image(gpu, params, method, (W, H))
 }
 
 #[test]

@@ -44,16 +44,14 @@ fn fbm_texel_quad(texel: vec2<u32>, size: u32, frequency: u32, octaves: u32, gai
     // Per axis, the quad's first texel (a) and its second (b).
     let num_a = (2u * texel + vec2<u32>(1u)) * frequency;
     let num_b = num_a + 2u * frequency;
-    var qa = num_a / den;
-    var ra = num_a % den;
-    var qb = num_b / den;
-    var rb = num_b % den;
+    var a = TexelSplit(num_a / den, num_a % den);
+    var b = TexelSplit(num_b / den, num_b % den);
     for (var o = 0u; o < octaves; o++) {
         let period = frequency << o;
-        let fa = vec2<f32>(ra) / f32(den);
-        let fb = vec2<f32>(rb) / f32(den);
-        // qa == qb: the quad's texels share the cell.
-        let corners = periodic_corners(qa, period);
+        let fa = vec2<f32>(a.rem) / f32(den);
+        let fb = vec2<f32>(b.rem) / f32(den);
+        // a.quotient == b.quotient: the quad's texels share the cell.
+        let corners = periodic_corners(a.quotient, period);
         let gh = corner_gradients(corners, noise_stream(seed, CHANNEL_HEIGHT, o));
         let gc = corner_gradients(corners, noise_stream(seed, CHANNEL_COLOR, o));
         let f1 = vec2<f32>(fb.x, fa.y);
@@ -64,14 +62,8 @@ fn fbm_texel_quad(texel: vec2<u32>, size: u32, frequency: u32, octaves: u32, gai
         s3 += amplitude * vec2<f32>(corner_value(gh, fb), corner_value(gc, fb));
         norm += amplitude;
         amplitude *= gain;
-        let twice_a = 2u * ra;
-        let over_a = twice_a >= vec2<u32>(den);
-        qa = 2u * qa + select(vec2<u32>(0u), vec2<u32>(1u), over_a);
-        ra = twice_a - select(vec2<u32>(0u), vec2<u32>(den), over_a);
-        let twice_b = 2u * rb;
-        let over_b = twice_b >= vec2<u32>(den);
-        qb = 2u * qb + select(vec2<u32>(0u), vec2<u32>(1u), over_b);
-        rb = twice_b - select(vec2<u32>(0u), vec2<u32>(den), over_b);
+        a = next_octave_split(a, den);
+        b = next_octave_split(b, den);
     }
     let k = norm * NOISE_MAX_ABS;
     return array<vec2<f32>, 4>(0.5 + 0.5 * s0 / k, 0.5 + 0.5 * s1 / k, 0.5 + 0.5 * s2 / k, 0.5 + 0.5 * s3 / k);

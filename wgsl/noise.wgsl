@@ -133,12 +133,28 @@ fn fbm_texel(
         sum.y += amplitude * periodic_noise(cell, f, period, noise_stream(seed, CHANNEL_COLOR, o));
         norm += amplitude;
         amplitude *= gain;
-        let twice = 2u * rem;
-        let over = twice >= vec2<u32>(den);
-        quotient = 2u * quotient + select(vec2<u32>(0u), vec2<u32>(1u), over);
-        rem = twice - select(vec2<u32>(0u), vec2<u32>(den), over);
+        let next = next_octave_split(TexelSplit(quotient, rem), den);
+        quotient = next.quotient;
+        rem = next.rem;
     }
     return 0.5 + 0.5 * sum / (norm * NOISE_MAX_ABS);
+}
+
+// A texel's lattice position as quotient and remainder of numerator over `den`, per axis.
+struct TexelSplit {
+    quotient: vec2<u32>,
+    rem: vec2<u32>,
+}
+
+// The next octave's split: the numerator doubles, so the quotient doubles and takes the carry
+// of the doubled remainder.
+fn next_octave_split(s: TexelSplit, den: u32) -> TexelSplit {
+    let twice = 2u * s.rem;
+    let over = twice >= vec2<u32>(den);
+    return TexelSplit(
+        2u * s.quotient + select(vec2<u32>(0u), vec2<u32>(1u), over),
+        twice - select(vec2<u32>(0u), vec2<u32>(den), over),
+    );
 }
 
 // fade'(t), for analytic gradients.
