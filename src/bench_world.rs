@@ -197,15 +197,22 @@ impl WorldRow {
         }
     }
 
-    /// Fills in the row's error against `reference` from its image and distances.
-    fn against(&mut self, reference: &RayImage, rgba: &[u8], distance: &[f32], size: (u32, u32)) {
+    /// Fills in the row's error against `reference` from its image and (where given) its
+    /// distances.
+    fn against(
+        &mut self,
+        reference: &RayImage,
+        rgba: &[u8],
+        distance: Option<&[f32]>,
+        size: (u32, u32),
+    ) {
         self.flip = Some(metrics::image_error(
             &metrics::rgb(&reference.rgba),
             &metrics::rgb(rgba),
             size.0,
             size.1,
         ));
-        self.coverage = Some(resolved_coverage(&reference.distance, distance));
+        self.coverage = distance.map(|d| resolved_coverage(&reference.distance, d));
     }
 }
 
@@ -310,22 +317,23 @@ pub fn run(
                     texels.push(frame(&mut world, &v.view, encoder, timer));
                 })?;
                 let s = world.stats();
-                let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
-                let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
                 let mut row =
                     WorldRow::measured((v.name, method), knob, &s, &texels, &times, &wall);
                 row.samples = (method != Method::Mesh).then_some(samples);
-                row.measured = Some(measured);
+                // The mesh's screen error and depth; not the hybrid's, whose surface is not its
+                // mesh's (its FLIP says how close it is).
+                let depth = if method == Method::Hybrid {
+                    None
+                } else {
+                    let mut single = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
+                    let (measured, distance) = world_depth_metrics(gpu, &mut single, &v.view, 2)?;
+                    row.measured = Some(measured);
+                    Some(distance)
+                };
                 let (image, _) = target_for(method).render_world(gpu, &mut world, &v.view, None)?;
                 progress(&format!("{} at {knob} px: the reference", v.name));
                 let reference = references.get(gpu, &p, &v, timer.as_ref())?;
-                row.against(reference, &image, &distance, size);
-                if method == Method::Hybrid {
-                    // Its surface is not its mesh's: the mesh's screen error and depth say
-                    // nothing of it (its FLIP does).
-                    row.measured = None;
-                    row.coverage = None;
-                }
+                row.against(reference, &image, depth.as_deref(), size);
                 rows.push(row);
             }
         }
@@ -528,7 +536,7 @@ fn march_row(
     let image = read(&caster.color)?;
     let distance: Vec<f32> = bytemuck::pod_collect_to_vec(&read(&caster.distance)?);
     row.unresolved = Some(distance.iter().filter(|&&d| d == -2.0).count());
-    row.against(reference, &image, &distance, size);
+    row.against(reference, &image, Some(&distance), size);
     Ok(row)
 }
 

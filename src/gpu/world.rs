@@ -167,8 +167,8 @@ pub struct LevelUniforms {
     /// The drawn bounds in this level's samples from its first sample (x0, z0, x1, z1):
     /// vertices are clamped into them (huge for the endless world).
     pub clip: [f32; 4],
-    /// Metres the vertices are raised by: 0, or for [`Method::Hybrid`] the level's
-    /// error bound ([`World::level_raise`]: the mesh then bounds the surface from above).
+    /// Metres the vertices are raised by: 0, or for [`Method::Hybrid`] the level's raise
+    /// ([`World::level_raise`]: the mesh then lies on or above the surface).
     pub raise: f32,
     /// Padding to 16 bytes.
     pub _pad: [u32; 3],
