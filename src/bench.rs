@@ -12,7 +12,6 @@ use crate::params::{NormalMethod, Shading, TerrainParams};
 use crate::{OrbitCamera, Terrain, View};
 use std::fmt::Write as _;
 use std::path::Path;
-use web_time::Instant;
 
 pub use crate::method::Method;
 
@@ -30,11 +29,12 @@ pub struct Config {
 }
 
 impl Config {
-    /// Whether this is relief's default way of drawing the scene: the mesh at the default
-    /// texture size, grid and normal method.
-    pub fn is_default(&self) -> bool {
+    /// Whether this is `candidate` (one of those the default is chosen from,
+    /// [`crate::choice`]) at the default texture size, grid and normal method.
+    pub fn is_candidate(&self, candidate: crate::choice::Candidate) -> bool {
         let d = TerrainParams::default();
-        self.method == Method::Mesh
+        self.method == candidate.method
+            && (self.method == Method::Mesh || self.samples == candidate.samples)
             && (self.params.size, self.params.grid, self.params.normals)
                 == (d.size, d.grid, d.normals)
     }
@@ -244,6 +244,20 @@ impl Row {
     }
 }
 
+/// The row of relief's default on the device measured: the tile's candidates
+/// ([`crate::choice::Candidate::all`]) at the default scene, chosen by their median draws as
+/// `relief render --method auto` chooses (the mesh where nothing was timed).
+pub fn default_row(rows: &[Row]) -> Option<usize> {
+    use crate::choice::{Candidate, Choice};
+    let candidates = Candidate::all(crate::WorldKind::Tile);
+    let row_of = |c: Candidate| rows.iter().position(|r| r.config.is_candidate(c));
+    let ms = candidates
+        .iter()
+        .filter_map(|&c| Some((c, row_of(c).map(|i| rows[i].render_ms)??)))
+        .collect();
+    row_of(Choice::decide(ms, 0, (0, 0)).candidate)
+}
+
 /// Where rows go as they are measured.
 pub trait Progress {
     /// Called before each configuration.
@@ -338,51 +352,16 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
     Some(v[v.len() / 2])
 }
 
-fn wait(gpu: &Gpu) -> Result<()> {
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map(|_| ())
-        .map_err(|e| Error::Readback(e.to_string()))
-}
-
 /// Runs `frame` back to back for the warm-up (at least `warmup` frames and `warmup_ms`), then
-/// `frames` timed frames, each submitted and waited for; returns the GPU timings and the wall
-/// time of each timed frame.
+/// `frames` timed frames ([`headless::measure_frames`]).
 pub(crate) fn measure(
     gpu: &Gpu,
     options: &Options,
     timer: Option<&GpuTimer>,
-    mut frame: impl FnMut(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
+    frame: impl FnMut(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
 ) -> Result<(Vec<crate::gpu::timing::Timings>, Vec<f64>)> {
-    let start = Instant::now();
-    let mut n = 0;
-    while n < options.warmup || start.elapsed().as_secs_f64() * 1e3 < options.warmup_ms {
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        frame(&mut encoder, None);
-        gpu.queue.submit([encoder.finish()]);
-        n += 1;
-        if n % 16 == 0 {
-            // Keep a bounded amount of work in flight.
-            wait(gpu)?;
-        }
-    }
-    wait(gpu)?;
-    let (mut times, mut wall) = (Vec::new(), Vec::new());
-    for _ in 0..options.frames {
-        let start = Instant::now();
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        frame(&mut encoder, timer);
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        wait(gpu)?;
-        wall.push(start.elapsed().as_secs_f64() * 1e3);
-        if let Some(t) = timer {
-            times.push(t.read(&gpu.device)?);
-        }
-    }
-    Ok((times, wall))
+    let warm = (options.warmup, options.warmup_ms);
+    headless::measure_frames(gpu, warm, options.frames, timer, frame)
 }
 
 fn mesh_row(
@@ -639,7 +618,8 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
          flip_mean,flip_p99,missed,extra,wrong_depth\n",
     );
     let quote = |s: &str| format!("\"{}\"", s.replace('"', "\"\""));
-    for r in rows {
+    let default = default_row(rows);
+    for (i, r) in rows.iter().enumerate() {
         let c = &r.config;
         let ray = c.method.ray_path().is_some();
         let own = c.method == Method::Blog;
@@ -649,7 +629,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
             quote(device),
             quote(backend),
             c.method.name(),
-            c.is_default(),
+            default == Some(i),
             options.width,
             options.height,
             // The blog's terrain is its own noise: no seed, frequency or gain of the scene's.
@@ -703,7 +683,8 @@ pub fn table(rows: &[Row]) -> String {
         "missed",
         "mesh px"
     );
-    for r in rows {
+    let default = default_row(rows);
+    for (i, r) in rows.iter().enumerate() {
         let c = &r.config;
         let ray = c.method.ray_path().is_some();
         let dash = |b: bool, s: String| if b { "-".to_owned() } else { s };
@@ -727,7 +708,11 @@ pub fn table(rows: &[Row]) -> String {
             r.coverage.missed,
             r.mesh
                 .map_or("-".to_owned(), |m| format!("{:.3}", m.rms_px)),
-            if c.is_default() { "  <- default" } else { "" },
+            if default == Some(i) {
+                "  <- default"
+            } else {
+                ""
+            },
         );
     }
     out
@@ -947,7 +932,11 @@ where
         )
         .map_err(|e| e.to_string())?;
     // The default: a ring of its own and its label right beside it.
-    for p in pts.iter().filter(|p| p.2.config.is_default()) {
+    let default = default_row(rows).map(|i| &rows[i]);
+    for p in pts
+        .iter()
+        .filter(|p| default.is_some_and(|d| std::ptr::eq(p.2, d)))
+    {
         let label = format!("default ({})", p.2.config.label());
         // Beside the marker, on whichever side has room for the text.
         let (px, _) = chart.backend_coord(&(p.0, p.1));

@@ -35,8 +35,21 @@ pub const HEIGHT_REFUSES: [&str; 6] = [
     "timings",
 ];
 
-/// `--method`'s names: the one method list.
-const METHODS: Kind = Kind::Choice(crate::Method::NAMES);
+/// `--method`'s names: `auto` (the default: [`crate::choice`]), then the one method list.
+const METHODS: Kind = Kind::Choice(&[
+    "auto",
+    "mesh",
+    "visibility",
+    "hybrid",
+    "raymarch",
+    "raymarch-fragment",
+    "raymarch-bandlimited",
+    "blog",
+    "reference",
+]);
+
+/// `--samples`: samples a pixel of the visibility method and the hybrid.
+const SAMPLES: Kind = Kind::Choice(&["1", "4"]);
 
 /// A world point for `relief height`.
 const POINT: Kind = Kind::Pair { max: 1e12 };
@@ -105,16 +118,38 @@ pub fn command() -> Command {
                 .arg(
                     Arg::new("method")
                         .long("method")
-                        .default_value("mesh")
+                        .default_value("auto")
                         .value_name("METHOD")
                         .help(format!(
-                            "how the frame is drawn: {} [allowed: {}]",
+                            "how the frame is drawn: auto (the fastest of {} on this GPU, \
+                             measured over a few frames first; --timings says which and why); {} \
+                             [default: auto] [allowed: {}]",
+                            ["tile", "endless"]
+                                .map(|w| {
+                                    let world = crate::WorldKind::from_name(w).unwrap_or_default();
+                                    let all = crate::choice::Candidate::all(world);
+                                    let names: Vec<String> =
+                                        all.iter().map(|c| c.to_string()).collect();
+                                    format!("{} in the {w} world", names.join(", "))
+                                })
+                                .join("; "),
                             crate::Method::ALL
                                 .iter()
                                 .map(|m| format!("{m} ({})", m.doc()))
                                 .collect::<Vec<_>>()
                                 .join("; "),
                             METHODS.allowed()
+                        )),
+                )
+                .arg(
+                    Arg::new("samples")
+                        .long("samples")
+                        .value_name("N")
+                        .help(format!(
+                            "samples a pixel the visibility method and the hybrid rasterise and \
+                             shade (4: edges anti-aliased; 1: a quarter of the raster work) \
+                             [default: 4] [allowed: {}]",
+                            SAMPLES.allowed()
                         )),
                 ),
         )
@@ -480,6 +515,86 @@ fn clap_error(e: clap::Error) -> i32 {
     2
 }
 
+/// How `relief render` draws: the method chosen by measurement on the device (`--method
+/// auto`, the default), or the method given with its samples a pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Drawn {
+    Auto,
+    Pinned(crate::Method, u32),
+}
+
+impl Drawn {
+    /// The method given where it is not mesh-based (a ray caster or the blog's pipeline), which
+    /// draws through its own path, not a [`Terrain`] or [`World`].
+    fn own_path(self) -> Option<crate::Method> {
+        match self {
+            Drawn::Pinned(m, _) if !m.is_mesh() => Some(m),
+            _ => None,
+        }
+    }
+}
+
+/// `--method` and `--samples` of `relief render`.
+fn drawn(m: &ArgMatches) -> Result<Drawn> {
+    let text = string(m, "method").unwrap_or_default();
+    let method =
+        match text.trim() {
+            "auto" => None,
+            t => Some(crate::Method::from_name(t).ok_or_else(|| {
+                Error::invalid("--method", table::shorten(&text), METHODS.allowed())
+            })?),
+        };
+    let Some(given) = string(m, "samples") else {
+        return Ok(method.map_or(Drawn::Auto, |m| {
+            Drawn::Pinned(m, crate::gpu::visibility::SAMPLES)
+        }));
+    };
+    let samples = match SAMPLES.parse(&given) {
+        Some(Value::Choice(n)) => n.parse::<u32>().unwrap_or(4),
+        _ => {
+            return Err(Error::invalid(
+                "--samples",
+                table::shorten(&given),
+                SAMPLES.allowed(),
+            ))
+        }
+    };
+    match method {
+        Some(m @ (crate::Method::Visibility | crate::Method::Hybrid)) => {
+            Ok(Drawn::Pinned(m, samples))
+        }
+        other => Err(Error::Usage(format!(
+            "--samples applies to --method visibility and hybrid only, not {}: the mesh \
+             anti-aliases with its target's 4x MSAA, the ray casters cast one ray a pixel, and \
+             auto measures its own",
+            other.map_or("auto".to_owned(), |m| m.to_string())
+        ))),
+    }
+}
+
+/// Sets `scene` to draw what `drawn` stands for (a mesh-based method): `auto` first draws a few
+/// frames of each candidate ([`headless::choose_method`]) and, with `timings`, says which it
+/// chose and why.
+fn resolve_drawn(
+    gpu: &Gpu,
+    drawn: Drawn,
+    mut scene: headless::TrialScene<'_>,
+    (timings, timer): (bool, Option<&GpuTimer>),
+) -> Result<()> {
+    match drawn {
+        Drawn::Pinned(method, samples) => {
+            scene.set(&gpu.device, crate::choice::Candidate { method, samples })
+        }
+        Drawn::Auto => {
+            let choice = headless::choose_method(gpu, scene, timer)?;
+            if timings {
+                println!("{}", choice.describe(&gpu.describe()));
+            }
+            Ok(())
+        }
+    }
+}
+
 /// Which command runs, with what it was given.
 enum Run {
     Window,
@@ -487,7 +602,7 @@ enum Run {
         out: PathBuf,
         width: u32,
         height: u32,
-        method: crate::Method,
+        method: Drawn,
         camera: Camera,
         stats: bool,
     },
@@ -833,12 +948,7 @@ fn run(top: &ArgMatches) -> Result<()> {
             out: PathBuf::from(string(m, "out").unwrap_or_default()),
             width: image_side(m, "width")?,
             height: image_side(m, "height")?,
-            method: {
-                let text = string(m, "method").unwrap_or_default();
-                crate::Method::from_name(&text).ok_or_else(|| {
-                    Error::invalid("--method", table::shorten(&text), METHODS.allowed())
-                })?
-            },
+            method: drawn(m)?,
             camera: camera(m)?,
             stats: m.get_flag("stats"),
         },
@@ -884,7 +994,11 @@ fn run(top: &ArgMatches) -> Result<()> {
             "it applies to relief render (and the window in the endless world) only",
         )?;
     }
-    if let Run::Render { method, .. } = run {
+    if let Run::Render {
+        method: Drawn::Pinned(method, _),
+        ..
+    } = run
+    {
         let why = if method == crate::Method::Blog {
             "the blog's pipeline bakes its own noise into its own texture and grid"
         } else {
@@ -1024,7 +1138,11 @@ fn run(top: &ArgMatches) -> Result<()> {
                 let region = region(m)?;
                 return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
             }
-            if let Run::Render { method, .. } = run {
+            if let Run::Render {
+                method: Drawn::Pinned(method, _),
+                ..
+            } = run
+            {
                 if !method.in_world() {
                     return Err(Error::Usage(format!(
                         "--method {method} draws the tile world only (its own terrain)"
@@ -1034,7 +1152,11 @@ fn run(top: &ArgMatches) -> Result<()> {
             return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
         }
     }
-    if let Run::Render { method, .. } = run {
+    if let Run::Render {
+        method: Drawn::Pinned(method, _),
+        ..
+    } = run
+    {
         if !method.in_tile() {
             return Err(Error::Usage(format!(
                 "--method {method} draws the endless world only so far (--world endless)"
@@ -1313,7 +1435,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             let view = world_view(&camera, &params, (width, height));
-            if !method.is_mesh() {
+            if let Some(method) = method.own_path() {
                 let image = headless::render_world_rays(
                     &gpu,
                     &params,
@@ -1339,13 +1461,10 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
                 }
                 return write_png(&out, width, height, image::ColorType::Rgba8, &image.rgba);
             }
-            let mut world = World::new(
-                &gpu.device,
-                &gpu.queue,
-                Offscreen::targets(headless::render_samples(method)),
-                params,
-            )?;
-            world.set_method(&gpu.device, method)?;
+            let targets = Offscreen::targets(headless::RENDER_SAMPLES);
+            let mut world = World::new(&gpu.device, &gpu.queue, targets, params)?;
+            let scene = headless::TrialScene::Endless(&mut world, &view);
+            resolve_drawn(&gpu, method, scene, (timings, timer.as_ref()))?;
             let (pixels, t) = headless::render_world_image(
                 &gpu,
                 &mut world,
@@ -1439,7 +1558,7 @@ fn render(
     params: &TerrainParams,
     out: &Path,
     (width, height): (u32, u32),
-    method: crate::Method,
+    method: Drawn,
     camera: &Camera,
     flags: Flags,
 ) -> Result<()> {
@@ -1449,14 +1568,12 @@ fn render(
     let timer = timer_if(timings, &gpu);
     let view = tile_view(camera, (width, height));
     let mut drawn = None;
-    let (pixels, t) = if method.is_mesh() {
-        let mut terrain = Terrain::new(
-            &gpu.device,
-            &gpu.queue,
-            Offscreen::targets(headless::render_samples(method)),
-            *params,
-        )?;
-        terrain.set_method(&gpu.device, method)?;
+    let own_path = method.own_path();
+    let (pixels, t) = if own_path.is_none() {
+        let targets = Offscreen::targets(headless::RENDER_SAMPLES);
+        let mut terrain = Terrain::new(&gpu.device, &gpu.queue, targets, *params)?;
+        let scene = headless::TrialScene::Tile(&mut terrain, &view, (width, height));
+        resolve_drawn(&gpu, method, scene, (timings, timer.as_ref()))?;
         let frame = headless::render_image(
             &gpu,
             &mut terrain,
@@ -1471,7 +1588,7 @@ fn render(
             terrain.world().method_bytes(),
         ));
         frame
-    } else if method == crate::Method::Blog {
+    } else if own_path == Some(crate::Method::Blog) {
         let scene = (params, &Shading::default());
         let image = headless::BlogImage::Pipeline;
         headless::render_blog(&gpu, scene, &view, (width, height), image, timer.as_ref())?
@@ -1482,7 +1599,7 @@ fn render(
             &Shading::default(),
             &view,
             (width, height),
-            method,
+            own_path.unwrap_or_default(),
             timer.as_ref(),
         )?
     };
@@ -1506,7 +1623,7 @@ fn render(
                     crate::gpu::world::mib(tile + s.texture_bytes())
                 );
             }
-            None if method == crate::Method::Blog => {
+            None if own_path == Some(crate::Method::Blog) => {
                 // The blog's grid, and its two 8-bit maps baked whole every frame.
                 let side = u64::from(crate::gpu::blog::BLOG_SIZE);
                 let bytes =

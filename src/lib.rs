@@ -35,6 +35,8 @@
 //! heightfield ray march (compute or fragment, optionally band-limited), and the reference ray
 //! cast of the continuous surface that every method is measured against (for the tile,
 //! [`gpu::raymarch`]; for the endless world, [`gpu::world_rays`]).
+//! `relief render` draws with the fastest mesh-based method on its GPU, measured before the
+//! frame ([`choice`]); the library draws with the mesh until told otherwise.
 //!
 //! ## Conventions
 //!
@@ -82,6 +84,7 @@ pub mod bench_look;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench_world;
 pub mod camera;
+pub mod choice;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod cli;
 pub mod clipmap;

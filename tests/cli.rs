@@ -229,7 +229,15 @@ fn bad_scene_files_and_outputs_exit_2() {
         let path = dir.join(name);
         std::fs::write(&path, text).unwrap();
         rejects(
-            &["render", "--out", o, "--scene", path.to_str().unwrap()],
+            &[
+                "render",
+                "--method",
+                "mesh",
+                "--out",
+                o,
+                "--scene",
+                path.to_str().unwrap(),
+            ],
             &[name],
         );
     }
@@ -244,6 +252,8 @@ fn bad_scene_files_and_outputs_exit_2() {
     // Bad values in the scene file are overridden by flags: flags win.
     let (code, _, err) = relief(&[
         "render",
+        "--method",
+        "mesh",
         "--out",
         o,
         "--scene",
@@ -285,6 +295,8 @@ fn unwritable_output_leaves_nothing() {
     std::fs::write(target.join("keep"), "x").unwrap();
     let (code, _, err) = relief(&[
         "render",
+        "--method",
+        "mesh",
         "--out",
         target.to_str().unwrap(),
         "--size",
@@ -412,6 +424,8 @@ fn render_writes_a_png_and_reports_timings() {
     let out = dir.join("frame.png");
     let (code, stdout, err) = relief(&[
         "render",
+        "--method",
+        "mesh",
         "--out",
         out.to_str().unwrap(),
         "--width",
@@ -436,6 +450,129 @@ fn render_writes_a_png_and_reports_timings() {
         "{stdout}"
     );
     assert_eq!(files_in(&dir), ["frame.png"]);
+}
+
+/// `relief render`'s default, `--method auto`: it draws a few frames of each candidate of its
+/// world on this GPU and keeps the fastest; `--timings` says which and why, and the image is
+/// the one the chosen method draws when given by its flags.
+#[test]
+fn render_chooses_its_method_by_measurement_and_says_which() {
+    use relief::choice::Candidate;
+    let dir = scratch("render-auto");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    for (world, extra) in [
+        (
+            relief::WorldKind::Tile,
+            &["--size", "64", "--grid", "16"][..],
+        ),
+        (relief::WorldKind::Endless, &["--world", "endless"][..]),
+    ] {
+        let size = ["--width", "96", "--height", "64"];
+        let auto = out("auto.png");
+        let args = [&["render", "--out", &auto, "--timings"][..], &size, extra].concat();
+        let (code, stdout, err) = relief(&args);
+        assert_eq!(code, 0, "{err}");
+        let line = stdout.lines().next().unwrap_or_default();
+        assert!(line.starts_with("method "), "{world:?}: {stdout}");
+        if line.contains("no GPU timestamps") {
+            assert!(line.contains("--method mesh"), "{line}");
+        } else {
+            // Each candidate is named with its median draw.
+            for c in Candidate::all(world) {
+                assert!(
+                    line.contains(&format!("{c} ")),
+                    "{world:?}: {c} missing: {line}"
+                );
+            }
+            assert!(line.contains(" ms"), "{line}");
+        }
+        // The flags of the chosen method, between the first parentheses.
+        let flags: Vec<&str> = line
+            .split_once('(')
+            .and_then(|(_, rest)| rest.split_once(')'))
+            .map(|(f, _)| f.split_whitespace().collect())
+            .unwrap_or_default();
+        assert_eq!(flags.first(), Some(&"--method"), "{line}");
+        let pinned = out("pinned.png");
+        let args = [&["render", "--out", &pinned][..], &flags, &size, extra].concat();
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{flags:?}: {err}");
+        let (a, b) = (image::open(&auto).unwrap(), image::open(&pinned).unwrap());
+        assert_eq!(
+            a.to_rgba8().as_raw(),
+            b.to_rgba8().as_raw(),
+            "{world:?}: auto's image is not {flags:?}'s"
+        );
+    }
+}
+
+/// `--samples` sets the samples a pixel of the visibility method and the hybrid (one sample
+/// leaves edges aliased), and is refused where it means nothing.
+#[test]
+fn render_samples_sets_the_visibility_methods_samples() {
+    let dir = scratch("render-samples");
+    let out = dir.join("s.png");
+    let o = out.to_str().unwrap();
+    for (method, world) in [("visibility", "tile"), ("hybrid", "endless")] {
+        let image = |samples: &str| {
+            let (code, _, err) = relief(&[
+                "render",
+                "--out",
+                o,
+                "--world",
+                world,
+                "--width",
+                "96",
+                "--height",
+                "64",
+                "--method",
+                method,
+                "--samples",
+                samples,
+            ]);
+            assert_eq!(code, 0, "{method} --samples {samples}: {err}");
+            image::open(&out).unwrap().to_rgba8().into_raw()
+        };
+        let (one, four) = (image("1"), image("4"));
+        let changed = one.iter().zip(&four).filter(|(a, b)| a != b).count();
+        assert!(
+            changed > 0,
+            "{method}: --samples 1 and 4 drew the same image"
+        );
+        // The default is 4.
+        let (code, _, err) = relief(&[
+            "render", "--out", o, "--world", world, "--width", "96", "--height", "64", "--method",
+            method,
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(
+            image::open(&out).unwrap().to_rgba8().into_raw(),
+            four,
+            "{method}"
+        );
+    }
+    rejects(
+        &[
+            "render",
+            "--out",
+            o,
+            "--method",
+            "visibility",
+            "--samples",
+            "2",
+        ],
+        &["--samples", "2", "1 or 4"],
+    );
+    for method in ["mesh", "auto", "raymarch"] {
+        rejects(
+            &["render", "--out", o, "--method", method, "--samples", "1"],
+            &["--samples", "visibility and hybrid", method],
+        );
+    }
+    rejects(
+        &["bake", "--out-dir", dir.to_str().unwrap(), "--samples", "1"],
+        &["--samples"],
+    );
 }
 
 #[test]
@@ -536,6 +673,17 @@ fn bench_quick_writes_a_csv_and_a_chart() {
         assert_eq!(row.len(), header.len(), "{row:?}");
     }
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    // One default, chosen among the mesh-based candidates as `relief render --method auto`
+    // chooses, from the rows' own draw times.
+    let defaults: Vec<&str> = rows
+        .iter()
+        .filter(|r| r[col("default")] == "true")
+        .map(|r| r[col("method")].as_str())
+        .collect();
+    assert!(
+        defaults == ["mesh"] || defaults == ["visibility"],
+        "{defaults:?}"
+    );
     let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
     for m in [
         "mesh",
@@ -624,6 +772,8 @@ fn stderr_stays_clean_and_a_missing_display_is_explained() {
     let out = dir.join("f.png");
     let (code, _, err) = relief(&[
         "render",
+        "--method",
+        "mesh",
         "--out",
         out.to_str().unwrap(),
         "--size",
@@ -691,7 +841,7 @@ fn every_parameter_changes_what_it_should_through_flags_and_scene_files() {
     // Renders with the small scene's flags, unless a scene file gives the scene.
     let render = |name: &str, extra: &[&str]| -> Vec<u8> {
         let out = dir.join(format!("{name}.png"));
-        let mut args = vec!["render", "--out", out.to_str().unwrap()];
+        let mut args = vec!["render", "--method", "mesh", "--out", out.to_str().unwrap()];
         args.extend_from_slice(&size);
         if !extra.contains(&"--scene") {
             args.extend_from_slice(&small_flags);
@@ -785,6 +935,8 @@ fn the_tiles_stats_count_its_own_textures_and_bake_timings_say_how_they_were_tak
         let out = dir.join(format!("{size}.png"));
         let args = [
             "render",
+            "--method",
+            "mesh",
             "--out",
             out.to_str().unwrap(),
             "--width",
@@ -949,6 +1101,8 @@ fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(Stri
     let out = dir.join(format!("{name}.png"));
     let mut args = vec![
         "render",
+        "--method",
+        "mesh",
         "--world",
         "endless",
         "--out",
@@ -1084,6 +1238,8 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         let out = dir.join(format!("{}-scene.png", row.key));
         let (code, stdout, err) = relief(&[
             "render",
+            "--method",
+            "mesh",
             "--scene",
             scene.to_str().unwrap(),
             "--out",
@@ -1156,6 +1312,8 @@ fn the_endless_world_heights_and_the_tile_camera() {
         let out = dir.join(format!("{name}.png"));
         let mut args = vec![
             "render",
+            "--method",
+            "mesh",
             "--out",
             out.to_str().unwrap(),
             "--width",
@@ -1508,6 +1666,8 @@ fn bake_world_endless_writes_a_region_that_recovers_the_twin() {
     rejects(
         &[
             "render",
+            "--method",
+            "mesh",
             "--out",
             "x.png",
             "--world",
@@ -1552,6 +1712,8 @@ fn endless_scene_files_and_camera_tables_round_trip() {
     let out = dir.join("auto.png");
     let (code, stdout, err) = relief(&[
         "render",
+        "--method",
+        "mesh",
         "--scene",
         scene.to_str().unwrap(),
         "--out",
@@ -1627,6 +1789,8 @@ fn endless_scene_files_and_camera_tables_round_trip() {
         rejects(
             &[
                 "render",
+                "--method",
+                "mesh",
                 "--scene",
                 path.to_str().unwrap(),
                 "--out",
@@ -1673,6 +1837,8 @@ fn endless_scene_files_and_camera_tables_round_trip() {
         let out = dir.join(format!("{name}.png"));
         let mut args = vec![
             "render",
+            "--method",
+            "mesh",
             "--out",
             out.to_str().unwrap(),
             "--width",

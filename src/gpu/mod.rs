@@ -221,6 +221,15 @@ impl Terrain {
         &self.targets
     }
 
+    /// Draws into `targets` from now on (see [`world::World::set_targets`]); nothing is
+    /// re-baked.
+    pub fn set_targets(&mut self, device: &wgpu::Device, targets: Targets) -> Result<()> {
+        targets.validate()?;
+        self.world.set_targets(device, targets)?;
+        self.targets = targets;
+        Ok(())
+    }
+
     /// The current shading.
     pub fn shading(&self) -> &Shading {
         self.world.shading()

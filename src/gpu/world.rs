@@ -368,22 +368,7 @@ impl World {
                     },
                 ],
             });
-            let pipeline = super::terrain_pipeline(
-                device,
-                (
-                    "relief:world",
-                    if tile.is_some() { "fs_tile" } else { "fs_main" },
-                ),
-                &layout,
-                &module,
-                &targets,
-                wgpu::PrimitiveTopology::TriangleList,
-                &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Patch>() as u64,
-                    step_mode: wgpu::VertexStepMode::Instance,
-                    attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
-                })],
-            );
+            let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
             let render_uniforms =
                 super::uniform_buffer::<RenderUniforms>(device, "relief:world:render-uniforms");
             let world_uniforms =
@@ -449,6 +434,28 @@ impl World {
                 raises: Vec::new(),
             }
         })
+    }
+
+    /// Draws into `targets` from now on (the host's pass changed its formats or MSAA
+    /// samples): rebuilds what draws into the host's pass (the mesh's and the sky's pipelines,
+    /// the visibility method's composite); nothing is re-baked.
+    pub fn set_targets(&mut self, device: &wgpu::Device, targets: Targets) -> Result<()> {
+        targets.validate()?;
+        if targets == self.targets {
+            return Ok(());
+        }
+        let tile = self.tile.is_some();
+        let (pipeline, sky) = scoped(device, || {
+            let pipeline = mesh_pipeline(device, (&self.layout, &self.module), &targets, tile);
+            let sky = super::sky::SkyPass::new(device, &targets, &self.render_uniforms);
+            (pipeline, sky)
+        })?;
+        self.pipeline = pipeline;
+        self.sky = sky;
+        self.targets = targets;
+        // The visibility method's composite draws into the host's pass: built again for these.
+        self.visibility = None;
+        self.set_method(device, self.method)
     }
 
     /// The parameters.
@@ -1401,6 +1408,29 @@ fn level_errors(land: &Landscape, floor: Option<i32>) -> Vec<(i32, f64)> {
     (0..MAX_LEVELS as i32)
         .map(|l| (finest + l, crate::clipmap::level_error(land, finest + l)))
         .collect()
+}
+
+/// The pipeline that draws the levels' patches into the host's pass: `fs_tile` for the tile,
+/// `fs_main` for the endless world.
+fn mesh_pipeline(
+    device: &wgpu::Device,
+    (layout, module): (&wgpu::BindGroupLayout, &wgpu::ShaderModule),
+    targets: &Targets,
+    tile: bool,
+) -> wgpu::RenderPipeline {
+    super::terrain_pipeline(
+        device,
+        ("relief:world", if tile { "fs_tile" } else { "fs_main" }),
+        layout,
+        module,
+        targets,
+        wgpu::PrimitiveTopology::TriangleList,
+        &[Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Patch>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+        })],
+    )
 }
 
 fn layout(params: &WorldParams, errors: &[(i32, f64)], k: f64) -> Clipmap {

@@ -1,0 +1,245 @@
+//! The default method, chosen per device by measurement.
+//!
+//! relief draws with a mesh-based method by design. Which of them is fastest depends on the
+//! GPU: on an H100, fragment work costs some 30x what the same arithmetic costs in compute,
+//! so the visibility method and the hybrid (a raster pass that shades nothing, then compute)
+//! beat the forward-shaded mesh; on a CPU rasteriser nothing says they do. So `relief render`
+//! (`--method auto`, its default) draws a few frames of each [`Candidate`] of its world on
+//! the device, and [`Choice::decide`] keeps the fastest. Every candidate draws at the forward
+//! mesh's accuracy or better (the benchmarks' FLIP against the reference, `docs/bench`), so
+//! the choice trades nothing a user sees for the time.
+//!
+//! This file is the decision; the frames are drawn by `gpu::headless::choose_method` (feature
+//! `headless`).
+
+use crate::gpu::timing::{Slot, Timings};
+use crate::{Method, WorldKind};
+
+/// A mesh-based method with its samples a pixel, as the choice of the default measures it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Candidate {
+    /// The method.
+    pub method: Method,
+    /// Samples a pixel: the host target's MSAA for the mesh (4), the method's own for the
+    /// visibility method and the hybrid (4 or 1, [`crate::World::set_visibility_samples`]).
+    pub samples: u32,
+}
+
+impl Candidate {
+    /// relief's forward-shaded mesh into a 4x MSAA target: the default where nothing was
+    /// measured.
+    pub const MESH: Candidate = Candidate {
+        method: Method::Mesh,
+        samples: 4,
+    };
+
+    /// The candidates for `world`, in order of preference: the mesh first; a later one wins
+    /// only by [`MARGIN`].
+    ///
+    /// Why these (the H100's benchmarks at 1920x1080, FLIP mean against the reference):
+    /// - the tile: `visibility` at 4 samples (0.0438) and at 1 (0.0439) draw the mesh's
+    ///   accuracy (0.0436); the differences are aliased edge pixels;
+    /// - the endless world: `visibility` at 4 samples draws the mesh's (0.0091, 0.0230, 0.0401
+    ///   on the horizon, ridge and oblique views against 0.0091, 0.0236, 0.0404); the hybrid at 1
+    ///   sample is closer than the mesh on all three (0.0079, 0.0161, 0.0239). The hybrid at 4
+    ///   samples is closer still, but never faster than at 1.
+    pub fn all(world: WorldKind) -> &'static [Candidate] {
+        const fn c(method: Method, samples: u32) -> Candidate {
+            Candidate { method, samples }
+        }
+        const TILE: [Candidate; 3] = [
+            Candidate::MESH,
+            c(Method::Visibility, 4),
+            c(Method::Visibility, 1),
+        ];
+        const ENDLESS: [Candidate; 3] = [
+            Candidate::MESH,
+            c(Method::Visibility, 4),
+            c(Method::Hybrid, 1),
+        ];
+        match world {
+            WorldKind::Tile => &TILE,
+            WorldKind::Endless => &ENDLESS,
+        }
+    }
+
+    /// The `relief render` flags that draw it.
+    pub fn flags(&self) -> String {
+        if self.method == Method::Mesh {
+            format!("--method {}", self.method)
+        } else {
+            format!("--method {} --samples {}", self.method, self.samples)
+        }
+    }
+}
+
+impl std::fmt::Display for Candidate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let plural = if self.samples == 1 { "" } else { "s" };
+        match self.method {
+            Method::Mesh => write!(f, "{}", self.method),
+            m => write!(f, "{m} at {} sample{plural} a pixel", self.samples),
+        }
+    }
+}
+
+/// How much faster a later [`Candidate`] must draw to replace an earlier one: the same frame
+/// timed in two runs moves by 1-2% on the H100 (the benchmarks' re-runs), so a smaller lead
+/// is noise, and the mesh (relief's design) keeps it.
+pub const MARGIN: f64 = 0.05;
+
+/// Why a [`Choice`] was made.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Why {
+    /// Each candidate's median draw time in milliseconds, over `frames` timed frames after a
+    /// warm-up, at `size` pixels.
+    Measured {
+        /// Each candidate and its median draw, in [`Candidate::all`]'s order.
+        ms: Vec<(Candidate, f64)>,
+        /// Timed frames a candidate.
+        frames: usize,
+        /// The image the frames were drawn at.
+        size: (u32, u32),
+    },
+    /// The device has no timestamp queries to measure with.
+    NoTimestamps,
+}
+
+/// The method the default draws with, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    /// What was chosen.
+    pub candidate: Candidate,
+    /// Why.
+    pub why: Why,
+}
+
+impl Choice {
+    /// The mesh, where nothing could be measured.
+    pub fn unmeasured() -> Self {
+        Self {
+            candidate: Candidate::MESH,
+            why: Why::NoTimestamps,
+        }
+    }
+
+    /// The fastest of `ms` (each candidate's median draw, in order of preference), where a
+    /// later candidate replaces the best so far only when [`MARGIN`] faster. The mesh where
+    /// `ms` is empty or holds no finite time.
+    pub fn decide(ms: Vec<(Candidate, f64)>, frames: usize, size: (u32, u32)) -> Self {
+        let mut best: Option<(Candidate, f64)> = None;
+        for &(c, t) in &ms {
+            if !(t.is_finite() && t >= 0.0) {
+                continue;
+            }
+            match best {
+                Some((_, b)) if t >= b * (1.0 - MARGIN) => {}
+                _ => best = Some((c, t)),
+            }
+        }
+        match best {
+            Some((candidate, _)) => Self {
+                candidate,
+                why: Why::Measured { ms, frames, size },
+            },
+            None => Self::unmeasured(),
+        }
+    }
+
+    /// One line for people: which, and why (`device` names the GPU measured on).
+    pub fn describe(&self, device: &str) -> String {
+        let c = self.candidate;
+        match &self.why {
+            Why::NoTimestamps => format!(
+                "method {c} ({}): {device} has no GPU timestamps to measure the methods by, so \
+                 relief's mesh",
+                c.flags()
+            ),
+            Why::Measured { ms, frames, size } => {
+                let times: Vec<String> = ms.iter().map(|(c, t)| format!("{c} {t:.3} ms")).collect();
+                format!(
+                    "method {c} ({}), the fastest draw measured on {device} at {}x{} (median of \
+                     {frames} frames each, a method {:.0}% faster to replace one listed before \
+                     it): {}",
+                    c.flags(),
+                    size.0,
+                    size.1,
+                    MARGIN * 100.0,
+                    times.join(", ")
+                )
+            }
+        }
+    }
+}
+
+/// A frame's draw in milliseconds from its timings: the host's render pass, and the visibility
+/// method's (or the hybrid's) raster and shading passes before it. `None` where the render pass
+/// was not timed.
+pub fn draw_ms(t: &Timings) -> Option<f64> {
+    let render = t[Slot::Render as usize]?;
+    Some(render + t[Slot::Raster as usize].unwrap_or(0.0) + t[Slot::Shade as usize].unwrap_or(0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const V4: Candidate = Candidate {
+        method: Method::Visibility,
+        samples: 4,
+    };
+    const V1: Candidate = Candidate {
+        method: Method::Visibility,
+        samples: 1,
+    };
+
+    #[test]
+    fn the_fastest_wins_by_the_margin_and_the_mesh_keeps_a_tie() {
+        // The H100's tile: visibility at 1 sample.
+        let c = Choice::decide(
+            vec![(Candidate::MESH, 3.41), (V4, 1.90), (V1, 1.11)],
+            5,
+            (1920, 1080),
+        );
+        assert_eq!(c.candidate, V1);
+        let line = c.describe("GPU");
+        assert!(line.contains("--method visibility --samples 1"), "{line}");
+        assert!(line.contains("mesh 3.410 ms"), "{line}");
+        // Within the margin the earlier candidate stays.
+        let tie = Choice::decide(vec![(Candidate::MESH, 1.0), (V4, 0.97)], 5, (8, 8));
+        assert_eq!(tie.candidate, Candidate::MESH);
+        // A slower later one never wins; a faster middle one does.
+        let mid = Choice::decide(
+            vec![(Candidate::MESH, 1.0), (V4, 0.5), (V1, 0.49)],
+            5,
+            (8, 8),
+        );
+        assert_eq!(mid.candidate, V4);
+    }
+
+    #[test]
+    fn nothing_measured_is_the_mesh_said_in_words() {
+        let none = Choice::decide(vec![(V4, f64::NAN)], 5, (8, 8));
+        assert_eq!(none.candidate, Candidate::MESH);
+        let line = Choice::unmeasured().describe("SwiftShader");
+        assert!(line.contains("no GPU timestamps"), "{line}");
+        assert!(line.contains("--method mesh"), "{line}");
+    }
+
+    #[test]
+    fn every_candidate_is_a_mesh_method_its_world_draws() {
+        for world in [WorldKind::Tile, WorldKind::Endless] {
+            let all = Candidate::all(world);
+            assert_eq!(all[0], Candidate::MESH);
+            for c in all {
+                assert!(c.method.is_mesh(), "{c}");
+                let drawn = match world {
+                    WorldKind::Tile => c.method.in_tile(),
+                    WorldKind::Endless => c.method.in_world(),
+                };
+                assert!(drawn, "{c} in {world:?}");
+                assert!(matches!(c.samples, 1 | 4), "{c}");
+            }
+        }
+    }
+}
