@@ -1976,7 +1976,7 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
     );
     // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the
     // default world's refusal 10^9 m out, the flights (2 speeds: the mesh with the morph on
-    // and off, the hybrid).
+    // and off, the visibility method, the hybrid).
     let lines = |name: &str| {
         std::fs::read_to_string(dir.join(name))
             .unwrap()
@@ -1984,7 +1984,7 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             .count()
     };
     assert_eq!(lines("shadow.csv"), 1 + 9);
-    assert_eq!(lines("motion.csv"), 1 + 6);
+    assert_eq!(lines("motion.csv"), 1 + 8);
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance
@@ -1992,6 +1992,17 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             .any(|l| l.starts_with("1e9,\"x and z within")),
         "{distance}"
     );
+    // The visibility method and the hybrid beside the mesh on the distance axis.
+    for column in [
+        "jitter_visibility",
+        "missed_hybrid",
+        "flip_hybrid_vs_reference",
+    ] {
+        assert!(
+            distance.lines().next().unwrap_or_default().contains(column),
+            "distance.csv lacks {column}"
+        );
+    }
     assert!(
         stdout.contains("refused: the eye must be x and z within"),
         "{stdout}"

@@ -15,6 +15,11 @@
 //! - **seams**: pixels where the reference sees terrain and the mesh sky (holes, cracks
 //!   between levels) or the reverse, and the mesh's FLIP against the reference.
 //!
+//! The visibility method and the hybrid ([`OTHER_METHODS`], one sample a pixel as relief's
+//! default chooses them on an H100) are measured beside the mesh: their jitter, seams and
+//! FLIP, from their own pictures and composited depth. They bake the same levels and raster the
+//! same mesh, but shade (and the hybrid marches) in a compute pass of their own.
+//!
 //! Eyes beyond [`crate::clipmap::max_eye`] are refused by the world (their level sample
 //! coordinates would not fit 32 bits): such a row says so.
 
@@ -65,6 +70,22 @@ impl DistanceOptions {
     }
 }
 
+/// The methods measured beside the mesh, each at one sample a pixel.
+pub const OTHER_METHODS: [Method; 2] = [Method::Visibility, Method::Hybrid];
+
+/// What a method drew at one distance, against the reference.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Seen {
+    /// Mean absolute 8-bit change of its picture under the eye's step.
+    pub step_change: f64,
+    /// Fraction of pixels where the reference sees terrain and it sky, and the reverse.
+    pub missed: f64,
+    /// See `missed`.
+    pub extra: f64,
+    /// Its mean FLIP against the reference.
+    pub flip: f64,
+}
+
 /// One distance.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DistanceRow {
@@ -84,12 +105,19 @@ pub struct DistanceRow {
     pub extra: f64,
     /// Mean FLIP of the mesh against the reference.
     pub flip: f64,
+    /// The same for each of [`OTHER_METHODS`], in order.
+    pub others: [Seen; OTHER_METHODS.len()],
 }
 
 impl DistanceRow {
     /// The step's change of the mesh's picture over its change of the reference's.
     pub fn jitter(&self) -> f64 {
         self.step_change[0] / self.step_change[1].max(1e-9)
+    }
+
+    /// The same for [`OTHER_METHODS`]`[i]`.
+    pub fn jitter_of(&self, i: usize) -> f64 {
+        self.others[i].step_change / self.step_change[1].max(1e-9)
     }
 }
 
@@ -116,12 +144,21 @@ pub fn distances(
     params.validate()?;
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
     world.set_bake_budget(u64::MAX);
+    let mut others = Vec::new();
+    for method in OTHER_METHODS {
+        let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
+        w.set_bake_budget(u64::MAX);
+        w.set_visibility_samples(1)?;
+        w.set_method(&gpu.device, method)?;
+        others.push(w);
+    }
     let (w, h) = options.size;
     let target = Offscreen::new(&gpu.device, w, h, 1)?;
     let mut rows = Vec::new();
     for (done, &d) in options.distances.iter().enumerate() {
         let view = distance_view(params, d, options.size);
-        let row = match measure(gpu, params, (&mut world, &target), &view, options) {
+        let measured = measure(gpu, params, (&mut world, &target), &view, options);
+        let row = match measured.and_then(|row| seen_by_others(gpu, &mut others, &target, row)) {
             Ok(row) => row,
             // Only the world's refusal of the eye is a finding; anything else is an error.
             Err(crate::Error::InvalidParam { name, allowed, .. }) if name == "eye" => DistanceRow {
@@ -134,6 +171,7 @@ pub fn distances(
                 missed: 0.0,
                 extra: 0.0,
                 flip: 0.0,
+                others: Default::default(),
             },
             Err(e) => return Err(e),
         };
@@ -143,13 +181,55 @@ pub fn distances(
     Ok(rows)
 }
 
+/// Fills `row.others` from `worlds` (one per [`OTHER_METHODS`]) at the eye `row` was measured
+/// at, against the reference pictures [`measure`] kept.
+fn seen_by_others(
+    gpu: &Gpu,
+    worlds: &mut [World],
+    target: &Offscreen,
+    (mut row, m): (DistanceRow, Measured),
+) -> Result<DistanceRow> {
+    let (w, h) = m.view.size;
+    for (i, world) in worlds.iter_mut().enumerate() {
+        let (a, _) = target.render_world(gpu, world, &m.view, None)?;
+        let (b, _) = target.render_world(gpu, world, &m.stepped, None)?;
+        let (_, distance) = headless::world_depth_metrics(gpu, world, &m.view, 1)?;
+        let coverage = metrics::coverage(&m.reference.distance, &distance, 0.01);
+        let (flip, _) =
+            metrics::image_error(&metrics::rgb(&m.reference.rgba), &metrics::rgb(&a), w, h);
+        row.others[i] = Seen {
+            step_change: change(&a, &b),
+            missed: coverage.missed,
+            extra: coverage.extra,
+            flip,
+        };
+    }
+    Ok(row)
+}
+
+/// Mean absolute 8-bit difference of two pictures.
+fn change(a: &[u8], b: &[u8]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| f64::from(x.abs_diff(*y)))
+        .sum::<f64>()
+        / a.len() as f64
+}
+
+/// What [`measure`] keeps for the other methods: the two eyes and the reference's picture.
+struct Measured {
+    view: WorldView,
+    stepped: WorldView,
+    reference: headless::RayImage,
+}
+
 fn measure(
     gpu: &Gpu,
     params: &WorldParams,
     (world, target): (&mut World, &Offscreen),
     view: &WorldView,
     options: &DistanceOptions,
-) -> Result<DistanceRow> {
+) -> Result<(DistanceRow, Measured)> {
     let (w, h) = options.size;
     let land = &params.land;
     // The mesh, and the same after the step.
@@ -164,13 +244,6 @@ fn measure(
         headless::render_world_rays(gpu, params, &shading, v, Method::Reference, None)
     };
     let (reference, reference_b) = (cast(view)?, cast(&stepped)?);
-    let change = |a: &[u8], b: &[u8]| {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| f64::from(x.abs_diff(*y)))
-            .sum::<f64>()
-            / a.len() as f64
-    };
     let coverage = metrics::coverage(&reference.distance, &mesh_distance, 0.01);
     let (flip, _) =
         metrics::image_error(&metrics::rgb(&reference.rgba), &metrics::rgb(&mesh), w, h);
@@ -196,7 +269,7 @@ fn measure(
             height_error_m = height_error_m.max(e);
         }
     })?;
-    Ok(DistanceRow {
+    let row = DistanceRow {
         distance: 0.0,
         refused: None,
         height_error_m,
@@ -209,18 +282,44 @@ fn measure(
         missed: coverage.missed,
         extra: coverage.extra,
         flip,
-    })
+        others: Default::default(),
+    };
+    let kept = Measured {
+        view: *view,
+        stepped,
+        reference,
+    };
+    Ok((row, kept))
 }
 
 /// The CSV: a header and a row per distance, with the device and backend.
 pub fn distance_csv(rows: &[DistanceRow], device: &str, backend: &str) -> String {
     let mut out = String::from(
-        "distance_m,refused,height_error_m,screen_error_p99_px,screen_error_max_px,step_change_mesh,step_change_reference,jitter,missed,extra,flip_mesh_vs_reference,device,backend\n",
+        "distance_m,refused,height_error_m,screen_error_p99_px,screen_error_max_px,step_change_mesh,step_change_reference,jitter,missed,extra,flip_mesh_vs_reference,",
     );
+    for m in OTHER_METHODS {
+        let _ = write!(
+            out,
+            "jitter_{m},missed_{m},extra_{m},flip_{m}_vs_reference,"
+        );
+    }
+    out.push_str("device,backend\n");
     for r in rows {
+        let others: String = (0..OTHER_METHODS.len())
+            .map(|i| {
+                let o = &r.others[i];
+                format!(
+                    "{:.3},{:.5},{:.5},{:.4},",
+                    r.jitter_of(i),
+                    o.missed,
+                    o.extra,
+                    o.flip
+                )
+            })
+            .collect();
         let _ = writeln!(
             out,
-            "{:e},{},{:.3e},{:.3},{:.3},{:.4},{:.4},{:.3},{:.5},{:.5},{:.4},{device},{backend}",
+            "{:e},{},{:.3e},{:.3},{:.3},{:.4},{:.4},{:.3},{:.5},{:.5},{:.4},{others}{device},{backend}",
             r.distance,
             r.refused
                 .as_deref()
@@ -242,14 +341,14 @@ pub fn distance_csv(rows: &[DistanceRow], device: &str, backend: &str) -> String
 /// The table: a row per distance.
 pub fn distance_table(rows: &[DistanceRow]) -> String {
     let mut out = String::from(
-        "distance m   height err m  screen px p99/max   jitter   missed/extra     FLIP\n",
+        "distance m   height err m  screen px p99/max   jitter   missed/extra     FLIP   visibility: jitter missed FLIP   hybrid: jitter missed FLIP\n",
     );
     for r in rows {
         if let Some(why) = &r.refused {
             let _ = writeln!(out, "{:<12.0e} refused: the eye must be {why}", r.distance);
             continue;
         }
-        let _ = writeln!(
+        let _ = write!(
             out,
             "{:<12.0e} {:>12.2e} {:>8.2} / {:>6.2} {:>8.2} {:>7.4} / {:.4} {:>8.4}",
             r.distance,
@@ -261,8 +360,21 @@ pub fn distance_table(rows: &[DistanceRow]) -> String {
             r.extra,
             r.flip
         );
+        for (i, o) in r.others.iter().enumerate() {
+            let _ = write!(
+                out,
+                "   {:>8.2} {:>7.4} {:>6.4}",
+                r.jitter_of(i),
+                o.missed + o.extra,
+                o.flip
+            );
+        }
+        out.push('\n');
     }
-    out.push_str("jitter: the mesh's change under a 1 cm step over the reference's\n");
+    out.push_str(
+        "jitter: a method's change under a 1 cm step over the reference's; missed: terrain \
+         missed or added against the reference; visibility and hybrid at 1 sample a pixel\n",
+    );
     out
 }
 
@@ -296,11 +408,21 @@ where
     let d0 = rows.iter().map(|r| r.distance).fold(f64::MAX, f64::min) / 2.0;
     let d1 = rows.iter().map(|r| r.distance).fold(f64::MIN, f64::max) * 2.0;
     let measured: Vec<&DistanceRow> = rows.iter().filter(|r| r.refused.is_none()).collect();
-    let series: [Series; 3] = [
+    let series: [Series; 5] = [
         (
             "jitter: a 1 cm step's change, mesh / reference",
             BLACK.to_rgba(),
             Box::new(|r| r.jitter()),
+        ),
+        (
+            "jitter, visibility / reference",
+            Palette99::pick(1).to_rgba(),
+            Box::new(|r| r.jitter_of(0)),
+        ),
+        (
+            "jitter, hybrid / reference",
+            Palette99::pick(3).to_rgba(),
+            Box::new(|r| r.jitter_of(1)),
         ),
         (
             "mesh screen error p99, px",

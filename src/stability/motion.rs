@@ -12,8 +12,9 @@
 //! - **falling behind**: frames drawn with texels still unbaked, and the most waiting.
 //!
 //! The mesh flies at each knob with the morph on, and at the world's knob with it off; the
-//! hybrid (one sample a pixel) flies at the world's knob with the morph on: it draws the
-//! continuous surface, refined from the levels' raised mesh.
+//! visibility method and the hybrid (one sample a pixel) fly at the world's knob with the morph
+//! on: the first shades the same raster in compute, the second draws the continuous surface,
+//! refined from the levels' raised mesh.
 
 use crate::error::Result;
 use crate::gpu::headless::{Gpu, Offscreen};
@@ -72,7 +73,7 @@ impl MotionOptions {
 /// One flight: a method, a speed, a knob, the morph on or off.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionRow {
-    /// The mesh or the hybrid.
+    /// The mesh, the visibility method or the hybrid.
     pub method: Method,
     /// Metres a frame.
     pub speed: f64,
@@ -130,8 +131,10 @@ pub fn motion(
     for &speed in &options.speeds {
         flights.push((speed, params.pixel_error, false, Method::Mesh));
     }
-    for &speed in &options.speeds {
-        flights.push((speed, params.pixel_error, true, Method::Hybrid));
+    for method in [Method::Visibility, Method::Hybrid] {
+        for &speed in &options.speeds {
+            flights.push((speed, params.pixel_error, true, method));
+        }
     }
     let target = Offscreen::new(&gpu.device, options.size.0, options.size.1, 1)?;
     let mut rows = Vec::new();
@@ -144,7 +147,8 @@ pub fn motion(
         let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
         world.set_morphing(morphing);
         world.set_bake_budget(options.budget);
-        if method == Method::Hybrid {
+        if method != Method::Mesh {
+            // At one sample a pixel, as relief's default chooses them on an H100.
             world.set_visibility_samples(1)?;
             world.set_method(&gpu.device, method)?;
         }

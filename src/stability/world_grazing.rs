@@ -2,7 +2,8 @@
 //! 0.5° to 30°, the world's methods against an f64 ray cast of the twin's continuous surface
 //! ([`crate::landscape::Landscape::intersect`]) at sampled pixels, judged as on the tile
 //! (the tile axis's judge): the mesh (the clipmap, whose layout bounds its screen error by the
-//! knob), the hybrid (that mesh raised, each pixel-centre ray refined to the continuous surface
+//! knob), the visibility method (that mesh rasterised at one sample a pixel, its composited
+//! depth), the hybrid (that mesh raised, each pixel-centre ray refined to the continuous surface
 //! from it: one sample a pixel, so its depth is the pixel centre's), relief's reference cast,
 //! and the seed's march at its own step factor and at 0.8, every octave. Rows are [`super::GrazingRow`]s whose `height_scale` is the world's peak height.
 
@@ -44,6 +45,7 @@ pub fn world_options(params: &WorldParams, quick: bool) -> Options {
             seed(SeedMarch::default().step_factor),
             seed(0.8),
             own(Method::Mesh),
+            own(Method::Visibility),
             own(Method::Hybrid),
             own(Method::Reference),
         ],
@@ -80,9 +82,15 @@ pub fn world_grazing(
         .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
         .collect();
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
-    let mut hybrid = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
-    hybrid.set_visibility_samples(1)?;
-    hybrid.set_method(&gpu.device, Method::Hybrid)?;
+    // The compute-shaded methods at one sample a pixel: each pixel's depth is its centre's.
+    let at_one_sample = |method| -> Result<World> {
+        let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
+        w.set_visibility_samples(1)?;
+        w.set_method(&gpu.device, method)?;
+        Ok(w)
+    };
+    let mut visibility = at_one_sample(Method::Visibility)?;
+    let mut hybrid = at_one_sample(Method::Hybrid)?;
     let caster = RayMarcher::for_scene(&gpu.device, w, h, RayScene::World)?;
     let mut rows = Vec::new();
     for (i, &elevation) in options.elevations.iter().enumerate() {
@@ -110,6 +118,10 @@ pub fn world_grazing(
         for m in &options.marchers {
             let distance: Vec<f32> = match m.method {
                 Method::Mesh => headless::world_depth_metrics(gpu, &mut world, &view, 1)?.1,
+                // The raster's depth, as its composite writes it.
+                Method::Visibility => {
+                    headless::world_depth_metrics(gpu, &mut visibility, &view, 1)?.1
+                }
                 // The depth its composite writes: the refined surface's at the pixel centre.
                 Method::Hybrid => headless::world_depth_metrics(gpu, &mut hybrid, &view, 1)?.1,
                 _ => {
