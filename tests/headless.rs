@@ -1,5 +1,6 @@
 //! The headless helpers at sizes past one buffer or one texture: readback in bands and
-//! rendering in tiles give exactly what one piece would.
+//! rendering in tiles give exactly what one piece would. And the choice of the default method:
+//! moving a built terrain to other targets, and measuring the candidates.
 
 mod common;
 
@@ -115,4 +116,91 @@ fn height_at_agrees_with_the_rendered_depth() {
     // The mesh's interpolation error at this grid (under 1e-3 of the 0.5 height scale measured)
     // plus depth-buffer precision: a wrong world mapping is off by 0.05 or more.
     assert!(worst < 5e-3, "{worst}");
+}
+
+/// `set_targets` moves a built world to another MSAA without re-baking: it then draws what a
+/// world built for those targets draws.
+#[test]
+fn set_targets_draws_as_a_world_built_for_them() {
+    let gpu = common::gpu();
+    let params = TerrainParams {
+        size: 128,
+        grid: 32,
+        ..Default::default()
+    };
+    let size = (64, 48);
+    let view = OrbitCamera::default().view(size.0 as f32 / size.1 as f32);
+    let draw = |terrain: &mut Terrain, samples: u32| {
+        headless::render_image(&gpu, terrain, &view, size, headless::TILE, None)
+            .unwrap_or_else(|e| panic!("{samples}x: {e}"))
+            .0
+    };
+    let mut moved = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        params,
+    )
+    .unwrap();
+    let four = draw(&mut moved, 4);
+    moved
+        .set_targets(&gpu.device, Offscreen::targets(1))
+        .unwrap();
+    let one = draw(&mut moved, 1);
+    let mut built = Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    assert_eq!(one, draw(&mut built, 1), "moved to 1x, not as built for 1x");
+    assert_ne!(one, four, "4x and 1x drew the same edges");
+    // Targets are validated as at creation.
+    let bad = relief::Targets {
+        sample_count: 3,
+        ..Offscreen::targets(1)
+    };
+    let e = moved.set_targets(&gpu.device, bad).unwrap_err().to_string();
+    assert!(e.contains("sample_count") && e.contains("1 or 4"), "{e}");
+}
+
+/// `choose_method` leaves the scene set to draw what it chose, into the target it chose for.
+#[test]
+fn choose_method_leaves_the_terrain_set_to_its_choice() {
+    let gpu = common::gpu();
+    let params = TerrainParams {
+        size: 128,
+        grid: 32,
+        ..Default::default()
+    };
+    let size = (64, 48);
+    let view = OrbitCamera::default().view(size.0 as f32 / size.1 as f32);
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        params,
+    )
+    .unwrap();
+    let scene = headless::TrialScene::Tile(&mut terrain, &view, size);
+    let choice = headless::choose_method(&gpu, scene, None).unwrap();
+    let chosen = choice.candidate;
+    assert!(
+        relief::choice::Candidate::all(relief::WorldKind::Tile).contains(&chosen),
+        "{chosen}"
+    );
+    assert_eq!(terrain.method(), chosen.method);
+    assert_eq!(
+        terrain.targets().sample_count,
+        headless::render_samples(chosen.method)
+    );
+    if let relief::choice::Why::Measured {
+        ms,
+        frames,
+        size: at,
+    } = &choice.why
+    {
+        assert_eq!(ms.len(), 3);
+        assert!(ms.iter().all(|(_, t)| *t > 0.0), "{ms:?}");
+        assert_eq!((*frames, *at), (headless::TRIAL_FRAMES as usize, size));
+    }
+    // It draws.
+    let (image, _) =
+        headless::render_image(&gpu, &mut terrain, &view, size, headless::TILE, None).unwrap();
+    assert_eq!(image.len(), 64 * 48 * 4);
 }
