@@ -123,7 +123,7 @@ pub fn command() -> Command {
                         .help(format!(
                             "how the frame is drawn: auto (the fastest of {} on this GPU, \
                              measured over a few frames first; --timings says which and why); {} \
-                             [default: auto] [allowed: {}]",
+                             [allowed: {}]",
                             ["tile", "endless"]
                                 .map(|w| {
                                     let world = crate::WorldKind::from_name(w).unwrap_or_default();
@@ -579,14 +579,14 @@ fn resolve_drawn(
     gpu: &Gpu,
     drawn: Drawn,
     mut scene: headless::TrialScene<'_>,
-    (timings, timer): (bool, Option<&GpuTimer>),
+    timings: bool,
 ) -> Result<()> {
     match drawn {
         Drawn::Pinned(method, samples) => {
             scene.set(&gpu.device, crate::choice::Candidate { method, samples })
         }
         Drawn::Auto => {
-            let choice = headless::choose_method(gpu, scene, timer)?;
+            let choice = headless::choose_method(gpu, scene)?;
             if timings {
                 println!("{}", choice.describe(&gpu.describe()));
             }
@@ -1464,7 +1464,7 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             let targets = Offscreen::targets(headless::RENDER_SAMPLES);
             let mut world = World::new(&gpu.device, &gpu.queue, targets, params)?;
             let scene = headless::TrialScene::Endless(&mut world, &view);
-            resolve_drawn(&gpu, method, scene, (timings, timer.as_ref()))?;
+            resolve_drawn(&gpu, method, scene, timings)?;
             let (pixels, t) = headless::render_world_image(
                 &gpu,
                 &mut world,
@@ -1573,7 +1573,7 @@ fn render(
         let targets = Offscreen::targets(headless::RENDER_SAMPLES);
         let mut terrain = Terrain::new(&gpu.device, &gpu.queue, targets, *params)?;
         let scene = headless::TrialScene::Tile(&mut terrain, &view, (width, height));
-        resolve_drawn(&gpu, method, scene, (timings, timer.as_ref()))?;
+        resolve_drawn(&gpu, method, scene, timings)?;
         let frame = headless::render_image(
             &gpu,
             &mut terrain,

@@ -469,7 +469,12 @@ fn render_chooses_its_method_by_measurement_and_says_which() {
     ] {
         let size = ["--width", "96", "--height", "64"];
         let auto = out("auto.png");
-        let args = [&["render", "--out", &auto, "--timings"][..], &size, extra].concat();
+        let args = [
+            &["render", "--out", &auto, "--timings", "--stats"][..],
+            &size,
+            extra,
+        ]
+        .concat();
         let (code, stdout, err) = relief(&args);
         assert_eq!(code, 0, "{err}");
         let line = stdout.lines().next().unwrap_or_default();
@@ -494,9 +499,23 @@ fn render_chooses_its_method_by_measurement_and_says_which() {
             .unwrap_or_default();
         assert_eq!(flags.first(), Some(&"--method"), "{line}");
         let pinned = out("pinned.png");
-        let args = [&["render", "--out", &pinned][..], &flags, &size, extra].concat();
-        let (code, _, err) = relief(&args);
+        let args = [
+            &["render", "--out", &pinned, "--stats"][..],
+            &flags,
+            &size,
+            extra,
+        ]
+        .concat();
+        let (code, pinned_stdout, err) = relief(&args);
         assert_eq!(code, 0, "{flags:?}: {err}");
+        // The same stats: the trial leaves the world to bake and draw as the pinned method.
+        let stats = |out: &str| -> Vec<String> {
+            out.lines()
+                .filter(|l| !l.starts_with("method ") && !l.starts_with("timings"))
+                .map(str::to_owned)
+                .collect()
+        };
+        assert_eq!(stats(&stdout), stats(&pinned_stdout), "{world:?}");
         let (a, b) = (image::open(&auto).unwrap(), image::open(&pinned).unwrap());
         assert_eq!(
             a.to_rgba8().as_raw(),

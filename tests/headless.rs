@@ -177,14 +177,21 @@ fn choose_method_leaves_the_terrain_set_to_its_choice() {
         params,
     )
     .unwrap();
+    terrain.set_viewport((320, 200));
     let scene = headless::TrialScene::Tile(&mut terrain, &view, size);
-    let choice = headless::choose_method(&gpu, scene, None).unwrap();
+    let choice = headless::choose_method(&gpu, scene).unwrap();
     let chosen = choice.candidate;
     assert!(
         relief::choice::Candidate::all(relief::WorldKind::Tile).contains(&chosen),
         "{chosen}"
     );
     assert_eq!(terrain.method(), chosen.method);
+    if chosen.method != relief::Method::Mesh {
+        assert_eq!(terrain.visibility_samples(), chosen.samples);
+    }
+    // The trial's viewport is put back, and the next frame bakes afresh.
+    assert_eq!(terrain.viewport(), (320, 200));
+    assert!(terrain.needs_bake());
     assert_eq!(
         terrain.targets().sample_count,
         headless::render_samples(chosen.method)

@@ -57,7 +57,8 @@ fn land_hit(ro: vec3<f32>, dir: vec3<f32>, span: vec2<f32>) -> f32 {
         }
     }
     let w = f_lo / max(f_lo - f_hi, 1e-30);
-    return mix(lo, hi, clamp(w, 0.0, 1.0));
+    // A NaN clearance (w != w) keeps the halvings' bracket start rather than a NaN depth.
+    return select(mix(lo, hi, clamp(w, 0.0, 1.0)), lo, w != w);
 }
 
 // Distance along the unit camera-relative `dir` to the continuous surface, searched from `t0`

@@ -380,15 +380,13 @@ pub const TRIAL_FRAMES: u32 = 5;
 /// Chooses the method of the default ([`crate::choice`]) and leaves `scene` set to draw it
 /// ([`TrialScene::set`]): draws [`TRIAL_FRAMES`] timed frames of each of the world's
 /// [`Candidate`]s into an offscreen target of its own sample count, after a warm-up, and keeps
-/// the fastest median draw. The levels are baked once, for the first. A size over [`TILE`] a
-/// side is measured scaled down to fit it (a larger image is drawn in tiles of that size).
-/// The mesh, said so, where the device has no timestamp queries. `bake_timer` times the bake
-/// (as [`bake_whole`] does), to be resolved with the caller's next frame.
-pub fn choose_method(
-    gpu: &Gpu,
-    mut scene: TrialScene<'_>,
-    bake_timer: Option<&GpuTimer>,
-) -> Result<Choice> {
+/// the fastest median draw. The trial bakes once for every candidate; then everything is
+/// marked owed again, the viewport or target size put back, so the caller's next frame bakes
+/// and draws as the chosen method pinned would (its timings and stats included). A size over
+/// [`TILE`] a side is measured scaled down to fit it (a larger image is drawn in tiles of that
+/// size). The mesh, said so, where the device has no timestamp queries. On an error the scene
+/// is left set to one of the candidates.
+pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
     let Some(timer) = GpuTimer::new(&gpu.device, &gpu.queue) else {
         let choice = Choice::unmeasured();
         scene.set(&gpu.device, choice.candidate)?;
@@ -408,7 +406,10 @@ pub fn choose_method(
         TrialScene::Endless(..) => crate::WorldKind::Endless,
     };
     let warm = (TRIAL_WARM_UP, TRIAL_WARM_UP_MS);
-    let mut bake_timer = bake_timer;
+    let kept = match &scene {
+        TrialScene::Tile(terrain, ..) => (Some(terrain.viewport()), None),
+        TrialScene::Endless(world, _) => (None, world.target_size()),
+    };
     let mut ms = Vec::new();
     for &c in Candidate::all(world) {
         scene.set(&gpu.device, c)?;
@@ -419,7 +420,7 @@ pub fn choose_method(
         let (times, _) = match &mut scene {
             TrialScene::Tile(terrain, view, _) => {
                 terrain.set_viewport(size);
-                bake_whole(gpu, terrain, view, bake_timer.take())?;
+                bake_whole(gpu, terrain, view, None)?;
                 let sky = terrain.shading().sky_color;
                 let clear = super::clear_color(sky, Offscreen::COLOR_FORMAT);
                 measure_frames(gpu, warm, TRIAL_FRAMES, Some(&timer), |encoder, timer| {
@@ -443,7 +444,7 @@ pub fn choose_method(
                 world.set_target_size(None);
                 let budget = world.bake_budget();
                 world.set_bake_budget(u64::MAX);
-                let baked = bake_in_passes(gpu, bake_timer.take(), |encoder, timer| {
+                let baked = bake_in_passes(gpu, None, |encoder, timer| {
                     world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, &view, timer)?;
                     Ok(world.pending_texels())
                 });
@@ -478,6 +479,16 @@ pub fn choose_method(
     }
     let choice = Choice::decide(ms, TRIAL_FRAMES as usize, size);
     scene.set(&gpu.device, choice.candidate)?;
+    match scene {
+        TrialScene::Tile(terrain, ..) => {
+            terrain.set_viewport(kept.0.unwrap_or(size));
+            terrain.invalidate();
+        }
+        TrialScene::Endless(world, _) => {
+            world.set_target_size(kept.1);
+            world.invalidate(&gpu.device)?;
+        }
+    }
     Ok(choice)
 }
 

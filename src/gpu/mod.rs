@@ -225,9 +225,10 @@ impl Terrain {
     /// re-baked.
     pub fn set_targets(&mut self, device: &wgpu::Device, targets: Targets) -> Result<()> {
         targets.validate()?;
-        self.world.set_targets(device, targets)?;
-        self.targets = targets;
-        Ok(())
+        let set = self.world.set_targets(device, targets);
+        // Whatever the world draws into now, even where rebuilding its method failed.
+        self.targets = *self.world.targets();
+        set
     }
 
     /// The current shading.
@@ -244,6 +245,16 @@ impl Terrain {
     /// bound ([`DEFAULT_VIEWPORT`] until told).
     pub fn set_viewport(&mut self, size: (u32, u32)) {
         self.viewport = (size.0.max(1), size.1.max(1));
+    }
+
+    /// The size of the target drawn into ([`Terrain::set_viewport`]).
+    pub fn viewport(&self) -> (u32, u32) {
+        self.viewport
+    }
+
+    /// Samples a pixel of the visibility method ([`Terrain::set_visibility_samples`]).
+    pub fn visibility_samples(&self) -> u32 {
+        self.world.visibility_samples()
     }
 
     /// How the mesh is drawn: [`crate::Method::Mesh`] (forward shading, the default) or

@@ -455,7 +455,18 @@ impl World {
         self.targets = targets;
         // The visibility method's composite draws into the host's pass: built again for these.
         self.visibility = None;
-        self.set_method(device, self.method)
+        let rebuilt = self.set_method(device, self.method);
+        if rebuilt.is_err() {
+            // Never a method without its passes: the forward mesh draws, and says so.
+            self.method = Method::Mesh;
+        }
+        rebuilt
+    }
+
+    /// Marks every level owed, as new parameters do: the next [`World::encode_bake`] bakes them
+    /// all again (for measurements of a whole bake, or after the host lost the textures).
+    pub fn invalidate(&mut self, device: &wgpu::Device) -> Result<()> {
+        self.relayout(device, self.map_k)
     }
 
     /// The parameters.
@@ -557,6 +568,17 @@ impl World {
     /// images at this size; `None` (the default) takes the view's.
     pub fn set_target_size(&mut self, size: Option<(u32, u32)>) {
         self.target_size = size;
+    }
+
+    /// The host target's size where it differs from the view's ([`World::set_target_size`]).
+    pub fn target_size(&self) -> Option<(u32, u32)> {
+        self.target_size
+    }
+
+    /// Samples a pixel of the visibility method and the hybrid
+    /// ([`World::set_visibility_samples`]).
+    pub fn visibility_samples(&self) -> u32 {
+        self.vis_samples
     }
 
     /// GPU memory of the visibility method's own images for the last frame's size, bytes (0
