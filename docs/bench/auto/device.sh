@@ -4,7 +4,8 @@
 # (see the tool's README). `relief render --timings` with the default method (auto: the
 # fastest candidate measured on the device) in both worlds at 1920x1080, three times each; the
 # choices pinned, to compare; then `relief bench` (the tile, whose chart marks the default as
-# chosen from its own rows). Everything lands in $OUT/auto.tar.gz.
+# chosen from its own rows); `device.sh render` leaves the benchmark out. Everything lands in
+# $OUT/auto.tar.gz.
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -27,6 +28,8 @@ for m in "mesh" "hybrid --samples 1"; do
     echo "== endless, --method $m"
     /usr/bin/time -f "wall %e s" $R render --world endless --out "$out/endless-pinned.png" --width 1920 --height 1080 --timings --method $m
 done 2>&1 | tee -a "$out/render-timings.txt"
-time timeout 420 $R bench --out-dir "$out/bench" >"$out/bench-stdout.txt" 2>"$out/bench-stderr.txt"
-tail -n 20 "$out/bench-stdout.txt"
+if [ "${1:-all}" != render ]; then
+    time timeout 420 $R bench --out-dir "$out/bench" >"$out/bench-stdout.txt" 2>"$out/bench-stderr.txt"
+    tail -n 20 "$out/bench-stdout.txt"
+fi
 tar -czf "$OUT/auto.tar.gz" -C /tmp auto
