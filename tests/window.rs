@@ -212,6 +212,9 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
 
 #[test]
 fn m_steps_the_window_to_the_next_method() {
+    // Time for lavapipe to build each method's pipelines and draw its first frame: the
+    // hybrid's march (four samples a pixel, landed by a secant) took the 12 s this test once
+    // had past its end on the 2-core machines.
     let args = [
         "--world",
         "endless",
@@ -219,7 +222,7 @@ fn m_steps_the_window_to_the_next_method() {
         "16",
         "--timings",
         "--exit-after",
-        "12",
+        "30",
     ];
     let (code, stdout, err) =
         window_with_keys(&args, "xdotool key m; sleep 3; xdotool key m; sleep 3");
