@@ -194,11 +194,24 @@ pub fn command() -> Command {
                      CPU f64 ray cast; grazing views, shadow rays at a low sun, the eye far from the origin and a \
                      moving eye on the default endless world, against f64 rays, the twin and the reference; and \
                      detail against resolution and the storage precision of heights and normals \
-                     against the f64 twin; write stability.csv, shadow.csv, distance.csv, \
-                     motion.csv, detail.csv, storage.csv and their charts",
+                     against the f64 twin; and relief's tile and the blog's scrolled far from their \
+                     origin; write stability.csv, world-grazing.csv, shadow.csv, distance.csv, \
+                     scroll.csv, motion.csv, detail.csv, storage.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
-                .arg(quick_arg("seconds on a software GPU")),
+                .arg(quick_arg("seconds on a software GPU"))
+                .arg(
+                    Arg::new("axis")
+                        .long("axis")
+                        .action(ArgAction::Append)
+                        .value_delimiter(',')
+                        .value_name("NAME")
+                        .help(format!(
+                            "sweep only these axes, and write only their files (repeat the flag \
+                             or separate names with commas) [default: all] [allowed: {}]",
+                            crate::stability::Axis::names()
+                        )),
+                ),
         );
     let scene = TerrainParams::default();
     for p in params() {
@@ -619,6 +632,7 @@ enum Run {
     Stability {
         out_dir: PathBuf,
         quick: bool,
+        axes: Vec<crate::stability::Axis>,
     },
 }
 
@@ -962,6 +976,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         "stability" => Run::Stability {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
             quick: m.get_flag("quick"),
+            axes: stability_axes(m)?,
         },
         "height" => Run::Height {
             points: m
@@ -1184,7 +1199,11 @@ fn run(top: &ArgMatches) -> Result<()> {
         ),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
         Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
-        Run::Stability { out_dir, quick } => stability(&params, &out_dir, quick),
+        Run::Stability {
+            out_dir,
+            quick,
+            axes,
+        } => stability(&params, &out_dir, quick, &axes),
         Run::Height { points } => {
             for [x, z] in points {
                 println!("{}", crate::height_at(&params, x as f32, z as f32));
@@ -1998,202 +2017,280 @@ fn write_results(
     result
 }
 
-fn stability(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
-    use crate::stability;
+/// The axes `relief stability --axis` names, each once, in the order they run; all of them
+/// without the flag.
+fn stability_axes(m: &ArgMatches) -> Result<Vec<crate::stability::Axis>> {
+    use crate::stability::Axis;
+    let Some(names) = m.get_many::<String>("axis") else {
+        return Ok(Axis::ALL.to_vec());
+    };
+    let mut chosen = Vec::new();
+    for name in names {
+        let axis = Axis::parse(name.trim())
+            .ok_or_else(|| Error::invalid("--axis", table::shorten(name), Axis::names()))?;
+        chosen.push(axis);
+    }
+    Ok(Axis::ALL
+        .into_iter()
+        .filter(|a| chosen.contains(a))
+        .collect())
+}
+
+/// An axis's results: its CSV's file name and text, and what writes its charts.
+type AxisOutput<'a> = (&'static str, String, Box<dyn FnOnce() -> Result<()> + 'a>);
+
+fn stability(
+    base: &TerrainParams,
+    dir: &Path,
+    quick: bool,
+    axes: &[crate::stability::Axis],
+) -> Result<()> {
+    use crate::stability::{self, Axis};
     check_out_dir(dir)?;
     let gpu = Gpu::new()?;
     let info = gpu.adapter.get_info();
-    let options = if quick {
-        stability::Options::quick()
-    } else {
-        stability::Options::full()
-    };
+    let backend = format!("{:?}", info.backend);
+    let device = info.name.clone();
+    let on = |axis| axes.contains(&axis);
     println!(
-        "relief stability{} on {}: grazing views at {:?} degrees, height scales {:?}, {}x{} (every {} px compared with the CPU f64 ray cast), scene: seed {}, octaves {}, frequency {}, gain {}",
+        "relief stability{} on {}: {} axes ({}), scene: seed {}, octaves {}, frequency {}, gain {}",
         if quick { " --quick" } else { "" },
         gpu.describe(),
-        options.elevations,
-        options.height_scales,
-        options.size.0,
-        options.size.1,
-        options.stride,
+        axes.len(),
+        axes.iter().map(|a| a.name()).collect::<Vec<_>>().join(", "),
         base.seed,
         base.octaves,
         base.frequency,
         base.gain,
     );
-    let views = options.elevations.len() * options.height_scales.len();
-    let bar = indicatif::ProgressBar::new(views as u64).with_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} views {elapsed}")
+    let bar = indicatif::ProgressBar::new(0).with_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    let restart = |len: usize| {
+        bar.reset();
+        bar.set_length(len as u64);
+    };
     let start = std::time::Instant::now();
-    let rows = stability::grazing(&gpu, base, &options, |done, _| {
-        bar.set_position(done as u64)
-    })?;
-    bar.finish_and_clear();
-    print!("{}", stability::table(&rows, &options));
-    let backend = format!("{:?}", info.backend);
-    let csv = stability::csv(&rows, &info.name, &backend, &options);
-    let title = format!("relief: grazing rays on {} ({:?})", info.name, info.backend);
-    // Grazing rays over the default endless world.
     let world = WorldParams::default();
-    let world_options = stability::world_grazing::world_options(&world, quick);
-    println!(
-        "grazing views of the default endless world at {:?} degrees, {}x{} (every {} px compared with the CPU f64 ray cast)",
-        world_options.elevations, world_options.size.0, world_options.size.1, world_options.stride
-    );
-    bar.reset();
-    bar.set_length(world_options.elevations.len() as u64);
-    let world_rows =
-        stability::world_grazing::world_grazing(&gpu, &world, &world_options, |done, _| {
+    let mut outputs: Vec<AxisOutput<'_>> = Vec::new();
+    if on(Axis::Grazing) {
+        let options = if quick {
+            stability::Options::quick()
+        } else {
+            stability::Options::full()
+        };
+        println!(
+            "grazing views of the scene's tile at {:?} degrees, height scales {:?}, {}x{} (every {} px compared with the CPU f64 ray cast)",
+            options.elevations,
+            options.height_scales,
+            options.size.0,
+            options.size.1,
+            options.stride,
+        );
+        restart(options.elevations.len() * options.height_scales.len());
+        let rows = stability::grazing(&gpu, base, &options, |done, _| {
             bar.set_position(done as u64)
         })?;
-    bar.finish_and_clear();
-    print!("{}", stability::table(&world_rows, &world_options));
-    let world_csv = stability::csv(&world_rows, &info.name, &backend, &world_options);
-    // Shadow rays at a low sun, on the default endless world.
-    let shadow_options = if quick {
-        stability::shadow::ShadowOptions::quick()
-    } else {
-        stability::shadow::ShadowOptions::full()
-    };
-    println!(
-        "shadow rays on the default endless world: sun at {:?} degrees (azimuth {}), every {} texel(s) each way of each level drawn, where it draws, compared with f64 rays",
-        shadow_options.elevations, world.sky.sun_azimuth, shadow_options.stride
-    );
-    bar.reset();
-    bar.set_length(shadow_options.elevations.len() as u64);
-    let shadows = stability::shadow::shadows(&gpu, &world, &shadow_options, |done, _| {
-        bar.set_position(done as u64)
-    })?;
-    bar.finish_and_clear();
-    print!(
-        "{}",
-        stability::shadow::shadow_table(&shadows, &shadow_options)
-    );
-    let shadow_csv = stability::shadow::shadow_csv(&shadows, &info.name, &backend, &world);
-    // Distance from the origin, on the default endless world.
-    let distance_options = if quick {
-        stability::distance::DistanceOptions::quick()
-    } else {
-        stability::distance::DistanceOptions::full()
-    };
-    println!(
-        "distance from the origin on the default endless world: the eye at {:?} m, {}x{}, a {} m step",
-        distance_options.distances,
-        distance_options.size.0,
-        distance_options.size.1,
-        distance_options.step
-    );
-    bar.reset();
-    bar.set_length(distance_options.distances.len() as u64);
-    let far = stability::distance::distances(&gpu, &world, &distance_options, |done, _| {
-        bar.set_position(done as u64)
-    })?;
-    bar.finish_and_clear();
-    print!("{}", stability::distance::distance_table(&far));
-    let distance_csv = stability::distance::distance_csv(&far, &info.name, &backend);
-    // Motion, on the default endless world.
-    let motion_options = if quick {
-        stability::motion::MotionOptions::quick()
-    } else {
-        stability::motion::MotionOptions::full()
-    };
-    println!(
-        "motion over the default endless world: {:?} m a frame, knobs {} and {:?} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
-        motion_options.speeds,
-        world.pixel_error,
-        motion_options.knobs,
-        motion_options.frames,
-        motion_options.size.0,
-        motion_options.size.1,
-        motion_options.height,
-        motion_options.budget
-    );
-    let flights = (motion_options.knobs.len() + 1) * motion_options.speeds.len();
-    bar.reset();
-    bar.set_length(flights as u64);
-    let moving = stability::motion::motion(&gpu, &world, &motion_options, |done, _| {
-        bar.set_position(done as u64)
-    })?;
-    bar.finish_and_clear();
-    print!("{}", stability::motion::motion_table(&moving));
-    let motion_csv = stability::motion::motion_csv(&moving, &info.name, &backend);
-    // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
-    let side = if quick { 256 } else { stability::STORAGE_SIZE };
-    let storage = stability::storage(base, side)?;
-    println!("storage precision, {side}² texels of the scene's heights:");
-    print!("{}", stability::storage_table(&storage));
-    let storage_csv = stability::storage_csv(&storage, base, side);
-    // Detail against resolution, on the CPU twin.
-    let detail_options = if quick {
-        stability::detail::DetailOptions::quick()
-    } else {
-        stability::detail::DetailOptions::full()
-    };
-    let mut detail = stability::detail::detail(base, &detail_options)?;
-    stability::detail::detail_flip(&gpu, base, &mut detail, detail_options.image)?;
-    println!(
-        "detail against resolution: {:?} octaves at {:?} texels a side, the mesh's grid {:?} (the scene's other values; FLIP at {}x{}):",
-        detail_options.octaves,
-        detail_options.sizes,
-        detail_options.grids,
-        detail_options.image.0,
-        detail_options.image.1
-    );
-    print!(
-        "{}",
-        stability::detail::detail_table(&detail, &detail_options)
-    );
-    let detail_csv = stability::detail::detail_csv(&detail, base);
-    write_results(dir, ("stability.csv", &csv), || {
-        stability::chart(&rows, &options, &title, &dir.join("grazing"))?;
-        write_whole(&dir.join("world-grazing.csv"), &world_csv)?;
-        let title = format!(
-            "relief: grazing rays over the endless world on {} ({backend})",
-            info.name
+        bar.finish_and_clear();
+        print!("{}", stability::table(&rows, &options));
+        let csv = stability::csv(&rows, &device, &backend, &options);
+        let title = format!("relief: grazing rays on {device} ({backend})");
+        outputs.push((
+            "stability.csv",
+            csv,
+            Box::new(move || stability::chart(&rows, &options, &title, &dir.join("grazing"))),
+        ));
+    }
+    if on(Axis::WorldGrazing) {
+        let options = stability::world_grazing::world_options(&world, quick);
+        println!(
+            "grazing views of the default endless world at {:?} degrees, {}x{} (every {} px compared with the CPU f64 ray cast)",
+            options.elevations, options.size.0, options.size.1, options.stride
         );
-        stability::chart(
-            &world_rows,
-            &world_options,
-            &title,
-            &dir.join("world-grazing"),
-        )?;
-        write_whole(&dir.join("shadow.csv"), &shadow_csv)?;
-        let title = format!(
-            "relief: shadow rays at a low sun on {} ({backend})",
-            info.name
+        restart(options.elevations.len());
+        let rows = stability::world_grazing::world_grazing(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::table(&rows, &options));
+        let csv = stability::csv(&rows, &device, &backend, &options);
+        let title = format!("relief: grazing rays over the endless world on {device} ({backend})");
+        outputs.push((
+            "world-grazing.csv",
+            csv,
+            Box::new(move || stability::chart(&rows, &options, &title, &dir.join("world-grazing"))),
+        ));
+    }
+    if on(Axis::Shadow) {
+        let options = if quick {
+            stability::shadow::ShadowOptions::quick()
+        } else {
+            stability::shadow::ShadowOptions::full()
+        };
+        println!(
+            "shadow rays on the default endless world: sun at {:?} degrees (azimuth {}), every {} texel(s) each way of each level drawn, where it draws, compared with f64 rays",
+            options.elevations, world.sky.sun_azimuth, options.stride
         );
-        stability::shadow::shadow_chart(
-            &shadows,
-            &shadow_options,
-            f64::from(world.sky.sun_elevation),
-            (&title, &dir.join("shadow")),
-        )?;
-        write_whole(&dir.join("distance.csv"), &distance_csv)?;
-        let title = format!("relief: far from the origin on {} ({backend})", info.name);
-        stability::distance::distance_chart(&far, (&title, &dir.join("distance")))?;
-        write_whole(&dir.join("motion.csv"), &motion_csv)?;
-        let title = format!("relief: a moving eye on {} ({backend})", info.name);
-        stability::motion::motion_chart(&moving, world.pixel_error, (&title, &dir.join("motion")))?;
-        write_whole(&dir.join("detail.csv"), &detail_csv)?;
-        let title = format!(
-            "relief: detail against resolution (CPU f64 twin; FLIP on {} ({backend}))",
-            info.name
+        restart(options.elevations.len());
+        let rows = stability::shadow::shadows(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::shadow::shadow_table(&rows, &options));
+        let csv = stability::shadow::shadow_csv(&rows, &device, &backend, &world);
+        let title = format!("relief: shadow rays at a low sun on {device} ({backend})");
+        let sun = f64::from(world.sky.sun_elevation);
+        outputs.push((
+            "shadow.csv",
+            csv,
+            Box::new(move || {
+                stability::shadow::shadow_chart(&rows, &options, sun, (&title, &dir.join("shadow")))
+            }),
+        ));
+    }
+    if on(Axis::Distance) {
+        let options = if quick {
+            stability::distance::DistanceOptions::quick()
+        } else {
+            stability::distance::DistanceOptions::full()
+        };
+        println!(
+            "distance from the origin on the default endless world: the eye at {:?} m, {}x{}, a {} m step",
+            options.distances, options.size.0, options.size.1, options.step
         );
-        stability::detail::detail_chart(
-            &detail,
-            (base.octaves, base.size),
-            (&title, &dir.join("detail")),
-        )?;
-        write_whole(&dir.join("storage.csv"), &storage_csv)?;
+        restart(options.distances.len());
+        let rows = stability::distance::distances(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::distance::distance_table(&rows));
+        let csv = stability::distance::distance_csv(&rows, &device, &backend);
+        let title = format!("relief: far from the origin on {device} ({backend})");
+        outputs.push((
+            "distance.csv",
+            csv,
+            Box::new(move || {
+                stability::distance::distance_chart(&rows, (&title, &dir.join("distance")))
+            }),
+        ));
+    }
+    if on(Axis::Scroll) {
+        let options = if quick {
+            stability::scroll::ScrollOptions::quick()
+        } else {
+            stability::scroll::ScrollOptions::full()
+        };
+        println!(
+            "the tile scrolled from its origin: {:?} tiles, relief's tile at {}² texels (every {} each way against the twin) and the blog's bake",
+            options.distances, options.size, options.stride
+        );
+        restart(options.distances.len());
+        let rows = stability::scroll::scroll(&gpu, base, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::scroll::scroll_table(&rows));
+        let csv = stability::scroll::scroll_csv(&rows, &device, &backend);
+        let title = format!("relief and the blog scrolled far, on {device} ({backend})");
+        outputs.push((
+            "scroll.csv",
+            csv,
+            Box::new(move || stability::scroll::scroll_chart(&rows, (&title, &dir.join("scroll")))),
+        ));
+    }
+    if on(Axis::Motion) {
+        let options = if quick {
+            stability::motion::MotionOptions::quick()
+        } else {
+            stability::motion::MotionOptions::full()
+        };
+        println!(
+            "motion over the default endless world: {:?} m a frame, knobs {} and {:?} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
+            options.speeds,
+            world.pixel_error,
+            options.knobs,
+            options.frames,
+            options.size.0,
+            options.size.1,
+            options.height,
+            options.budget
+        );
+        restart((options.knobs.len() + 1) * options.speeds.len());
+        let rows = stability::motion::motion(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::motion::motion_table(&rows));
+        let csv = stability::motion::motion_csv(&rows, &device, &backend);
+        let title = format!("relief: a moving eye on {device} ({backend})");
+        let knob = world.pixel_error;
+        outputs.push((
+            "motion.csv",
+            csv,
+            Box::new(move || {
+                stability::motion::motion_chart(&rows, knob, (&title, &dir.join("motion")))
+            }),
+        ));
+    }
+    if on(Axis::Detail) {
+        // Detail against resolution, on the CPU twin, then FLIP on the GPU.
+        let options = if quick {
+            stability::detail::DetailOptions::quick()
+        } else {
+            stability::detail::DetailOptions::full()
+        };
+        let mut rows = stability::detail::detail(base, &options)?;
+        stability::detail::detail_flip(&gpu, base, &mut rows, options.image)?;
+        println!(
+            "detail against resolution: {:?} octaves at {:?} texels a side, the mesh's grid {:?} (the scene's other values; FLIP at {}x{}):",
+            options.octaves, options.sizes, options.grids, options.image.0, options.image.1
+        );
+        print!("{}", stability::detail::detail_table(&rows, &options));
+        let csv = stability::detail::detail_csv(&rows, base);
+        let title = format!(
+            "relief: detail against resolution (CPU f64 twin; FLIP on {device} ({backend}))"
+        );
+        let scene = (base.octaves, base.size);
+        outputs.push((
+            "detail.csv",
+            csv,
+            Box::new(move || {
+                stability::detail::detail_chart(&rows, scene, (&title, &dir.join("detail")))
+            }),
+        ));
+    }
+    if on(Axis::Storage) {
+        // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
+        let side = if quick { 256 } else { stability::STORAGE_SIZE };
+        let rows = stability::storage(base, side)?;
+        println!("storage precision, {side}² texels of the scene's heights:");
+        print!("{}", stability::storage_table(&rows));
+        let csv = stability::storage_csv(&rows, base, side);
         let title = format!("relief: storage precision, {side}² texels (CPU f64 twin)");
-        stability::storage_chart(&storage, &title, &dir.join("storage"))
+        outputs.push((
+            "storage.csv",
+            csv,
+            Box::new(move || stability::storage_chart(&rows, &title, &dir.join("storage"))),
+        ));
+    }
+    let names: Vec<&str> = outputs.iter().map(|o| o.0).collect();
+    let mut outputs = outputs.into_iter();
+    let Some((first, csv, charts)) = outputs.next() else {
+        return Ok(());
+    };
+    write_results(dir, (first, &csv), || {
+        charts()?;
+        for (name, csv, charts) in outputs {
+            write_whole(&dir.join(name), &csv)?;
+            charts()?;
+        }
+        Ok(())
     })?;
     println!(
-        "wrote {}, world-grazing.csv, shadow.csv, distance.csv, motion.csv, detail.csv, storage.csv and the grazing-hs*, world-grazing-hs*, shadow, distance, motion, detail and storage charts (.png, .svg) in {:.0} s",
-        dir.join("stability.csv").display(),
+        "wrote {} and their charts (.png, .svg) in {} in {:.0} s",
+        names.join(", "),
+        dir.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

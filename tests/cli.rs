@@ -1981,6 +1981,9 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             "motion.csv",
             "motion.png",
             "motion.svg",
+            "scroll.csv",
+            "scroll.png",
+            "scroll.svg",
             "shadow.csv",
             "shadow.png",
             "shadow.svg",
@@ -2047,4 +2050,63 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
         rejects(&args, &[flag, "stability"]);
     }
     rejects(&["stability", "--world", "endless"], &["stability", "tile"]);
+    // The scroll axis: relief's tile and the blog's at each quick distance, relief refusing
+    // 10^13 tiles in words.
+    let scroll = std::fs::read_to_string(dir.join("scroll.csv")).unwrap();
+    assert_eq!(scroll.lines().count(), 1 + 2 * 4, "{scroll}");
+    assert!(
+        scroll.lines().any(|l| l.starts_with("relief,1e13,\"")),
+        "{scroll}"
+    );
+}
+
+#[test]
+fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
+    let dir = scratch("stability-axis");
+    let (code, stdout, err) = relief(&[
+        "stability",
+        "--quick",
+        "--axis",
+        "storage,scroll",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert_eq!(
+        files_in(&dir),
+        [
+            "scroll.csv",
+            "scroll.png",
+            "scroll.svg",
+            "storage.csv",
+            "storage.png",
+            "storage.svg"
+        ]
+    );
+    // In the order the full sweep runs them, whatever the order named.
+    assert!(stdout.contains("2 axes (scroll, storage)"), "{stdout}");
+    assert!(!stdout.contains("grazing views"), "{stdout}");
+    // Repeating the flag adds to the list.
+    let again = scratch("stability-axis-again");
+    let (code, _, err) = relief(&[
+        "stability",
+        "--quick",
+        "--axis",
+        "storage",
+        "--axis",
+        "storage",
+        "--out-dir",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        files_in(&again),
+        ["storage.csv", "storage.png", "storage.svg"]
+    );
+    rejects(
+        &["stability", "--axis", "sideways"],
+        &["--axis", "sideways", "world-grazing", "scroll"],
+    );
+    rejects(&["render", "--axis", "scroll"], &["--axis"]);
 }

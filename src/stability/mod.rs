@@ -29,10 +29,17 @@
 //!
 //! The sixth is storage precision ([`storage`]), on the CPU twin: heights stored in 8 bits
 //! (the seed blog's), 16 and 32, and normals stored as the blog stores them, against f64.
+//!
+//! The seventh is the tile scrolled far from its origin ([`scroll`]): relief's tile and the
+//! seed blog's (`blog`), each judged on whether a one-texel scroll moves its bake by one texel
+//! and whether its texel columns stay apart; relief's against the twin too.
+//!
+//! Each is an [`Axis`], by the name `relief stability --axis` takes.
 
 pub mod detail;
 pub mod distance;
 pub mod motion;
+pub mod scroll;
 pub mod shadow;
 pub mod world_grazing;
 
@@ -44,6 +51,71 @@ use crate::method::Method;
 use crate::params::{Shading, TerrainParams};
 use crate::raycast::{pixel_ray, Surface};
 use std::fmt::Write as _;
+
+/// An axis of `relief stability`: what it sweeps, and the files it writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// Grazing rays over the scene's tile ([`grazing`]): `stability.csv`, `grazing-hs*`.
+    Grazing,
+    /// Grazing rays over the default endless world ([`world_grazing`]).
+    WorldGrazing,
+    /// Shadow rays at a low sun ([`shadow`]).
+    Shadow,
+    /// The endless world's eye far from the origin ([`distance`]).
+    Distance,
+    /// The tile scrolled far from its origin, relief's and the blog's ([`scroll`]).
+    Scroll,
+    /// A moving eye ([`motion`]).
+    Motion,
+    /// Detail against resolution ([`detail`]).
+    Detail,
+    /// Storage precision ([`storage`]).
+    Storage,
+}
+
+impl Axis {
+    /// Every axis, in the order `relief stability` runs them.
+    pub const ALL: [Axis; 8] = [
+        Axis::Grazing,
+        Axis::WorldGrazing,
+        Axis::Shadow,
+        Axis::Distance,
+        Axis::Scroll,
+        Axis::Motion,
+        Axis::Detail,
+        Axis::Storage,
+    ];
+
+    /// Its name on the command line (`--axis`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Grazing => "grazing",
+            Axis::WorldGrazing => "world-grazing",
+            Axis::Shadow => "shadow",
+            Axis::Distance => "distance",
+            Axis::Scroll => "scroll",
+            Axis::Motion => "motion",
+            Axis::Detail => "detail",
+            Axis::Storage => "storage",
+        }
+    }
+
+    /// The axis named `name`, if there is one.
+    pub fn parse(name: &str) -> Option<Axis> {
+        Axis::ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// Every axis's name, comma-separated (the allowed values in an error).
+    pub fn names() -> String {
+        Axis::ALL.map(Axis::name).join(", ")
+    }
+}
+
+impl std::fmt::Display for Axis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
 
 /// A method on the grazing axis: relief's mesh or its conservative cast, or the seed's march at
 /// a step factor, plain or in its relaxation variant, in compute or in a fragment shader.
