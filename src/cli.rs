@@ -36,17 +36,20 @@ pub const HEIGHT_REFUSES: [&str; 6] = [
 ];
 
 /// `--method`'s names: `auto` (the default: [`crate::choice`]), then the one method list.
-const METHODS: Kind = Kind::Choice(&[
-    "auto",
-    "mesh",
-    "visibility",
-    "hybrid",
-    "raymarch",
-    "raymarch-fragment",
-    "raymarch-bandlimited",
-    "blog",
-    "reference",
-]);
+const METHODS: Kind = Kind::Choice(&METHOD_NAMES);
+
+/// `auto`, then [`crate::Method::NAMES`] in their order (derived, so a new method joins
+/// `--method`).
+const METHOD_NAMES: [&str; crate::Method::NAMES.len() + 1] = {
+    let names = crate::Method::NAMES;
+    let mut all = ["auto"; crate::Method::NAMES.len() + 1];
+    let mut i = 0;
+    while i < names.len() {
+        all[i + 1] = names[i];
+        i += 1;
+    }
+    all
+};
 
 /// `--samples`: samples a pixel of the visibility method and the hybrid.
 const SAMPLES: Kind = Kind::Choice(&["1", "4"]);

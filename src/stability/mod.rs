@@ -573,8 +573,7 @@ where
     use plotters::prelude::*;
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let e0 = options.elevations.iter().copied().fold(f64::MAX, f64::min) / 1.3;
-    let e1 = options.elevations.iter().copied().fold(f64::MIN, f64::max) * 1.3;
+    let (e0, e1) = log_span(options.elevations.iter().copied(), 1.3);
     let top = rows
         .iter()
         .map(GrazingRow::tunnelled_fraction)
@@ -797,8 +796,7 @@ where
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let err = |r: &StorageRow| r.angle_p99_deg.max(1e-6);
-    let lo = rows.iter().map(err).fold(f64::MAX, f64::min) / 2.0;
-    let hi = rows.iter().map(err).fold(f64::MIN, f64::max) * 2.0;
+    let (lo, hi) = log_span(rows.iter().map(err), 2.0);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(16)
@@ -869,4 +867,12 @@ where
     }
     crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(|e| e.to_string())
+}
+
+/// A chart's span on a log axis: the smallest of `values` divided by `pad` to the largest
+/// times `pad` (every chart of the sweep leaves that much room beyond its outermost rows).
+pub(crate) fn log_span(values: impl Iterator<Item = f64> + Clone, pad: f64) -> (f64, f64) {
+    let lo = values.clone().fold(f64::MAX, f64::min);
+    let hi = values.fold(f64::MIN, f64::max);
+    (lo / pad, hi * pad)
 }

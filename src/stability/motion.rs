@@ -263,8 +263,7 @@ where
     use plotters::prelude::*;
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let s0 = rows.iter().map(|r| r.speed).fold(f64::MAX, f64::min) / 1.5;
-    let s1 = rows.iter().map(|r| r.speed).fold(f64::MIN, f64::max) * 1.5;
+    let (s0, s1) = super::log_span(rows.iter().map(|r| r.speed), 1.5);
     if rows.is_empty() {
         return root.present().map_err(|e| e.to_string());
     }

@@ -386,8 +386,7 @@ where
     if rows.is_empty() {
         return root.present().map_err(|e| e.to_string());
     }
-    let d0 = rows.iter().map(|r| r.distance).fold(f64::MAX, f64::min) / 2.0;
-    let d1 = rows.iter().map(|r| r.distance).fold(f64::MIN, f64::max) * 2.0;
+    let (d0, d1) = super::log_span(rows.iter().map(|r| r.distance), 2.0);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(16)

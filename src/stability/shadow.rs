@@ -347,8 +347,7 @@ where
     use plotters::prelude::*;
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let e0 = options.elevations.iter().copied().fold(f64::MAX, f64::min) / 1.3;
-    let e1 = options.elevations.iter().copied().fold(f64::MIN, f64::max) * 1.3;
+    let (e0, e1) = super::log_span(options.elevations.iter().copied(), 1.3);
     let top = rows
         .iter()
         .map(|r| r.tunnelled_fraction().max(r.false_shadow_fraction()))
