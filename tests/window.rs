@@ -241,6 +241,23 @@ fn m_steps_the_window_to_the_next_method() {
     }
 }
 
+/// The sun, fog and water in a window title: (azimuth, elevation, fog, water).
+fn sky_in_title(line: &str) -> (f64, f64, String, String) {
+    let field = |after: &str, before: &str| {
+        let at = line
+            .find(after)
+            .unwrap_or_else(|| panic!("{after:?} in {line:?}"))
+            + after.len();
+        line[at..].split(before).next().unwrap().trim().to_owned()
+    };
+    (
+        field("sun ", "° az").parse().unwrap(),
+        field("az, ", "° up").parse().unwrap(),
+        field("fog ", " /km"),
+        field("water ", " ·"),
+    )
+}
+
 #[test]
 fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     let args = [
@@ -249,22 +266,49 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
         "--pixel-error",
         "16",
         "--exit-after",
-        "8",
+        "16",
     ];
     // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off, L the water; the title
-    // shows it.
+    // shows it. Then F held for 1.5 s, past the X server's key repeat delay, turns the fog on
+    // again once (a toggle ignores its key's repeats), and - held as long lowers the sun step
+    // after step (the sun keys act on each). A loaded machine can delay a tap's release past
+    // the repeat delay too, so a tapped sun key may step more than once.
     let keys = "xdotool getwindowname \"$w\"; xdotool key bracketright; sleep 1; \
                 xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool key l; sleep 1; \
+                xdotool getwindowname \"$w\"; xdotool keydown f; sleep 1.5; xdotool keyup f; \
+                xdotool keydown minus; sleep 1.5; xdotool keyup minus; sleep 1; \
                 xdotool getwindowname \"$w\"";
     let (code, stdout, err) = window_with_keys(&args, keys);
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
+    let titles: Vec<_> = stdout
+        .lines()
+        .filter(|l| l.starts_with("relief: sun"))
+        .map(sky_in_title)
+        .collect();
+    assert_eq!(titles.len(), 3, "{stdout}");
+    let on = |t: &(f64, f64, String, String)| (t.2.clone(), t.3.clone());
+    assert_eq!(titles[0].0, 145.0, "the sun before: {stdout}");
+    assert_eq!(titles[0].1, 12.0, "the sun before: {stdout}");
+    assert_eq!(on(&titles[0]), ("0.03".into(), "on".into()), "{stdout}");
+    // ] and - step the sun by whole steps, at least one each.
+    let (turned, lowered) = (titles[1].0 - 145.0, 12.0 - titles[1].1);
     assert!(
-        stdout.contains("sun 145° az, 12° up · fog 0.03 /km · water on"),
-        "the title before: {stdout}"
+        turned >= 10.0 && turned % 10.0 == 0.0 && lowered >= 2.0 && lowered % 2.0 == 0.0,
+        "the sun after ] and -: {stdout}"
+    );
+    assert_eq!(
+        on(&titles[1]),
+        ("0".into(), "off".into()),
+        "after F and L: {stdout}"
+    );
+    assert_eq!(
+        on(&titles[2]),
+        ("0.03".into(), "off".into()),
+        "after F held: {stdout}"
     );
     assert!(
-        stdout.contains("sun 155° az, 10° up · fog 0 /km · water off"),
-        "the title after ], -, F and L: {stdout}"
+        titles[2].1 < titles[1].1 - 2.0,
+        "the sun after - held: {stdout}"
     );
 }

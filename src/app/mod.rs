@@ -49,6 +49,15 @@ pub const FLY_CLEARANCE: f64 = 2.0;
 /// it, `f` turns the fog off and on again, `l` the water (lakes).
 pub const SKY_KEYS: [&str; 6] = ["[", "]", "-", "=", "f", "l"];
 
+/// The [`SKY_KEYS`] that move the sun: held, they keep moving it.
+const SUN_KEYS: [&str; 4] = ["[", "]", "-", "="];
+
+/// Whether a held key acts again on each of its repeats: only the sun keys do. A toggle or a
+/// step (fog, water, method, path, pause, seed) acts once a press.
+fn acts_on_repeat(key: &Key) -> bool {
+    matches!(key, Key::Character(c) if SUN_KEYS.contains(&c.as_str()))
+}
+
 /// Keys that move the fly camera (by position on the keyboard: WASD, arrows, Q/E and Page
 /// Down/Up for down and up, Shift for faster).
 pub const FLY_KEYS: [KeyCode; 14] = [
@@ -865,6 +874,13 @@ impl ApplicationHandler<UserEvent> for App {
                 self.held.clear();
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                // A held key repeats (the X server starts repeating after ~0.6 s, and a loaded
+                // machine can delay a tap's release that long): the sun keys keep turning the
+                // sun, but a toggle or a step (fog, water, method, path, pause, seed) acts once
+                // a press, or holding it would flicker.
+                if event.repeat && !acts_on_repeat(&event.logical_key) {
+                    return;
+                }
                 match event.logical_key {
                     #[cfg(not(target_arch = "wasm32"))]
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
@@ -1023,5 +1039,21 @@ pub fn run_native(options: AppOptions, script: Script) -> Result<()> {
     match app.take_error() {
         Some(e) => Err(e),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_sun_keys_act_on_a_held_keys_repeats() {
+        for k in SUN_KEYS {
+            assert!(acts_on_repeat(&Key::Character(k.into())), "{k}");
+        }
+        for k in ["f", "F", "l", "m", "M", "p", "r"] {
+            assert!(!acts_on_repeat(&Key::Character(k.into())), "{k}");
+        }
+        assert!(!acts_on_repeat(&Key::Named(NamedKey::Space)));
     }
 }
