@@ -26,6 +26,8 @@ pub struct Config {
     pub march: SeedMarch,
     /// Samples a pixel the visibility method rasterises and shades (that method only).
     pub samples: u32,
+    /// Where the visibility method rasterises (that method only).
+    pub raster: crate::Raster,
 }
 
 impl Config {
@@ -34,7 +36,8 @@ impl Config {
     pub fn is_candidate(&self, candidate: crate::choice::Candidate) -> bool {
         let d = TerrainParams::default();
         self.method == candidate.method
-            && (self.method == Method::Mesh || self.samples == candidate.samples)
+            && (self.method == Method::Mesh
+                || (self.samples, self.raster) == (candidate.samples, candidate.raster))
             && (self.params.size, self.params.grid, self.params.normals)
                 == (d.size, d.grid, d.normals)
     }
@@ -47,8 +50,15 @@ impl Config {
                 self.params.size, self.params.grid, self.params.normals
             ),
             Method::Visibility => format!(
-                "visibility {} / {} / {} / {}x",
-                self.params.size, self.params.grid, self.params.normals, self.samples
+                "visibility {} / {} / {} / {}x{}",
+                self.params.size,
+                self.params.grid,
+                self.params.normals,
+                self.samples,
+                match self.raster {
+                    crate::Raster::Hardware => "",
+                    crate::Raster::Compute => " compute",
+                }
             ),
             Method::Blog => format!("blog {} / {} / rgba8", self.params.size, self.params.grid),
             m => format!(
@@ -143,6 +153,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
                     },
                     march: SeedMarch::default(),
                     samples: crate::gpu::visibility::SAMPLES,
+                    raster: crate::Raster::Hardware,
                 });
             }
         }
@@ -150,24 +161,29 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
     // The visibility method: the same mesh, shaded per sample in compute, at the default and
     // at finer textures and grids.
     let d = TerrainParams::default();
-    // One sample a pixel (a quarter of the raster work, edges aliased) at the default.
-    let visibility: &[(u32, u32, u32)] = if quick {
-        &[(d.size, d.grid, 4)]
+    // One sample a pixel (a quarter of the raster work, edges aliased) at the default, its
+    // raster in hardware and in compute.
+    use crate::Raster::{Compute, Hardware};
+    let visibility: &[(u32, u32, u32, crate::Raster)] = if quick {
+        &[(d.size, d.grid, 4, Hardware), (d.size, d.grid, 1, Compute)]
     } else {
         &[
-            (d.size, d.grid, 4),
-            (d.size, d.grid, 1),
-            (d.size, 1024, 4),
-            (2048, 512, 4),
-            (4096, 1024, 4),
+            (d.size, d.grid, 4, Hardware),
+            (d.size, d.grid, 1, Hardware),
+            (d.size, d.grid, 1, Compute),
+            (d.size, 1024, 4, Hardware),
+            (d.size, 1024, 1, Compute),
+            (2048, 512, 4, Hardware),
+            (4096, 1024, 4, Hardware),
         ]
     };
-    for &(size, grid, samples) in visibility {
+    for &(size, grid, samples, raster) in visibility {
         out.push(Config {
             method: Method::Visibility,
             params: TerrainParams { size, grid, ..base },
             march: SeedMarch::default(),
             samples,
+            raster,
         });
     }
     for method in [Method::RaymarchFragment, Method::Raymarch] {
@@ -189,6 +205,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
                         ..SeedMarch::default()
                     },
                     samples: crate::gpu::visibility::SAMPLES,
+                    raster: crate::Raster::Hardware,
                 });
             }
         }
@@ -205,6 +222,7 @@ pub fn sweep(base: &TerrainParams, quick: bool) -> Vec<Config> {
         },
         march: SeedMarch::default(),
         samples: crate::gpu::visibility::SAMPLES,
+        raster: crate::Raster::Hardware,
     });
     out
 }
@@ -381,6 +399,7 @@ fn mesh_row(
         config.params,
     )?;
     terrain.set_visibility_samples(config.samples)?;
+    terrain.set_visibility_raster(config.raster);
     terrain.set_method(&gpu.device, config.method)?;
     let color_view = target.color.create_view(&Default::default());
     terrain.set_viewport((options.width, options.height));
@@ -613,7 +632,7 @@ fn opt(v: Option<f64>) -> String {
 /// device and backend.
 pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> String {
     let mut out = String::from(
-        "device,backend,method,default,width,height,seed,frequency,gain,height_scale,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,samples,\
+        "device,backend,method,default,width,height,seed,frequency,gain,height_scale,size,grid,octaves,normals,step_factor,hit_k,march_octaves,normal_octaves,samples,raster,\
          bake_ms,normals_ms,render_ms,frame_gpu_ms,wall_ms,mesh_rms,mesh_max,mesh_rms_px,mesh_max_px,normal_mean_deg,normal_p99_deg,\
          flip_mean,flip_p99,missed,extra,wrong_depth\n",
     );
@@ -625,7 +644,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
         let own = c.method == Method::Blog;
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
             quote(device),
             quote(backend),
             c.method.name(),
@@ -646,6 +665,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
             if ray { c.march.march_octaves.to_string() } else { String::new() },
             if ray { c.march.normal_octaves.to_string() } else { String::new() },
             if c.method == Method::Visibility { c.samples.to_string() } else { String::new() },
+            if c.method == Method::Visibility { c.raster.to_string() } else { String::new() },
             opt(r.bake_ms),
             opt(r.normals_ms),
             opt(r.render_ms),

@@ -14,9 +14,10 @@
 //! `headless`).
 
 use crate::gpu::timing::{Slot, Timings};
-use crate::{Method, WorldKind};
+use crate::{Method, Raster, WorldKind};
 
-/// A mesh-based method with its samples a pixel, as the choice of the default measures it.
+/// A mesh-based method with its samples a pixel and its raster, as the choice of the default
+/// measures it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Candidate {
     /// The method.
@@ -24,6 +25,8 @@ pub struct Candidate {
     /// Samples a pixel: the host target's MSAA for the mesh (4), the method's own for the
     /// visibility method and the hybrid (4 or 1, [`crate::World::set_visibility_samples`]).
     pub samples: u32,
+    /// Where the visibility method rasterises ([`crate::World::set_visibility_raster`]).
+    pub raster: Raster,
 }
 
 impl Candidate {
@@ -32,7 +35,17 @@ impl Candidate {
     pub const MESH: Candidate = Candidate {
         method: Method::Mesh,
         samples: 4,
+        raster: Raster::Hardware,
     };
+
+    /// `method` at `samples` a pixel, rasterised by the GPU's rasteriser.
+    pub const fn new(method: Method, samples: u32) -> Candidate {
+        Candidate {
+            method,
+            samples,
+            raster: Raster::Hardware,
+        }
+    }
 
     /// The candidates for `world`, in order of preference: the mesh first; a later one wins
     /// only by [`MARGIN`].
@@ -43,15 +56,21 @@ impl Candidate {
     /// - the endless world: `visibility` at 4 samples draws the mesh's (0.0091, 0.0230, 0.0401
     ///   on the horizon, ridge and oblique views against 0.0091, 0.0236, 0.0404); the hybrid at 1
     ///   sample is closer than the mesh on all three (0.0079, 0.0161, 0.0239). The hybrid at 4
-    ///   samples is closer still, but never faster than at 1.
+    ///   samples is closer still, but never faster than at 1;
+    /// - the tile's visibility method at 1 sample rasterised in compute draws what the GPU's
+    ///   rasteriser draws (tests/visibility.rs: no pixel differs on lavapipe).
     pub fn all(world: WorldKind) -> &'static [Candidate] {
         const fn c(method: Method, samples: u32) -> Candidate {
-            Candidate { method, samples }
+            Candidate::new(method, samples)
         }
-        const TILE: [Candidate; 3] = [
+        const TILE: [Candidate; 4] = [
             Candidate::MESH,
             c(Method::Visibility, 4),
             c(Method::Visibility, 1),
+            Candidate {
+                raster: Raster::Compute,
+                ..c(Method::Visibility, 1)
+            },
         ];
         const ENDLESS: [Candidate; 3] = [
             Candidate::MESH,
@@ -66,10 +85,10 @@ impl Candidate {
 
     /// The `relief render` flags that draw it.
     pub fn flags(&self) -> String {
-        if self.method == Method::Mesh {
-            format!("--method {}", self.method)
-        } else {
-            format!("--method {} --samples {}", self.method, self.samples)
+        match (self.method, self.raster) {
+            (Method::Mesh, _) => format!("--method {}", self.method),
+            (m, Raster::Hardware) => format!("--method {m} --samples {}", self.samples),
+            (m, r) => format!("--method {m} --samples {} --raster {r}", self.samples),
         }
     }
 }
@@ -77,9 +96,14 @@ impl Candidate {
 impl std::fmt::Display for Candidate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let plural = if self.samples == 1 { "" } else { "s" };
-        match self.method {
-            Method::Mesh => write!(f, "{}", self.method),
-            m => write!(f, "{m} at {} sample{plural} a pixel", self.samples),
+        match (self.method, self.raster) {
+            (Method::Mesh, _) => write!(f, "{}", self.method),
+            (m, Raster::Hardware) => write!(f, "{m} at {} sample{plural} a pixel", self.samples),
+            (m, Raster::Compute) => write!(
+                f,
+                "{m} at {} sample{plural} a pixel rasterised in compute",
+                self.samples
+            ),
         }
     }
 }
@@ -185,13 +209,11 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
 mod tests {
     use super::*;
 
-    const V4: Candidate = Candidate {
-        method: Method::Visibility,
-        samples: 4,
-    };
-    const V1: Candidate = Candidate {
-        method: Method::Visibility,
-        samples: 1,
+    const V4: Candidate = Candidate::new(Method::Visibility, 4);
+    const V1: Candidate = Candidate::new(Method::Visibility, 1);
+    const V1C: Candidate = Candidate {
+        raster: Raster::Compute,
+        ..V1
     };
 
     #[test]
@@ -216,6 +238,15 @@ mod tests {
             (8, 8),
         );
         assert_eq!(mid.candidate, V4);
+        // The compute raster is named as such, with the flags that draw it.
+        let c = Choice::decide(vec![(V1, 1.1), (V1C, 0.6)], 5, (8, 8));
+        assert_eq!(c.candidate, V1C);
+        let line = c.describe("GPU");
+        assert!(
+            line.contains("rasterised in compute")
+                && line.contains("--method visibility --samples 1 --raster compute"),
+            "{line}"
+        );
     }
 
     #[test]
@@ -240,6 +271,8 @@ mod tests {
                 };
                 assert!(drawn, "{c} in {world:?}");
                 assert!(matches!(c.samples, 1 | 4), "{c}");
+                let tile = world == WorldKind::Tile;
+                assert_eq!(c.raster.refusal(tile, c.samples), None, "{c}");
             }
         }
     }

@@ -5,6 +5,7 @@
 //! ends in exit status 2 and one line on stderr of at most [`MAX_ERROR_CHARS`] characters.
 
 use crate::app::{AppOptions, Script, OPTIONS};
+use crate::choice::Candidate;
 use crate::error::{Error, Result};
 use crate::gpu::headless::{self, Gpu, Offscreen, MAX_IMAGE, TILE};
 use crate::gpu::timing::{GpuTimer, Slot, Timings};
@@ -53,6 +54,9 @@ const METHOD_NAMES: [&str; crate::Method::NAMES.len() + 1] = {
 
 /// `--samples`: samples a pixel of the visibility method and the hybrid.
 const SAMPLES: Kind = Kind::Choice(&["1", "4"]);
+
+/// `--raster`: where the visibility method rasterises.
+const RASTERS: Kind = Kind::Choice(&["hardware", "compute"]);
 
 /// A world point for `relief height`.
 const POINT: Kind = Kind::Pair { max: 1e12 };
@@ -153,6 +157,18 @@ pub fn command() -> Command {
                              shade (4: edges anti-aliased; 1: a quarter of the raster work) \
                              [default: 4] [allowed: {}]",
                             SAMPLES.allowed()
+                        )),
+                )
+                .arg(
+                    Arg::new("raster")
+                        .long("raster")
+                        .value_name("WHERE")
+                        .help(format!(
+                            "where the visibility method rasterises its mesh: the GPU's \
+                             rasteriser, or a compute pass (the tile at --samples 1 only; on a \
+                             GPU with few raster units it is the faster) [default: hardware] \
+                             [allowed: {}]",
+                            RASTERS.allowed()
                         )),
                 ),
         )
@@ -536,7 +552,7 @@ fn clap_error(e: clap::Error) -> i32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Drawn {
     Auto,
-    Pinned(crate::Method, u32),
+    Pinned(Candidate),
 }
 
 impl Drawn {
@@ -544,14 +560,37 @@ impl Drawn {
     /// draws through its own path, not a [`Terrain`] or [`World`].
     fn own_path(self) -> Option<crate::Method> {
         match self {
-            Drawn::Pinned(m, _) if !m.is_mesh() => Some(m),
+            Drawn::Pinned(c) if !c.method.is_mesh() => Some(c.method),
             _ => None,
         }
     }
 }
 
-/// `--method` and `--samples` of `relief render`.
+/// `--method`, `--samples` and `--raster` of `relief render`.
 fn drawn(m: &ArgMatches) -> Result<Drawn> {
+    let drawn = drawn_samples(m)?;
+    let Some(given) = string(m, "raster") else {
+        return Ok(drawn);
+    };
+    let raster = crate::Raster::from_name(&given)
+        .map_err(|_| Error::invalid("--raster", table::shorten(&given), RASTERS.allowed()))?;
+    match drawn {
+        Drawn::Pinned(c) if c.method == crate::Method::Visibility => {
+            Ok(Drawn::Pinned(Candidate { raster, ..c }))
+        }
+        other => Err(Error::Usage(format!(
+            "--raster applies to --method visibility only, not {}: the mesh and the hybrid \
+             rasterise in hardware, the ray casters rasterise nothing, and auto measures both",
+            match other {
+                Drawn::Pinned(c) => c.method.to_string(),
+                Drawn::Auto => "auto".to_owned(),
+            }
+        ))),
+    }
+}
+
+/// `--method` and `--samples` of `relief render`.
+fn drawn_samples(m: &ArgMatches) -> Result<Drawn> {
     let text = string(m, "method").unwrap_or_default();
     let method =
         match text.trim() {
@@ -562,7 +601,7 @@ fn drawn(m: &ArgMatches) -> Result<Drawn> {
         };
     let Some(given) = string(m, "samples") else {
         return Ok(method.map_or(Drawn::Auto, |m| {
-            Drawn::Pinned(m, crate::gpu::visibility::SAMPLES)
+            Drawn::Pinned(Candidate::new(m, crate::gpu::visibility::SAMPLES))
         }));
     };
     let samples = match SAMPLES.parse(&given) {
@@ -577,7 +616,7 @@ fn drawn(m: &ArgMatches) -> Result<Drawn> {
     };
     match method {
         Some(m @ (crate::Method::Visibility | crate::Method::Hybrid)) => {
-            Ok(Drawn::Pinned(m, samples))
+            Ok(Drawn::Pinned(Candidate::new(m, samples)))
         }
         other => Err(Error::Usage(format!(
             "--samples applies to --method visibility and hybrid only, not {}: the mesh \
@@ -598,8 +637,12 @@ fn resolve_drawn(
     timings: bool,
 ) -> Result<()> {
     match drawn {
-        Drawn::Pinned(method, samples) => {
-            scene.set(&gpu.device, crate::choice::Candidate { method, samples })
+        Drawn::Pinned(c) => {
+            scene.set(&gpu.device, c)?;
+            if timings && c.method.is_mesh() {
+                println!("method {c} (pinned: {})", c.flags());
+            }
+            Ok(())
         }
         Drawn::Auto => {
             let choice = headless::choose_method(gpu, scene)?;
@@ -1013,7 +1056,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         )?;
     }
     if let Run::Render {
-        method: Drawn::Pinned(method, _),
+        method: Drawn::Pinned(Candidate { method, .. }),
         ..
     } = run
     {
@@ -1157,7 +1200,7 @@ fn run(top: &ArgMatches) -> Result<()> {
                 return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
             }
             if let Run::Render {
-                method: Drawn::Pinned(method, _),
+                method: Drawn::Pinned(Candidate { method, .. }),
                 ..
             } = run
             {
@@ -1171,7 +1214,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         }
     }
     if let Run::Render {
-        method: Drawn::Pinned(method, _),
+        method: Drawn::Pinned(Candidate { method, .. }),
         ..
     } = run
     {

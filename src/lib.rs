@@ -110,6 +110,7 @@ pub mod world;
 
 pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};
 pub use error::{Error, Result};
+pub use gpu::raster::Raster;
 pub use gpu::world::{World, WorldStats, WorldView};
 pub use gpu::{height_at, Targets, Terrain, Textures};
 pub use method::Method;

@@ -594,6 +594,112 @@ fn render_samples_sets_the_visibility_methods_samples() {
     );
 }
 
+/// `--raster compute` rasterises the visibility method's mesh in a compute pass: the same
+/// image within edge pixels, and `--timings` names it; what it cannot draw is refused in words.
+#[test]
+fn render_raster_moves_the_visibility_methods_raster_to_compute() {
+    let dir = scratch("render-raster");
+    let out = dir.join("frame.png");
+    let o = out.to_str().unwrap();
+    let run = |raster: Option<&str>| {
+        let mut args = vec![
+            "render",
+            "--out",
+            o,
+            "--width",
+            "96",
+            "--height",
+            "64",
+            "--method",
+            "visibility",
+            "--samples",
+            "1",
+            "--timings",
+        ];
+        if let Some(r) = raster {
+            args.extend(["--raster", r]);
+        }
+        let (code, stdout, err) = relief(&args);
+        assert_eq!(code, 0, "--raster {raster:?}: {err}");
+        (stdout, image::open(&out).unwrap().to_rgba8().into_raw())
+    };
+    let (default, hardware) = run(None);
+    let (said, compute) = run(Some("compute"));
+    assert!(
+        default.contains(
+            "method visibility at 1 sample a pixel (pinned: --method visibility --samples 1)"
+        ),
+        "{default}"
+    );
+    assert!(
+        said.contains(
+            "rasterised in compute (pinned: --method visibility --samples 1 --raster compute)"
+        ),
+        "{said}"
+    );
+    assert!(!default.contains("compute"), "{default}");
+    let (explicit, image) = run(Some("hardware"));
+    assert_eq!(image, hardware, "--raster hardware is the default");
+    assert!(!explicit.contains("compute"), "{explicit}");
+    // The same terrain: a pixel centre within rounding of an edge may fall the other way.
+    let off = hardware
+        .chunks(4)
+        .zip(compute.chunks(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 8))
+        .count();
+    assert!(off * 200 < 96 * 64, "{off} pixels differ");
+    rejects(
+        &[
+            "render",
+            "--out",
+            o,
+            "--method",
+            "visibility",
+            "--samples",
+            "1",
+            "--raster",
+            "soft",
+        ],
+        &["--raster", "soft", "hardware or compute"],
+    );
+    rejects(
+        &[
+            "render",
+            "--out",
+            o,
+            "--method",
+            "visibility",
+            "--raster",
+            "compute",
+        ],
+        &["raster", "one sample a pixel", "--samples 1"],
+    );
+    rejects(
+        &[
+            "render",
+            "--out",
+            o,
+            "--world",
+            "endless",
+            "--method",
+            "visibility",
+            "--samples",
+            "1",
+            "--raster",
+            "compute",
+        ],
+        &["raster", "endless world"],
+    );
+    for method in ["mesh", "auto", "hybrid", "raymarch"] {
+        rejects(
+            &[
+                "render", "--out", o, "--method", method, "--raster", "compute",
+            ],
+            &["--raster", "visibility only", method],
+        );
+    }
+}
+
 #[test]
 fn render_visibility_times_its_passes_and_counts_its_images() {
     let dir = scratch("render-visibility");

@@ -8,7 +8,7 @@ mod common;
 
 use relief::gpu::headless::{self, Gpu, Offscreen, RENDER_SAMPLES};
 use relief::metrics::{image_error, rgb};
-use relief::{Method, OrbitCamera, Shading, Terrain, TerrainParams, WorldParams};
+use relief::{Method, OrbitCamera, Raster, Shading, Terrain, TerrainParams, WorldParams};
 
 const W: u32 = 256;
 const H: u32 = 144;
@@ -113,6 +113,110 @@ fn one_sample_a_pixel_draws_the_same_tile_and_other_counts_are_refused() {
     .unwrap();
     let e = terrain.set_visibility_samples(2).unwrap_err();
     assert!(e.to_string().contains("1 or 4"), "{e}");
+}
+
+/// The tile seen through `view`, drawn by the visibility method at one sample a pixel,
+/// rasterised by `raster`.
+fn tile_rasterised(
+    gpu: &Gpu,
+    params: TerrainParams,
+    view: &relief::View,
+    raster: Raster,
+) -> Vec<u8> {
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        params,
+    )
+    .unwrap();
+    terrain.set_visibility_samples(1).unwrap();
+    terrain.set_visibility_raster(raster);
+    terrain.set_method(&gpu.device, Method::Visibility).unwrap();
+    assert_eq!(terrain.visibility_raster(), raster);
+    headless::render_image(gpu, &mut terrain, view, (W, H), headless::TILE, None)
+        .unwrap()
+        .0
+}
+
+/// Share of pixels whose colour differs by more than 8 levels in some channel.
+fn differing(a: &[u8], b: &[u8]) -> f64 {
+    let n = a
+        .chunks(4)
+        .zip(b.chunks(4))
+        .filter(|(p, q)| p.iter().zip(q.iter()).any(|(x, y)| x.abs_diff(*y) > 8))
+        .count();
+    n as f64 / (a.len() / 4) as f64
+}
+
+#[test]
+fn the_compute_raster_draws_what_the_gpus_rasteriser_draws() {
+    let gpu = gpu();
+    let aspect = W as f32 / H as f32;
+    // The default framing, and a camera a few cells above the ground looking along it, where
+    // triangles beside and under the eye cross the near plane and are cut there.
+    let low = OrbitCamera {
+        target: glam::Vec3::new(0.0, 0.05, 0.0),
+        pitch: 0.02,
+        distance: 0.3,
+        ..Default::default()
+    };
+    for (name, view) in [
+        ("default", OrbitCamera::default().view(aspect)),
+        ("low", low.view(aspect)),
+    ] {
+        let hardware = tile_rasterised(&gpu, scene(1), &view, Raster::Hardware);
+        let compute = tile_rasterised(&gpu, scene(1), &view, Raster::Compute);
+        let other = tile_rasterised(&gpu, scene(2), &view, Raster::Compute);
+        let (same, control) = (flip(&hardware, &compute), flip(&compute, &other));
+        let off = differing(&hardware, &compute);
+        eprintln!(
+            "{name} view: compute raster vs hardware FLIP {same:.4}, {:.3}% of pixels differ; vs another seed {control:.4}",
+            100.0 * off
+        );
+        // Only pixel centres on or within float rounding of an edge may fall differently.
+        assert!(
+            same < 0.005 && off < 0.003,
+            "{name} view: the compute raster drew FLIP {same:.4} and {:.3}% of pixels away from the GPU's",
+            100.0 * off
+        );
+        assert!(
+            control > 0.02 && control > 10.0 * same,
+            "{name} view: another seed scored {control:.4}"
+        );
+    }
+}
+
+#[test]
+fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
+    let gpu = gpu();
+    let mut terrain = Terrain::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        scene(1),
+    )
+    .unwrap();
+    terrain.set_visibility_raster(Raster::Compute);
+    let e = terrain
+        .set_method(&gpu.device, Method::Visibility)
+        .unwrap_err();
+    assert!(e.to_string().contains("one sample a pixel"), "{e}");
+    terrain.set_visibility_samples(1).unwrap();
+    terrain.set_method(&gpu.device, Method::Visibility).unwrap();
+    let mut world = relief::World::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(RENDER_SAMPLES),
+        WorldParams::default(),
+    )
+    .unwrap();
+    world.set_visibility_samples(1).unwrap();
+    world.set_visibility_raster(Raster::Compute);
+    for method in [Method::Visibility, Method::Hybrid] {
+        let e = world.set_method(&gpu.device, method).unwrap_err();
+        assert!(e.to_string().contains("endless world"), "{method}: {e}");
+    }
 }
 
 fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {

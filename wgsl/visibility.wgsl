@@ -50,21 +50,38 @@ fn shade_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     store_pixel(px, sum, 4u, covered, nearest);
 }
 
+// Shades and stores the pixel `px` whose one sample has depth `d`.
+fn shade_pixel(px: vec2<i32>, d: f32) {
+    let covered = u32(d < 1.0);
+    var color = vec3<f32>(0.0);
+    if covered != 0u || vis.sky != 0u {
+        let s = textureLoad(surface_1, px, 0);
+        let valley = textureLoad(valley_1, px, 0).x;
+        color = shade_sample(linear_uniforms(), vec2<f32>(px) + 0.5, d, s, valley);
+    }
+    store_pixel(px, color, 1u, covered, d);
+}
+
 @compute @workgroup_size(8, 8)
 fn shade_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= vis.size.x || id.y >= vis.size.y {
         return;
     }
     let px = vec2<i32>(id.xy);
-    let d = textureLoad(depth_1, px, 0);
-    let covered = u32(d < 1.0);
-    var color = vec3<f32>(0.0);
-    if covered != 0u || vis.sky != 0u {
-        let s = textureLoad(surface_1, px, 0);
-        let valley = textureLoad(valley_1, px, 0).x;
-        color = shade_sample(linear_uniforms(), vec2<f32>(id.xy) + 0.5, d, s, valley);
+    shade_pixel(px, textureLoad(depth_1, px, 0));
+}
+
+// The compute raster's depth (raster.wgsl): per pixel, row by row, the nearest depth's
+// complemented bits, 0 where nothing was drawn.
+@group(0) @binding(19) var<storage, read> raster_depth: array<u32>;
+
+@compute @workgroup_size(8, 8)
+fn shade_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
     }
-    store_pixel(px, color, 1u, covered, d);
+    let bits = raster_depth[id.y * vis.size.x + id.x];
+    shade_pixel(vec2<i32>(id.xy), select(bitcast<f32>(~bits), 1.0, bits == 0u));
 }
 
 // The composite: one full-screen triangle; each pixel takes its shaded colour (blended over what

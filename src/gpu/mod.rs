@@ -8,6 +8,7 @@ pub mod blog;
 pub mod headless;
 pub mod landscape;
 pub(crate) mod normals;
+pub mod raster;
 pub mod raymarch;
 pub(crate) mod render;
 pub mod shader;
@@ -276,6 +277,17 @@ impl Terrain {
     /// takes effect with the next [`Terrain::set_method`].
     pub fn set_visibility_samples(&mut self, samples: u32) -> Result<()> {
         self.world.set_visibility_samples(samples)
+    }
+
+    /// Where the visibility method rasterises (see [`world::World::set_visibility_raster`]);
+    /// takes effect with the next [`Terrain::set_method`].
+    pub fn set_visibility_raster(&mut self, raster: raster::Raster) {
+        self.world.set_visibility_raster(raster);
+    }
+
+    /// Where the visibility method rasterises ([`Terrain::set_visibility_raster`]).
+    pub fn visibility_raster(&self) -> raster::Raster {
+        self.world.visibility_raster()
     }
 
     /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see

@@ -30,6 +30,9 @@ pub const VIS_COMMON: &str = include_str!("../../wgsl/vis_common.wgsl");
 /// `wgsl/visibility.wgsl`: the visibility method's compute shading and composite (needs
 /// [`SHADE`], [`LEVEL_TEXEL`], [`WORLD`] and [`VIS_COMMON`]).
 pub const VISIBILITY: &str = include_str!("../../wgsl/visibility.wgsl");
+/// `wgsl/raster.wgsl`: the visibility method's raster pass in compute (needs [`SHADE`],
+/// [`LEVEL_TEXEL`] and [`WORLD`]).
+pub const RASTER: &str = include_str!("../../wgsl/raster.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
 pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
 /// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
@@ -89,6 +92,7 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("world", compose(&[SHADE, LEVEL_TEXEL, WORLD])),
         ("sky", compose(&[SHADE, SKY])),
+        ("raster", compose(&[SHADE, LEVEL_TEXEL, WORLD, RASTER])),
         (
             "visibility",
             compose(&[SHADE, LEVEL_TEXEL, WORLD, VIS_COMMON, VISIBILITY]),

@@ -21,6 +21,7 @@
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
 //! geometry and terrain occlude each other.
 
+use super::raster::{ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 use super::world::WorldUniforms;
@@ -119,6 +120,8 @@ pub struct Visibility {
     samples: u32,
     /// The hybrid method: the compute pass refines each sample to the continuous surface.
     hybrid: bool,
+    /// The raster pass in compute ([`Raster::Compute`]), or `None` for the GPU's rasteriser.
+    compute_raster: Option<ComputeRaster>,
     /// The hybrid's ray uniforms (the continuous surface, the eye, the drawn region).
     ray_uniforms: Option<wgpu::Buffer>,
     raster: wgpu::RenderPipeline,
@@ -194,13 +197,16 @@ impl Visibility {
     /// The pipelines for a world drawn by `module` (`wgsl/world.wgsl` composed) with the
     /// bind group `layout`, compositing into the host's `targets`. `world`: the endless world's
     /// attributes; otherwise the tile, shaded from its textures. `samples`: 1 or [`SAMPLES`] a
-    /// pixel. `hybrid`: the hybrid method's refinement (the endless world's).
+    /// pixel. `hybrid`: the hybrid method's refinement (the endless world's). `raster`: where
+    /// the raster pass runs (the caller has checked [`Raster::refusal`]).
     pub(crate) fn new(
         device: &wgpu::Device,
         (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
         targets: &Targets,
-        (world, samples, hybrid): (bool, u32, bool),
+        (world, samples, hybrid, raster): (bool, u32, bool, Raster),
     ) -> Self {
+        let compute_raster =
+            (raster == Raster::Compute).then(|| ComputeRaster::new(device, layout));
         let raster_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("relief:visibility:raster-layout"),
             bind_group_layouts: &[Some(layout)],
@@ -299,12 +305,25 @@ impl Visibility {
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
+        if compute_raster.is_some() {
+            entries.push(wgpu::BindGroupLayoutEntry {
+                binding: 19,
+                visibility: c,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: true },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            });
+        }
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:visibility:compute-layout"),
             entries: &entries,
         });
         let entry_point = match (hybrid, ms) {
             (false, true) => "shade_samples",
+            (false, false) if compute_raster.is_some() => "shade_rasterised",
             (false, false) => "shade_pixels",
             (true, true) => "hybrid_samples",
             (true, false) => "hybrid_pixels",
@@ -332,6 +351,7 @@ impl Visibility {
             world,
             samples,
             hybrid,
+            compute_raster,
             ray_uniforms: hybrid.then(|| {
                 super::uniform_buffer::<WorldRayUniforms>(device, "relief:hybrid:ray-uniforms")
             }),
@@ -362,12 +382,21 @@ impl Visibility {
         self.hybrid
     }
 
+    /// Where its raster pass runs.
+    pub fn raster(&self) -> Raster {
+        if self.compute_raster.is_some() {
+            Raster::Compute
+        } else {
+            Raster::Hardware
+        }
+    }
+
     /// GPU memory of the method's own images at `size`, bytes.
     pub fn bytes(&self, size: (u32, u32)) -> u64 {
         let pixels = u64::from(size.0) * u64::from(size.1);
         let bytes = super::texel_bytes;
         let samples = u64::from(self.samples);
-        // Depth32Float: 4 bytes a sample.
+        // Depth32Float, or the compute raster's u32: 4 bytes a sample.
         let mut per_pixel = samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
         if self.world {
             per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(VALLEY_FORMAT));
@@ -382,7 +411,18 @@ impl Visibility {
         // The tile's raster pass writes no attributes: 1x1 stand-ins keep one layout.
         let attr_size = if self.world { size } else { (1, 1) };
         let n = self.samples;
-        let depth = ms_texture(device, ("relief:visibility:depth", n), size, DEPTH_FORMAT);
+        // The compute raster keeps its depth in a buffer of its own: a 1x1 stand-in here.
+        let depth_size = if self.compute_raster.is_some() {
+            (1, 1)
+        } else {
+            size
+        };
+        let depth = ms_texture(
+            device,
+            ("relief:visibility:depth", n),
+            depth_size,
+            DEPTH_FORMAT,
+        );
         let surface = ms_texture(
             device,
             ("relief:visibility:surface", n),
@@ -430,6 +470,9 @@ impl Visibility {
         if let Some(rays) = &self.ray_uniforms {
             entries.push(entry(18, rays.as_entire_binding()));
         }
+        if let Some(raster) = &mut self.compute_raster {
+            entries.push(entry(19, raster.depth(device, size).as_entire_binding()));
+        }
         let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:visibility:compute-group"),
             layout: &self.compute_layout,
@@ -454,9 +497,10 @@ impl Visibility {
         });
     }
 
-    /// Records the raster pass (`draw` draws the patches with the world's bind group at 0) and
-    /// the compute shading for an image of `size` seen through the camera-relative `matrix`;
-    /// the hybrid method's refinement reads `rays` (ignored by the visibility method).
+    /// Records the raster pass (`draw` draws the patches with the world's bind group at 0; the
+    /// compute raster reads `patches`) and the compute shading for an image of `size` seen
+    /// through the camera-relative `matrix`; the hybrid method's refinement reads `rays`
+    /// (ignored by the visibility method).
     #[expect(
         clippy::too_many_arguments,
         reason = "the world's resources, the frame and the timer, each needed once"
@@ -468,8 +512,9 @@ impl Visibility {
         encoder: &mut wgpu::CommandEncoder,
         world: &WorldBindings<'_>,
         (matrix, size, sky): (glam::Mat4, (u32, u32), bool),
-        (draw, rays): (
+        (draw, patches, rays): (
             impl FnOnce(&mut wgpu::RenderPass<'_>),
+            &Patches<'_>,
             Option<&WorldRayUniforms>,
         ),
         timer: Option<&GpuTimer>,
@@ -481,6 +526,15 @@ impl Visibility {
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(rays));
+        }
+        if let Some(raster) = &mut self.compute_raster {
+            raster.encode(
+                device,
+                queue,
+                encoder,
+                (size, patches),
+                timer.map(|t| t.compute_writes(Slot::Raster)),
+            );
         }
         let Some(images) = &self.images else {
             return;
@@ -503,7 +557,7 @@ impl Visibility {
                 ops: clear,
             }),
         ];
-        {
+        if self.compute_raster.is_none() {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("relief:visibility:raster-pass"),
                 color_attachments: if self.world { &attachments } else { &[] },

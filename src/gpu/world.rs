@@ -6,6 +6,7 @@
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
+use super::raster::{Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 use super::visibility::{Visibility, WorldBindings};
@@ -259,6 +260,8 @@ pub struct World {
     visibility: Option<Visibility>,
     /// Samples a pixel the visibility method rasterises and shades.
     vis_samples: u32,
+    /// Where the visibility method rasterises ([`World::set_visibility_raster`]).
+    vis_raster: Raster,
     /// The size of the host's target when it differs from the view's (a tile of a larger
     /// image): what the visibility method's images are made at.
     target_size: Option<(u32, u32)>,
@@ -350,7 +353,8 @@ impl World {
                 "relief:world:shader",
                 &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
             );
-            let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+            // Compute too: the visibility method's compute raster places the same vertices.
+            let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:world:bind-group-layout"),
                 entries: &[
@@ -385,7 +389,10 @@ impl World {
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:world:patches"),
                 size: (instance_capacity(tile.is_some()) * std::mem::size_of::<Patch>()) as u64,
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                // Storage too: the compute raster reads the patches.
+                usage: wgpu::BufferUsages::VERTEX
+                    | wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
             World {
@@ -429,6 +436,7 @@ impl World {
                 method: Method::Mesh,
                 visibility: None,
                 vis_samples: super::visibility::SAMPLES,
+                vis_raster: Raster::Hardware,
                 target_size: None,
                 vis_size: (0, 0),
                 raises: Vec::new(),
@@ -508,14 +516,21 @@ impl World {
             Method::Visibility | Method::Hybrid => {
                 let samples = self.vis_samples;
                 let hybrid = method == Method::Hybrid;
-                let built = self.visibility.as_ref().map(|v| (v.samples(), v.hybrid()));
-                if built != Some((samples, hybrid)) {
+                let raster = self.vis_raster;
+                if let Some(why) = raster.refusal(self.tile.is_some(), samples) {
+                    return Err(Error::invalid("raster", raster, why));
+                }
+                let built = self
+                    .visibility
+                    .as_ref()
+                    .map(|v| (v.samples(), v.hybrid(), v.raster()));
+                if built != Some((samples, hybrid, raster)) {
                     let vis = scoped(device, || {
                         Visibility::new(
                             device,
                             (&self.module, &self.layout),
                             &self.targets,
-                            (self.tile.is_none(), samples, hybrid),
+                            (self.tile.is_none(), samples, hybrid, raster),
                         )
                     })?;
                     self.visibility = Some(vis);
@@ -561,6 +576,19 @@ impl World {
         }
         self.vis_samples = samples;
         Ok(())
+    }
+
+    /// Where the visibility method rasterises its mesh: [`Raster::Hardware`] (the default) or
+    /// [`Raster::Compute`] (the tile at one sample a pixel only: [`super::raster`]). Takes
+    /// effect with the next [`World::set_method`], which refuses what the compute raster cannot
+    /// draw.
+    pub fn set_visibility_raster(&mut self, raster: Raster) {
+        self.vis_raster = raster;
+    }
+
+    /// Where the visibility method rasterises ([`World::set_visibility_raster`]).
+    pub fn visibility_raster(&self) -> Raster {
+        self.vis_raster
     }
 
     /// The host target's size where it differs from the view's ([`WorldView::size`]): a tile
@@ -896,13 +924,19 @@ impl World {
                 (&self.indices, self.index_counts),
             );
         };
+        let patches = Patches {
+            group: &self.bind_group,
+            instances: &self.instances,
+            counts: self.instance_counts,
+            cells: [self.map.patch, self.map.sub_cells()],
+        };
         vis.encode(
             device,
             queue,
             encoder,
             &bindings,
             (self.matrix, size, self.shading.sky),
-            (draw, rays.as_ref()),
+            (draw, &patches, rays.as_ref()),
             timer,
         );
         Ok(())
@@ -1533,7 +1567,7 @@ impl LevelLight {
 fn array_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Texture {
             sample_type,
             view_dimension: wgpu::TextureViewDimension::D2Array,
