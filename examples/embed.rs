@@ -151,6 +151,8 @@ pub struct Draw {
     /// How relief draws it: `Mesh` or `Visibility` (whose raster and shading passes
     /// `encode_bake` records before the host's pass).
     pub method: relief::Method,
+    /// Where the visibility method rasterises; `Compute` draws the tile at one sample a pixel.
+    pub raster: relief::Raster,
 }
 
 /// The host's MSAA sample count and formats; relief is built for exactly these.
@@ -231,6 +233,10 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         (m, uniforms)
     } else {
         let mut t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        if draw.raster == relief::Raster::Compute {
+            t.set_visibility_samples(1).map_err(|e| e.to_string())?;
+        }
+        t.set_visibility_raster(draw.raster);
         t.set_method(device, draw.method)
             .map_err(|e| e.to_string())?;
         let view = OrbitCamera::default().view(width as f32 / height as f32);
@@ -401,6 +407,7 @@ fn main() -> Result<(), String> {
             terrain: true,
             endless,
             method,
+            raster: relief::Raster::Hardware,
         },
     )?;
     image::save_buffer(&out, &pixels, w, h, image::ColorType::Rgba8).map_err(|e| e.to_string())?;

@@ -42,6 +42,18 @@ impl Config {
                 == (d.size, d.grid, d.normals)
     }
 
+    /// The method as the table names it: the visibility method with its samples a pixel and,
+    /// where it is not the GPU's, its raster.
+    pub fn table_name(&self) -> String {
+        match (self.method, self.raster) {
+            (Method::Visibility, crate::Raster::Hardware) => {
+                format!("visibility {}x", self.samples)
+            }
+            (Method::Visibility, r) => format!("visibility {}x {r}", self.samples),
+            (m, _) => m.name().to_owned(),
+        }
+    }
+
     /// A few words naming the configuration, for progress and chart labels.
     pub fn label(&self) -> String {
         match self.method {
@@ -690,7 +702,7 @@ pub fn csv(rows: &[Row], device: &str, backend: &str, options: &Options) -> Stri
 /// A short table for the terminal.
 pub fn table(rows: &[Row]) -> String {
     let mut out = format!(
-        "{:<18} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
+        "{:<21} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
         "method",
         "size",
         "grid",
@@ -710,8 +722,8 @@ pub fn table(rows: &[Row]) -> String {
         let dash = |b: bool, s: String| if b { "-".to_owned() } else { s };
         let _ = writeln!(
             out,
-            "{:<18} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10.3} {:>9.4} {:>8.4} {:>8}{}",
-            c.method.name(),
+            "{:<21} {:>5} {:>5} {:>11} {:>5} {:>4} {:>10} {:>10.3} {:>9.4} {:>8.4} {:>8}{}",
+            c.table_name(),
             dash(ray, c.params.size.to_string()),
             dash(ray, c.params.grid.to_string()),
             dash(ray, c.params.normals.to_string()),

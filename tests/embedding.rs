@@ -34,6 +34,16 @@ fn the_hybrid_method_is_depth_tested_with_host_geometry() {
 }
 
 fn depth_tested_together(endless: bool, method: relief::Method) {
+    depth_tested_with(endless, method, relief::Raster::Hardware);
+}
+
+/// And the visibility method with its raster in compute (the tile at one sample a pixel).
+#[test]
+fn the_compute_raster_is_depth_tested_with_host_geometry() {
+    depth_tested_with(false, relief::Method::Visibility, relief::Raster::Compute);
+}
+
+fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Raster) {
     let gpu = Host::new().expect(
         "the embedding test needs a GPU adapter (lavapipe: apt-get install mesa-vulkan-drivers)",
     );
@@ -47,6 +57,7 @@ fn depth_tested_together(endless: bool, method: relief::Method) {
             terrain: false,
             endless,
             method,
+            raster,
         },
     )
     .unwrap();
@@ -59,6 +70,7 @@ fn depth_tested_together(endless: bool, method: relief::Method) {
             terrain: true,
             endless,
             method,
+            raster,
         },
     )
     .unwrap();
@@ -71,6 +83,7 @@ fn depth_tested_together(endless: bool, method: relief::Method) {
             terrain: true,
             endless,
             method,
+            raster,
         },
     )
     .unwrap();

@@ -19,7 +19,7 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 17);
+    assert_eq!(modules.len(), 18);
     for (name, source) in modules {
         parse(name, &source);
     }

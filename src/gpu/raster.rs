@@ -245,6 +245,14 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_uniforms_have_the_wgsl_layout() {
+        // wgsl/raster.wgsl's RasterUniforms: a vec2<u32> and six u32, 32 bytes.
+        assert_eq!(std::mem::size_of::<RasterUniforms>(), 32);
+        assert_eq!(std::mem::offset_of!(RasterUniforms, whole), 8);
+        assert_eq!(std::mem::offset_of!(RasterUniforms, row_threads), 24);
+    }
+
+    #[test]
     fn names_round_trip_and_a_bad_one_says_what_is_accepted() {
         for r in Raster::ALL {
             assert_eq!(Raster::from_name(r.name()).unwrap(), r);
