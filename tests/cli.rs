@@ -441,8 +441,9 @@ fn render_writes_a_png_and_reports_timings() {
     assert_eq!(code, 0, "{err}");
     let img = image::open(&out).unwrap();
     assert_eq!((img.width(), img.height()), (96, 64));
+    // The method pinned, then the timings.
     assert!(
-        stdout.starts_with("timings"),
+        stdout.starts_with("method mesh (pinned: --method mesh)\ntimings"),
         "--timings printed nothing: {stdout:?}"
     );
     assert!(
@@ -792,7 +793,7 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     ] {
         assert!(header.contains(&column), "CSV lacks {column}");
     }
-    assert_eq!(lines.len(), 1 + 9, "nine configurations in the quick sweep");
+    assert_eq!(lines.len(), 1 + 10, "ten configurations in the quick sweep");
     let rows: Vec<Vec<String>> = lines[1..].iter().map(|l| csv_fields(l)).collect();
     for row in &rows {
         assert_eq!(row.len(), header.len(), "{row:?}");
@@ -819,6 +820,13 @@ fn bench_quick_writes_a_csv_and_a_chart() {
     ] {
         assert!(methods.contains(&m), "no {m} row");
     }
+    // The visibility method at one sample rasterised in compute, beside it at four in hardware.
+    let rasters: Vec<(&str, &str)> = rows
+        .iter()
+        .filter(|r| r[col("method")] == "visibility")
+        .map(|r| (r[col("samples")].as_str(), r[col("raster")].as_str()))
+        .collect();
+    assert_eq!(rasters, [("4", "hardware"), ("1", "compute")]);
     for row in &rows {
         let flip: f64 = row[col("flip_mean")].parse().unwrap();
         assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
