@@ -204,6 +204,20 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     assert!(e.to_string().contains("one sample a pixel"), "{e}");
     terrain.set_visibility_samples(1).unwrap();
     terrain.set_method(&gpu.device, Method::Visibility).unwrap();
+    // A frame whose depth buffer (4 bytes a pixel, bound whole) passes the device's storage
+    // binding limit is refused in words, before anything is made at that size.
+    let side = 65_536;
+    terrain.set_viewport((side, side));
+    let view = OrbitCamera::default().view(1.0);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let e = terrain
+        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("65536x65536") && e.contains("--raster hardware"),
+        "{e}"
+    );
     let mut world = relief::World::new(
         &gpu.device,
         &gpu.queue,

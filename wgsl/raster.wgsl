@@ -37,12 +37,14 @@ fn before(a: vec2<f32>, b: vec2<f32>) -> bool {
 }
 
 // Twice the signed area of (a, b, p), with a and b taken in one order whichever way the edge is
-// given, and the sign of the edge's direction.
+// given, and the sign of the edge's direction: one expression for both orders, so the two
+// triangles that share an edge compute the same value and differ only in its sign.
 fn edge(a: vec2<f32>, b: vec2<f32>, p: vec2<f32>) -> f32 {
-    if before(b, a) {
-        return -((a.x - b.x) * (p.y - b.y) - (a.y - b.y) * (p.x - b.x));
-    }
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+    let swap = before(b, a);
+    let lo = select(a, b, swap);
+    let hi = select(b, a, swap);
+    let e = (hi.x - lo.x) * (p.y - lo.y) - (hi.y - lo.y) * (p.x - lo.x);
+    return select(e, -e, swap);
 }
 
 // Whether a pixel centre with edge value `e` for the edge a -> b is inside (the triangle's

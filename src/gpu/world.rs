@@ -581,7 +581,9 @@ impl World {
     /// Where the visibility method rasterises its mesh: [`Raster::Hardware`] (the default) or
     /// [`Raster::Compute`] (the tile at one sample a pixel only: [`super::raster`]). Takes
     /// effect with the next [`World::set_method`], which refuses what the compute raster cannot
-    /// draw.
+    /// draw ([`World::set_targets`] sets the method again, so it refuses it too, and the world
+    /// draws the mesh); a frame larger than the device's storage binding limit allows (4 bytes
+    /// a pixel) is refused by [`World::encode_bake`].
     pub fn set_visibility_raster(&mut self, raster: Raster) {
         self.vis_raster = raster;
     }
@@ -891,6 +893,22 @@ impl World {
         timer: Option<&GpuTimer>,
     ) -> Result<()> {
         let size = self.target_size.unwrap_or(view.size);
+        if self.visibility.as_ref().map(Visibility::raster) == Some(Raster::Compute) {
+            // Its depth buffer is bound whole: 4 bytes a pixel within the device's limit.
+            let bytes = 4 * u64::from(size.0) * u64::from(size.1);
+            let limit = device.limits().max_storage_buffer_binding_size;
+            if bytes > limit {
+                return Err(Error::invalid(
+                    "image size for the compute raster",
+                    format!("{}x{}", size.0, size.1),
+                    format!(
+                        "at most {} pixels on this device (its depth buffer, 4 bytes a pixel, is \
+                         bound whole); --raster hardware draws larger",
+                        limit / 4
+                    ),
+                ));
+            }
+        }
         self.vis_size = size;
         let rays = if self.method == Method::Hybrid {
             // The region the levels draw (the clipmap's coarsest square around the eye), from
