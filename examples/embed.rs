@@ -151,7 +151,7 @@ pub struct Draw {
     /// How relief draws it: `Mesh` or `Visibility` (whose raster and shading passes
     /// `encode_bake` records before the host's pass).
     pub method: relief::Method,
-    /// Where the visibility method rasterises; `Compute` draws the tile at one sample a pixel.
+    /// Where the visibility method and the hybrid rasterise; `Compute` draws one sample a pixel.
     pub raster: relief::Raster,
 }
 
@@ -206,6 +206,10 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             ..Default::default()
         };
         let mut w = World::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
+        if draw.raster == relief::Raster::Compute {
+            w.set_visibility_samples(1).map_err(|e| e.to_string())?;
+        }
+        w.set_visibility_raster(draw.raster);
         w.set_method(device, draw.method)
             .map_err(|e| e.to_string())?;
         let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);

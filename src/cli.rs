@@ -164,8 +164,8 @@ pub fn command() -> Command {
                         .long("raster")
                         .value_name("WHERE")
                         .help(format!(
-                            "where the visibility method rasterises its mesh: the GPU's \
-                             rasteriser, or a compute pass (the tile at --samples 1 only; on a \
+                            "where the visibility method and the hybrid rasterise their mesh: \
+                             the GPU's rasteriser, or a compute pass (at --samples 1 only; on a \
                              GPU with few raster units it is the faster) [default: hardware] \
                              [allowed: {}]",
                             RASTERS.allowed()
@@ -575,12 +575,14 @@ fn drawn(m: &ArgMatches) -> Result<Drawn> {
     let raster = crate::Raster::from_name(&given)
         .map_err(|_| Error::invalid("--raster", table::shorten(&given), RASTERS.allowed()))?;
     match drawn {
-        Drawn::Pinned(c) if c.method == crate::Method::Visibility => {
+        Drawn::Pinned(c)
+            if matches!(c.method, crate::Method::Visibility | crate::Method::Hybrid) =>
+        {
             Ok(Drawn::Pinned(Candidate { raster, ..c }))
         }
         other => Err(Error::Usage(format!(
-            "--raster applies to --method visibility only, not {}: the mesh and the hybrid \
-             rasterise in hardware, the ray casters rasterise nothing, and auto measures both",
+            "--raster applies to --method visibility and hybrid only, not {}: the forward mesh \
+             rasterises in hardware, the ray casters rasterise nothing, and auto measures both",
             match other {
                 Drawn::Pinned(c) => c.method.to_string(),
                 Drawn::Auto => "auto".to_owned(),

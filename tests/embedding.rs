@@ -37,10 +37,11 @@ fn depth_tested_together(endless: bool, method: relief::Method) {
     depth_tested_with(endless, method, relief::Raster::Hardware);
 }
 
-/// And the visibility method with its raster in compute (the tile at one sample a pixel).
+/// And the visibility method and the hybrid with their raster in compute (one sample a pixel).
 #[test]
 fn the_compute_raster_is_depth_tested_with_host_geometry() {
     depth_tested_with(false, relief::Method::Visibility, relief::Raster::Compute);
+    depth_tested_with(true, relief::Method::Hybrid, relief::Raster::Compute);
 }
 
 fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Raster) {

@@ -155,12 +155,25 @@ fn hybrid_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let px = vec2<i32>(id.xy);
-    let d = textureLoad(depth_1, px, 0);
+    hybrid_pixel(px, textureLoad(depth_1, px, 0));
+}
+
+// The same from the compute raster's depth (raster.wgsl).
+@compute @workgroup_size(8, 8)
+fn hybrid_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
+    }
+    hybrid_pixel(vec2<i32>(id.xy), rasterised_depth(id.xy));
+}
+
+// Refines, shades and stores the pixel `px` whose one sample's raster depth is `d`.
+fn hybrid_pixel(px: vec2<i32>, d: f32) {
     var c = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if d < 1.0 || vis.sky != 0u {
         let s = textureLoad(surface_1, px, 0);
         let valley = textureLoad(valley_1, px, 0).x;
-        c = hybrid_sample(linear_uniforms(), vec2<f32>(id.xy) + 0.5, d, s.w, valley, 1.0);
+        c = hybrid_sample(linear_uniforms(), vec2<f32>(px) + 0.5, d, s.w, valley, 1.0);
     }
     let covered = u32(c.w < 1.0);
     if covered == 0u && vis.sky == 0u {

@@ -1,9 +1,12 @@
-// The visibility method's raster pass in compute (src/gpu/raster.rs; the tile at one sample a
-// pixel): the same patches and vertices as the hardware raster pass (world.wgsl's `place`), one
-// thread a cell, its two triangles clipped to the near plane, projected, and rasterised at pixel
-// centres; each covered pixel keeps the nearest depth by an atomic maximum of the depth's
-// complemented bits (non-negative floats order as their bits do, so the complement orders them
-// nearest first, and a cleared buffer's 0 reads as no terrain).
+// The visibility method's raster pass in compute (src/gpu/raster.rs; one sample a pixel): the
+// same patches and vertices as the hardware raster pass (world.wgsl's `place`), one thread a
+// cell, its two triangles clipped to the near plane, projected, and rasterised at pixel centres;
+// each covered pixel keeps the nearest depth by an atomic maximum of the depth's complemented
+// bits (non-negative floats order as their bits do, so the complement orders them nearest first,
+// and a cleared buffer's 0 reads as no terrain). The endless world's shading also needs each
+// pixel's attributes (world.wgsl's `fs_attributes`): a second dispatch of the same pipeline
+// (`mode` 1) rasterises again, and where a triangle's depth is the pixel's nearest, bit for bit
+// (the same code computed it), stores its attributes, interpolated perspective-correct.
 //
 // Why: the H100 has few raster units; its depth-only raster of the tile's 131k triangles took
 // 0.50 ms at 1080p, a pass that shades nothing. A thread a cell does the same in compute.
@@ -24,12 +27,33 @@ struct RasterUniforms {
     sub_cells: u32,
     // Threads per row of the dispatch (its x extent times the workgroup's).
     row_threads: u32,
-    _pad: u32,
+    // 0: the nearest depth; 1: the attributes of the triangles that are nearest.
+    mode: u32,
 }
 
 @group(1) @binding(0) var<uniform> ras: RasterUniforms;
 @group(1) @binding(1) var<storage, read> patches: array<vec4<u32>>;
 @group(1) @binding(2) var<storage, read_write> raster_depth: array<atomic<u32>>;
+// The endless world's attributes (1x1 stand-ins for the tile): as `fs_attributes` writes them.
+@group(1) @binding(3) var surface_out: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(4) var valley_out: texture_storage_2d<r32float, write>;
+
+// A vertex: its clip position and the attributes `fs_attributes` writes (slope in x and z,
+// colour channel, horizon; valley depth).
+struct RasterVertex {
+    clip: vec4<f32>,
+    surface: vec4<f32>,
+    valley: f32,
+}
+
+fn raster_vertex(vi: u32, patch_instance: vec4<u32>) -> RasterVertex {
+    let v = place(vi, patch_instance);
+    return RasterVertex(v.clip, vec4<f32>(v.sample.yz * w.peak, v.sample.w, v.light.x), v.light.y);
+}
+
+fn mix_vertex(a: RasterVertex, b: RasterVertex, t: f32) -> RasterVertex {
+    return RasterVertex(mix(a.clip, b.clip, t), mix(a.surface, b.surface, t), mix(a.valley, b.valley, t));
+}
 
 // Whether screen point `a` comes before `b` (x, then y).
 fn before(a: vec2<f32>, b: vec2<f32>) -> bool {
@@ -60,10 +84,12 @@ fn to_screen(c: vec4<f32>) -> vec3<f32> {
     return vec3<f32>((n.x * 0.5 + 0.5) * s.x, (0.5 - n.y * 0.5) * s.y, n.z);
 }
 
-fn raster_triangle(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>) {
-    let s0 = to_screen(c0);
-    var s1 = to_screen(c1);
-    var s2 = to_screen(c2);
+fn raster_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex) {
+    var v1 = v1_in;
+    var v2 = v2_in;
+    let s0 = to_screen(v0.clip);
+    var s1 = to_screen(v1.clip);
+    var s2 = to_screen(v2.clip);
     var area = edge(s0.xy, s1.xy, s2.xy);
     if !(abs(area) > 0.0) {
         return;
@@ -73,6 +99,9 @@ fn raster_triangle(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>) {
         let t = s1;
         s1 = s2;
         s2 = t;
+        let u = v1;
+        v1 = v2;
+        v2 = u;
         area = -area;
     }
     let size = vec2<f32>(ras.size);
@@ -96,23 +125,34 @@ fn raster_triangle(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>) {
                 continue;
             }
             let at = u32(y) * ras.size.x + u32(x);
-            atomicMax(&raster_depth[at], ~bitcast<u32>(abs(z)));
+            let bits = ~bitcast<u32>(abs(z));
+            if ras.mode == 0u {
+                atomicMax(&raster_depth[at], bits);
+            } else if atomicLoad(&raster_depth[at]) == bits {
+                // Perspective-correct: the screen weights over each vertex's clip w.
+                let q = vec3<f32>(e0 / v0.clip.w, e1 / v1.clip.w, e2 / v2.clip.w);
+                let k = q / (q.x + q.y + q.z);
+                let px = vec2<i32>(i32(x), i32(y));
+                textureStore(surface_out, px, k.x * v0.surface + k.y * v1.surface + k.z * v2.surface);
+                let valley = k.x * v0.valley + k.y * v1.valley + k.z * v2.valley;
+                textureStore(valley_out, px, vec4<f32>(valley, 0.0, 0.0, 0.0));
+            }
         }
     }
 }
 
 // The point where the edge from `a` (in front of the near plane) to `b` (behind it) meets it:
 // computed from the point in front, so two triangles sharing the edge find the same point.
-fn near_crossing(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
-    return mix(a, b, a.z / (a.z - b.z));
+fn near_crossing(a: RasterVertex, b: RasterVertex) -> RasterVertex {
+    return mix_vertex(a, b, a.clip.z / (a.clip.z - b.clip.z));
 }
 
 // The triangle cut to the near plane (clip z >= 0, where w > 0): none, one or two triangles.
-fn raster_clipped(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>) {
-    let v = array<vec4<f32>, 3>(c0, c1, c2);
+fn raster_clipped(c0: RasterVertex, c1: RasterVertex, c2: RasterVertex) {
+    let v = array<RasterVertex, 3>(c0, c1, c2);
     var front = 0u;
     for (var i = 0u; i < 3u; i++) {
-        front += u32(v[i].z >= 0.0);
+        front += u32(v[i].clip.z >= 0.0);
     }
     if front == 3u {
         raster_triangle(c0, c1, c2);
@@ -121,18 +161,22 @@ fn raster_clipped(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>) {
     if front == 0u {
         return;
     }
-    var poly: array<vec4<f32>, 4>;
+    var poly: array<RasterVertex, 4>;
     var n = 0u;
     for (var i = 0u; i < 3u; i++) {
         let a = v[i];
         let b = v[(i + 1u) % 3u];
-        let a_in = a.z >= 0.0;
+        let a_in = a.clip.z >= 0.0;
         if a_in {
             poly[n] = a;
             n += 1u;
         }
-        if a_in != (b.z >= 0.0) {
-            poly[n] = select(near_crossing(b, a), near_crossing(a, b), a_in);
+        if a_in != (b.clip.z >= 0.0) {
+            if a_in {
+                poly[n] = near_crossing(a, b);
+            } else {
+                poly[n] = near_crossing(b, a);
+            }
             n += 1u;
         }
     }
@@ -166,10 +210,10 @@ fn raster_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     let row = ras.patch_cells + 1u;
     let a = (c / side) * row + c % side;
     let p = patches[instance];
-    let va = place(a, p).clip;
-    let vb = place(a + 1u, p).clip;
-    let vc = place(a + row, p).clip;
-    let vd = place(a + row + 1u, p).clip;
+    let va = raster_vertex(a, p);
+    let vb = raster_vertex(a + 1u, p);
+    let vc = raster_vertex(a + row, p);
+    let vd = raster_vertex(a + row + 1u, p);
     raster_clipped(va, vb, vd);
     raster_clipped(va, vd, vc);
 }

@@ -35,6 +35,16 @@ struct VisUniforms {
 @group(0) @binding(16) var surface_1: texture_2d<f32>;
 @group(0) @binding(17) var valley_1: texture_2d<f32>;
 
+// The compute raster's depth (raster.wgsl): per pixel, row by row, the nearest depth's
+// complemented bits, 0 where nothing was drawn; its attributes are in surface_1 and valley_1.
+@group(0) @binding(19) var<storage, read> raster_depth: array<u32>;
+
+// The compute raster's depth at pixel `id` (1: nothing drawn).
+fn rasterised_depth(id: vec2<u32>) -> f32 {
+    let bits = raster_depth[id.y * vis.size.x + id.x];
+    return select(bitcast<f32>(~bits), 1.0, bits == 0u);
+}
+
 // The standard 4x MSAA sample positions within a pixel (WebGPU and Vulkan fix them).
 const SAMPLES: array<vec2<f32>, 4> = array<vec2<f32>, 4>(
     vec2<f32>(0.375, 0.125),

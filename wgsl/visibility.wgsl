@@ -71,17 +71,12 @@ fn shade_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
     shade_pixel(px, textureLoad(depth_1, px, 0));
 }
 
-// The compute raster's depth (raster.wgsl): per pixel, row by row, the nearest depth's
-// complemented bits, 0 where nothing was drawn.
-@group(0) @binding(19) var<storage, read> raster_depth: array<u32>;
-
 @compute @workgroup_size(8, 8)
 fn shade_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= vis.size.x || id.y >= vis.size.y {
         return;
     }
-    let bits = raster_depth[id.y * vis.size.x + id.x];
-    shade_pixel(vec2<i32>(id.xy), select(bitcast<f32>(~bits), 1.0, bits == 0u));
+    shade_pixel(vec2<i32>(id.xy), rasterised_depth(id.xy));
 }
 
 // The composite: one full-screen triangle; each pixel takes its shaded colour (blended over what

@@ -1,17 +1,19 @@
-//! Where the visibility method's raster pass runs: the GPU's rasteriser (a render pass writing
-//! depth, the default) or a compute pass of its own (`wgsl/raster.wgsl`: a thread a cell of
-//! the mesh, its two triangles clipped to the near plane and rasterised at pixel centres, the
-//! nearest depth kept by an atomic).
+//! Where the visibility method's and the hybrid's raster pass runs: the GPU's rasteriser (a
+//! render pass writing depth and, for the endless world, attributes; the default) or a compute
+//! pass of its own (`wgsl/raster.wgsl`: a thread a cell of the mesh, its two triangles clipped
+//! to the near plane and rasterised at pixel centres, the nearest depth kept by an atomic).
 //!
 //! Why both: an H100 has a few raster units beside a great deal of compute, and its
 //! depth-only raster of the default tile (131k triangles, 1920x1080) took 0.50 ms, about half
 //! the frame; a desktop GPU rasterises the same in a fraction of that. The choice of the
 //! default ([`crate::choice`]) measures both where both can draw.
 //!
-//! So far the compute raster draws the tile at one sample a pixel: the tile's shading reads
-//! its textures at the depth's point, so depth is all the raster must leave. The endless world's
-//! raster also leaves each sample's attributes (slope, colour, the light bake's horizon and
-//! valley), which an atomic on depth alone cannot carry.
+//! The compute raster draws one sample a pixel. The tile's shading reads its textures at the
+//! depth's point, so depth is all its raster must leave. The endless world's shading also reads
+//! each pixel's attributes (slope, colour channel, the light bake's horizon and valley), which
+//! an atomic on depth cannot carry: a second dispatch of the same pipeline rasterises again and
+//! stores them where a triangle's depth is the pixel's nearest, bit for bit. (The same
+//! instructions compute it in both dispatches, so the comparison is exact.)
 
 use crate::error::{Error, Result};
 
@@ -21,7 +23,7 @@ pub enum Raster {
     /// The GPU's rasteriser: a render pass writing depth (and the world's attributes).
     #[default]
     Hardware,
-    /// A compute pass: the tile at one sample a pixel only.
+    /// A compute pass: one sample a pixel only.
     Compute,
 }
 
@@ -45,20 +47,14 @@ impl Raster {
             .ok_or_else(|| Error::invalid("raster", name, "hardware or compute"))
     }
 
-    /// Why the compute raster cannot draw a world (`tile`: the tile or the endless world) at
-    /// `samples` a pixel, or `None` where it can.
-    pub fn refusal(self, tile: bool, samples: u32) -> Option<&'static str> {
+    /// Why this raster cannot draw at `samples` a pixel, or `None` where it can.
+    pub fn refusal(self, samples: u32) -> Option<&'static str> {
         match self {
-            Raster::Hardware => None,
-            Raster::Compute if !tile => Some(
-                "hardware in the endless world; the compute raster leaves depth alone, and the \
-                 world's raster also leaves each sample's attributes",
-            ),
             Raster::Compute if samples != 1 => Some(
-                "hardware at 4 samples a pixel; the compute raster draws the tile at one sample \
-                 a pixel (--samples 1)",
+                "hardware at 4 samples a pixel; the compute raster draws one sample a pixel \
+                 (--samples 1)",
             ),
-            Raster::Compute => None,
+            _ => None,
         }
     }
 }
@@ -79,8 +75,14 @@ struct RasterUniforms {
     patch_cells: u32,
     sub_cells: u32,
     row_threads: u32,
-    _pad: u32,
+    mode: u32,
 }
+
+/// The attribute images the second dispatch writes (the endless world's): slope in x and z,
+/// colour channel and horizon, as the hardware raster's surface target holds them ...
+pub(crate) const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// ... and the valley depth (32-bit: WebGPU's storage textures have no 16-bit red format).
+pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// Threads in a workgroup of `raster_cells`.
 const GROUP: u32 = 64;
@@ -88,11 +90,10 @@ const GROUP: u32 = 64;
 const MAX_GROUPS: u32 = 65_535;
 
 /// The mesh the raster draws: the world's bind group (its uniforms and level textures, group
-/// 0), its patch instances (whole patches first), how many of each, and the cells per side of
-/// a whole patch and of a sub-patch.
+/// 0), how many patch instances of each kind (whole patches first; the instances are bound by
+/// [`ComputeRaster::bind`]), and the cells per side of a whole patch and of a sub-patch.
 pub(crate) struct Patches<'a> {
     pub group: &'a wgpu::BindGroup,
-    pub instances: &'a wgpu::Buffer,
     pub counts: [u32; 2],
     pub cells: [u32; 2],
 }
@@ -101,17 +102,25 @@ pub(crate) struct Patches<'a> {
 pub(crate) struct ComputeRaster {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
-    uniforms: wgpu::Buffer,
+    /// Whether a second dispatch writes each pixel's attributes (the endless world's).
+    attributes: bool,
+    /// The uniforms of the depth dispatch (`mode` 0) and of the attributes' (`mode` 1): one
+    /// pipeline for both, so both compute a pixel's depth with the same instructions.
+    uniforms: [wgpu::Buffer; 2],
     /// Per pixel, row by row: the nearest depth's complemented bits, 0 where nothing is drawn.
     depth: Option<(u32, u32, wgpu::Buffer)>,
-    /// Binds the uniforms, the world's instances and the depth buffer (made again with the
-    /// depth buffer; the world's instance buffer lives as long as the world).
-    group: Option<wgpu::BindGroup>,
+    /// The two dispatches' bind groups ([`ComputeRaster::bind`]).
+    groups: Option<[wgpu::BindGroup; 2]>,
 }
 
 impl ComputeRaster {
-    /// The pipeline for a world whose bind group 0 has `world_layout` (visible to compute).
-    pub(crate) fn new(device: &wgpu::Device, world_layout: &wgpu::BindGroupLayout) -> Self {
+    /// The pipeline for a world whose bind group 0 has `world_layout` (visible to compute);
+    /// `attributes`: the endless world's, written by a second dispatch.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        world_layout: &wgpu::BindGroupLayout,
+        attributes: bool,
+    ) -> Self {
         use super::shader as s;
         let module = s::module(
             device,
@@ -135,6 +144,8 @@ impl ComputeRaster {
                 super::uniform_entry::<RasterUniforms>(0, c),
                 storage(1, true),
                 storage(2, false),
+                super::storage_entry(3, SURFACE_FORMAT),
+                super::storage_entry(4, VALLEY_FORMAT),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -153,13 +164,19 @@ impl ComputeRaster {
         Self {
             pipeline,
             layout,
-            uniforms: super::uniform_buffer::<RasterUniforms>(device, "relief:raster:uniforms"),
+            attributes,
+            uniforms: [
+                "relief:raster:depth-uniforms",
+                "relief:raster:attribute-uniforms",
+            ]
+            .map(|label| super::uniform_buffer::<RasterUniforms>(device, label)),
             depth: None,
-            group: None,
+            groups: None,
         }
     }
 
-    /// The depth buffer for an image of `size`, made again when the size changes.
+    /// The depth buffer for an image of `size`, made again when the size changes (the caller
+    /// binds it again, [`ComputeRaster::bind`]).
     pub(crate) fn depth(&mut self, device: &wgpu::Device, size: (u32, u32)) -> &wgpu::Buffer {
         if !matches!(&self.depth, Some((w, h, _)) if (*w, *h) == size) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -169,62 +186,89 @@ impl ComputeRaster {
                 mapped_at_creation: false,
             });
             self.depth = Some((size.0, size.1, buffer));
-            self.group = None;
+            self.groups = None;
         }
         &self.depth.as_ref().expect("made above").2
     }
 
-    /// Records the raster of `patches` into an image of `size`: clears the depth buffer, then
-    /// one compute pass (timed as `timestamps`).
-    pub(crate) fn encode(
+    /// Binds the world's patch `instances`, the depth buffer of `size` and the attribute
+    /// images `surface` ([`SURFACE_FORMAT`]) and `valley` ([`VALLEY_FORMAT`]; 1x1 stand-ins
+    /// where there are no attributes), each made with storage use.
+    pub(crate) fn bind(
         &mut self,
         device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        (size, patches): ((u32, u32), &Patches<'_>),
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        (instances, size): (&wgpu::Buffer, (u32, u32)),
+        (surface, valley): (&wgpu::TextureView, &wgpu::TextureView),
     ) {
         self.depth(device, size);
         let Some((_, _, depth)) = &self.depth else {
             return;
         };
-        if self.group.is_none() {
-            self.group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let layout = &self.layout;
+        self.groups = Some([0, 1].map(|mode| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("relief:raster:group"),
-                layout: &self.layout,
+                layout,
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: self.uniforms.as_entire_binding(),
+                        resource: self.uniforms[mode].as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: patches.instances.as_entire_binding(),
+                        resource: instances.as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 2,
                         resource: depth.as_entire_binding(),
                     },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(surface),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(valley),
+                    },
                 ],
-            }));
-        }
+            })
+        }));
+    }
+
+    /// Records the raster of `patches` into an image of `size` (bound by
+    /// [`ComputeRaster::bind`] at that size): clears the depth buffer, then one compute pass
+    /// (timed as `timestamps`) of one dispatch for the depth and, for the endless world, one
+    /// for the attributes.
+    pub(crate) fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        (size, patches): ((u32, u32), &Patches<'_>),
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let (Some((w, h, depth)), Some(groups)) = (&self.depth, &self.groups) else {
+            return;
+        };
+        debug_assert_eq!((*w, *h), size, "bound at another size");
         let [whole, subs] = patches.counts;
         let [patch_cells, sub_cells] = patches.cells;
         let cells = u64::from(whole) * u64::from(patch_cells).pow(2)
             + u64::from(subs) * u64::from(sub_cells).pow(2);
-        let groups = cells.div_ceil(u64::from(GROUP));
-        let x = groups.min(u64::from(MAX_GROUPS)) as u32;
-        let y = groups.div_ceil(u64::from(x.max(1))) as u32;
-        let u = RasterUniforms {
-            size: [size.0, size.1],
-            whole,
-            subs,
-            patch_cells,
-            sub_cells,
-            row_threads: x * GROUP,
-            _pad: 0,
-        };
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        let groups_needed = cells.div_ceil(u64::from(GROUP));
+        let x = groups_needed.min(u64::from(MAX_GROUPS)) as u32;
+        let y = groups_needed.div_ceil(u64::from(x.max(1))) as u32;
+        for mode in [0, 1] {
+            let u = RasterUniforms {
+                size: [size.0, size.1],
+                whole,
+                subs,
+                patch_cells,
+                sub_cells,
+                row_threads: x * GROUP,
+                mode,
+            };
+            queue.write_buffer(&self.uniforms[mode as usize], 0, bytemuck::bytes_of(&u));
+        }
         encoder.clear_buffer(depth, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:raster:pass"),
@@ -235,8 +279,11 @@ impl ComputeRaster {
         }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, patches.group, &[]);
-        pass.set_bind_group(1, self.group.as_ref(), &[]);
-        pass.dispatch_workgroups(x, y, 1);
+        let dispatches = if self.attributes { 2 } else { 1 };
+        for group in &groups[..dispatches] {
+            pass.set_bind_group(1, group, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        }
     }
 }
 
@@ -262,14 +309,11 @@ mod tests {
     }
 
     #[test]
-    fn the_compute_raster_draws_the_tile_at_one_sample_only() {
-        assert_eq!(Raster::Compute.refusal(true, 1), None);
-        assert!(Raster::Compute.refusal(true, 4).is_some());
-        assert!(Raster::Compute.refusal(false, 1).is_some());
-        for tile in [false, true] {
-            for samples in [1, 4] {
-                assert_eq!(Raster::Hardware.refusal(tile, samples), None);
-            }
+    fn the_compute_raster_draws_one_sample_a_pixel_only() {
+        assert_eq!(Raster::Compute.refusal(1), None);
+        assert!(Raster::Compute.refusal(4).is_some());
+        for samples in [1, 4] {
+            assert_eq!(Raster::Hardware.refusal(samples), None);
         }
     }
 }

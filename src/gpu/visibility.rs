@@ -21,7 +21,7 @@
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
 //! geometry and terrain occlude each other.
 
-use super::raster::{ComputeRaster, Patches, Raster};
+use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 use super::world::WorldUniforms;
@@ -102,6 +102,8 @@ pub(crate) struct WorldBindings<'a> {
     pub tile_terrain: &'a wgpu::TextureView,
     pub tile_normals: &'a wgpu::TextureView,
     pub tile_sampler: &'a wgpu::Sampler,
+    /// The world's patch instances (the compute raster reads them).
+    pub instances: &'a wgpu::Buffer,
 }
 
 /// The targets of one image size.
@@ -206,7 +208,7 @@ impl Visibility {
         (world, samples, hybrid, raster): (bool, u32, bool, Raster),
     ) -> Self {
         let compute_raster =
-            (raster == Raster::Compute).then(|| ComputeRaster::new(device, layout));
+            (raster == Raster::Compute).then(|| ComputeRaster::new(device, layout, world));
         let raster_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("relief:visibility:raster-layout"),
             bind_group_layouts: &[Some(layout)],
@@ -324,6 +326,7 @@ impl Visibility {
         let entry_point = match (hybrid, ms) {
             (false, true) => "shade_samples",
             (false, false) if compute_raster.is_some() => "shade_rasterised",
+            (true, false) if compute_raster.is_some() => "hybrid_rasterised",
             (false, false) => "shade_pixels",
             (true, true) => "hybrid_samples",
             (true, false) => "hybrid_pixels",
@@ -399,7 +402,12 @@ impl Visibility {
         // Depth32Float, or the compute raster's u32: 4 bytes a sample.
         let mut per_pixel = samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
         if self.world {
-            per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(VALLEY_FORMAT));
+            let valley = if self.compute_raster.is_some() {
+                raster::VALLEY_FORMAT
+            } else {
+                VALLEY_FORMAT
+            };
+            per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(valley));
         }
         pixels * per_pixel
     }
@@ -423,20 +431,35 @@ impl Visibility {
             depth_size,
             DEPTH_FORMAT,
         );
-        let surface = ms_texture(
-            device,
-            ("relief:visibility:surface", n),
-            attr_size,
-            SURFACE_FORMAT,
-        );
-        let valley = ms_texture(
-            device,
-            ("relief:visibility:valley", n),
-            attr_size,
-            VALLEY_FORMAT,
-        );
-        let [depth_at, surface_at, valley_at] = target_bindings(n);
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let (surface, valley) = if let Some(raster) = &mut self.compute_raster {
+            // The compute raster's second dispatch stores the attributes.
+            let [surface, valley] = [
+                ("relief:visibility:surface", raster::SURFACE_FORMAT),
+                ("relief:visibility:valley", raster::VALLEY_FORMAT),
+            ]
+            .map(|(label, format)| {
+                super::texture_2d(device, label, attr_size, format, usage)
+                    .create_view(&Default::default())
+            });
+            raster.bind(device, (world.instances, size), (&surface, &valley));
+            (surface, valley)
+        } else {
+            let surface = ms_texture(
+                device,
+                ("relief:visibility:surface", n),
+                attr_size,
+                SURFACE_FORMAT,
+            );
+            let valley = ms_texture(
+                device,
+                ("relief:visibility:valley", n),
+                attr_size,
+                VALLEY_FORMAT,
+            );
+            (surface, valley)
+        };
+        let [depth_at, surface_at, valley_at] = target_bindings(n);
         let shaded = super::texture_2d(
             device,
             "relief:visibility:shaded",
@@ -527,9 +550,8 @@ impl Visibility {
         if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(rays));
         }
-        if let Some(raster) = &mut self.compute_raster {
+        if let Some(raster) = &self.compute_raster {
             raster.encode(
-                device,
                 queue,
                 encoder,
                 (size, patches),

@@ -517,7 +517,7 @@ impl World {
                 let samples = self.vis_samples;
                 let hybrid = method == Method::Hybrid;
                 let raster = self.vis_raster;
-                if let Some(why) = raster.refusal(self.tile.is_some(), samples) {
+                if let Some(why) = raster.refusal(samples) {
                     return Err(Error::invalid("raster", raster, why));
                 }
                 let built = self
@@ -579,7 +579,7 @@ impl World {
     }
 
     /// Where the visibility method rasterises its mesh: [`Raster::Hardware`] (the default) or
-    /// [`Raster::Compute`] (the tile at one sample a pixel only: [`super::raster`]). Takes
+    /// [`Raster::Compute`] (at one sample a pixel only: [`super::raster`]). Takes
     /// effect with the next [`World::set_method`], which refuses what the compute raster cannot
     /// draw ([`World::set_targets`] sets the method again, so it refuses it too, and the world
     /// draws the mesh); a frame larger than the device's storage binding limit allows (4 bytes
@@ -933,6 +933,7 @@ impl World {
             tile_terrain: &self.tile_textures.terrain,
             tile_normals: &self.tile_textures.normals,
             tile_sampler: &self.tile_textures.sampler,
+            instances: &self.instances,
         };
         let draw = |pass: &mut wgpu::RenderPass<'_>| {
             pass.set_bind_group(0, &self.bind_group, &[]);
@@ -944,7 +945,6 @@ impl World {
         };
         let patches = Patches {
             group: &self.bind_group,
-            instances: &self.instances,
             counts: self.instance_counts,
             cells: [self.map.patch, self.map.sub_cells()],
         };
