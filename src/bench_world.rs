@@ -118,6 +118,8 @@ pub struct WorldRow {
     /// Samples a pixel the visibility method or the hybrid rasterised and shaded (`None` for
     /// the forward mesh, 4x MSAA, and the ray casters).
     pub samples: Option<u32>,
+    /// Where the visibility method or the hybrid rasterised (`None` for the others).
+    pub raster: Option<crate::Raster>,
 }
 
 impl WorldRow {
@@ -165,6 +167,7 @@ impl WorldRow {
             light_ms_mean: mean_slot(times, Slot::Light),
             light_ms_max: slot(Slot::Light).reduce(f64::max),
             samples: None,
+            raster: None,
         }
     }
 
@@ -194,6 +197,7 @@ impl WorldRow {
             light_ms_mean: None,
             light_ms_max: None,
             samples: None,
+            raster: None,
         }
     }
 
@@ -289,19 +293,33 @@ pub fn run(
         };
         // The visibility method beside the mesh at one knob: the scene's (the full run's 1 px),
         // or the quick run's first; the hybrid at every knob, at four samples a pixel and one
-        // (its accuracy should not follow the mesh's as the mesh coarsens).
-        let hybrid = [(Method::Hybrid, 4), (Method::Hybrid, 1)];
+        // (its accuracy should not follow the mesh's as the mesh coarsens), and in the full run
+        // at one sample rasterised in compute too.
+        use crate::Raster::{Compute, Hardware};
+        let mut hybrid = vec![(Method::Hybrid, 4, Hardware), (Method::Hybrid, 1, Hardware)];
+        if !quick {
+            hybrid.push((Method::Hybrid, 1, Compute));
+        }
         let methods = if knob == vis_knob {
-            [&[(Method::Mesh, 4), (Method::Visibility, 4)][..], &hybrid].concat()
+            [
+                &[
+                    (Method::Mesh, 4, Hardware),
+                    (Method::Visibility, 4, Hardware),
+                ][..],
+                &hybrid,
+            ]
+            .concat()
         } else {
-            [&[(Method::Mesh, 4)][..], &hybrid].concat()
+            [&[(Method::Mesh, 4, Hardware)][..], &hybrid].concat()
         };
         for v in views(&p, size) {
-            for &(method, samples) in &methods {
-                let named = if method == Method::Hybrid {
-                    format!("{method}, {samples} a pixel")
-                } else {
-                    method.to_string()
+            for &(method, samples, raster) in &methods {
+                let named = match (method, raster) {
+                    (Method::Hybrid, Hardware) => format!("{method}, {samples} a pixel"),
+                    (Method::Hybrid, Compute) => {
+                        format!("{method}, {samples} a pixel rasterised in compute")
+                    }
+                    _ => method.to_string(),
                 };
                 progress(&format!("{} at {knob} px ({named})", v.name));
                 let mut world = World::new(
@@ -311,6 +329,7 @@ pub fn run(
                     p,
                 )?;
                 world.set_visibility_samples(samples)?;
+                world.set_visibility_raster(raster);
                 world.set_method(&gpu.device, method)?;
                 let mut texels = Vec::new();
                 let (times, wall) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
@@ -320,6 +339,7 @@ pub fn run(
                 let mut row =
                     WorldRow::measured((v.name, method), knob, &s, &texels, &times, &wall);
                 row.samples = (method != Method::Mesh).then_some(samples);
+                row.raster = (method != Method::Mesh).then_some(raster);
                 // The mesh's screen error and depth; not the hybrid's, whose surface is not its
                 // mesh's (its FLIP says how close it is).
                 let depth = if method == Method::Hybrid {
@@ -573,7 +593,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         "# relief bench --world endless on {device}, {}x{}, {} timed frames after {} ms warm-up\n",
         options.width, options.height, options.frames, options.warmup_ms
     );
-    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max,samples\n");
+    out.push_str("view,method,pixel_error,patch_cells,levels,triangles,error_bound_px,measured_max_px,measured_p99_px,uniform_grid_triangles,texels_baked_median,texels_baked_max,texels_baked_mean,render_ms,bake_ms_median,bake_ms_max,bake_ms_mean,wall_ms,flip_mean,flip_p99,missed,extra,wrong_depth,unresolved_rays,flip_3x3_vs_8x8_mean,flip_3x3_vs_8x8_p99,light_ms_mean,light_ms_max,samples,raster\n");
     for r in rows {
         let mesh = r.method.is_mesh();
         // Mesh-only columns are empty for the ray casters.
@@ -609,6 +629,7 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
             opt(r.light_ms_mean),
             opt(r.light_ms_max),
             r.samples.map_or(String::new(), |n| n.to_string()),
+            r.raster.map_or(String::new(), |n| n.to_string()),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');
@@ -788,7 +809,12 @@ where
                     format!("{} px", p.2.pixel_error)
                 } else if p.2.method == Method::Hybrid {
                     let n = p.2.samples.unwrap_or(4);
-                    format!("hybrid {n}x {} px", p.2.pixel_error)
+                    let compute = if p.2.raster == Some(crate::Raster::Compute) {
+                        " compute"
+                    } else {
+                        ""
+                    };
+                    format!("hybrid {n}x{compute} {} px", p.2.pixel_error)
                 } else if p.2.method.is_mesh() {
                     format!("{} {} px", p.2.method, p.2.pixel_error)
                 } else {
