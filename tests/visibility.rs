@@ -34,17 +34,35 @@ fn tile(gpu: &Gpu, params: TerrainParams, method: Method) -> Vec<u8> {
 
 /// The tile drawn with `method`, the visibility method at `samples` a pixel.
 fn tile_at(gpu: &Gpu, params: TerrainParams, method: Method, samples: u32) -> Vec<u8> {
-    let mut terrain = Terrain::new(
+    let view = OrbitCamera::default().view(W as f32 / H as f32);
+    draw_tile(gpu, params, &view, (method, samples, Raster::Hardware))
+}
+
+/// A tile of `params` drawing into `relief render`'s targets.
+fn terrain(gpu: &Gpu, params: TerrainParams) -> Terrain {
+    Terrain::new(
         &gpu.device,
         &gpu.queue,
         Offscreen::targets(RENDER_SAMPLES),
         params,
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// The tile seen through `view`, drawn with `method`, the visibility method at `samples` a
+/// pixel rasterised by `raster`.
+fn draw_tile(
+    gpu: &Gpu,
+    params: TerrainParams,
+    view: &relief::View,
+    (method, samples, raster): (Method, u32, Raster),
+) -> Vec<u8> {
+    let mut terrain = terrain(gpu, params);
     terrain.set_visibility_samples(samples).unwrap();
+    terrain.set_visibility_raster(raster);
     terrain.set_method(&gpu.device, method).unwrap();
-    let view = OrbitCamera::default().view(W as f32 / H as f32);
-    headless::render_image(gpu, &mut terrain, &view, (W, H), headless::TILE, None)
+    assert_eq!(terrain.visibility_raster(), raster);
+    headless::render_image(gpu, &mut terrain, view, (W, H), headless::TILE, None)
         .unwrap()
         .0
 }
@@ -104,13 +122,7 @@ fn one_sample_a_pixel_draws_the_same_tile_and_other_counts_are_refused() {
         same < 0.06 && control > 3.0 * same,
         "one sample a pixel: {same:.4} against four, {control:.4} against another seed"
     );
-    let mut terrain = Terrain::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        scene(1),
-    )
-    .unwrap();
+    let mut terrain = terrain(&gpu, scene(1));
     let e = terrain.set_visibility_samples(2).unwrap_err();
     assert!(e.to_string().contains("1 or 4"), "{e}");
 }
@@ -123,20 +135,7 @@ fn tile_rasterised(
     view: &relief::View,
     raster: Raster,
 ) -> Vec<u8> {
-    let mut terrain = Terrain::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        params,
-    )
-    .unwrap();
-    terrain.set_visibility_samples(1).unwrap();
-    terrain.set_visibility_raster(raster);
-    terrain.set_method(&gpu.device, Method::Visibility).unwrap();
-    assert_eq!(terrain.visibility_raster(), raster);
-    headless::render_image(gpu, &mut terrain, view, (W, H), headless::TILE, None)
-        .unwrap()
-        .0
+    draw_tile(gpu, params, view, (Method::Visibility, 1, raster))
 }
 
 /// Share of pixels whose colour differs by more than 8 levels in some channel.
@@ -190,13 +189,7 @@ fn the_compute_raster_draws_what_the_gpus_rasteriser_draws() {
 #[test]
 fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     let gpu = gpu();
-    let mut terrain = Terrain::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        scene(1),
-    )
-    .unwrap();
+    let mut terrain = terrain(&gpu, scene(1));
     terrain.set_visibility_raster(Raster::Compute);
     let e = terrain
         .set_method(&gpu.device, Method::Visibility)
@@ -314,13 +307,7 @@ fn visibility_draws_the_endless_worlds_mesh() {
 #[test]
 fn the_ray_casters_are_not_mesh_methods() {
     let gpu = gpu();
-    let mut terrain = Terrain::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(RENDER_SAMPLES),
-        scene(1),
-    )
-    .unwrap();
+    let mut terrain = terrain(&gpu, scene(1));
     let e = terrain
         .set_method(&gpu.device, Method::Raymarch)
         .unwrap_err();

@@ -257,7 +257,9 @@ impl ComputeRaster {
         let groups_needed = cells.div_ceil(u64::from(GROUP));
         let x = groups_needed.min(u64::from(MAX_GROUPS)) as u32;
         let y = groups_needed.div_ceil(u64::from(x.max(1))) as u32;
-        for mode in [0, 1] {
+        // The attributes' dispatch (and its uniforms) only where there are attributes.
+        let dispatches = if self.attributes { 2 } else { 1 };
+        for mode in 0..dispatches {
             let u = RasterUniforms {
                 size: [size.0, size.1],
                 whole,
@@ -265,9 +267,9 @@ impl ComputeRaster {
                 patch_cells,
                 sub_cells,
                 row_threads: x * GROUP,
-                mode,
+                mode: mode as u32,
             };
-            queue.write_buffer(&self.uniforms[mode as usize], 0, bytemuck::bytes_of(&u));
+            queue.write_buffer(&self.uniforms[mode], 0, bytemuck::bytes_of(&u));
         }
         encoder.clear_buffer(depth, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -279,7 +281,6 @@ impl ComputeRaster {
         }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, patches.group, &[]);
-        let dispatches = if self.attributes { 2 } else { 1 };
         for group in &groups[..dispatches] {
             pass.set_bind_group(1, group, &[]);
             pass.dispatch_workgroups(x, y, 1);
