@@ -292,34 +292,28 @@ pub fn run(
             ..*params
         };
         // The visibility method beside the mesh at one knob: the scene's (the full run's 1 px),
-        // or the quick run's first; the hybrid at every knob, at four samples a pixel and one
+        // or the quick run's first, at four samples a pixel (and in the full run at one,
+        // rasterised in compute); the hybrid at every knob, at four samples a pixel and one
         // (its accuracy should not follow the mesh's as the mesh coarsens), and in the full run
         // at one sample rasterised in compute too.
         use crate::Raster::{Compute, Hardware};
         let mut hybrid = vec![(Method::Hybrid, 4, Hardware), (Method::Hybrid, 1, Hardware)];
+        let mut visibility = vec![(Method::Visibility, 4, Hardware)];
         if !quick {
             hybrid.push((Method::Hybrid, 1, Compute));
+            visibility.push((Method::Visibility, 1, Compute));
         }
         let methods = if knob == vis_knob {
-            [
-                &[
-                    (Method::Mesh, 4, Hardware),
-                    (Method::Visibility, 4, Hardware),
-                ][..],
-                &hybrid,
-            ]
-            .concat()
+            [&[(Method::Mesh, 4, Hardware)][..], &visibility, &hybrid].concat()
         } else {
             [&[(Method::Mesh, 4, Hardware)][..], &hybrid].concat()
         };
         for v in views(&p, size) {
             for &(method, samples, raster) in &methods {
                 let named = match (method, raster) {
-                    (Method::Hybrid, Hardware) => format!("{method}, {samples} a pixel"),
-                    (Method::Hybrid, Compute) => {
-                        format!("{method}, {samples} a pixel rasterised in compute")
-                    }
-                    _ => method.to_string(),
+                    (Method::Mesh, _) => method.to_string(),
+                    (_, Hardware) => format!("{method}, {samples} a pixel"),
+                    (_, Compute) => format!("{method}, {samples} a pixel rasterised in compute"),
                 };
                 progress(&format!("{} at {knob} px ({named})", v.name));
                 let mut world = World::new(
@@ -807,16 +801,14 @@ where
             .draw_series(mine.iter().map(|p| {
                 let label = if p.2.method == Method::Mesh {
                     format!("{} px", p.2.pixel_error)
-                } else if p.2.method == Method::Hybrid {
+                } else if p.2.method.is_mesh() {
                     let n = p.2.samples.unwrap_or(4);
                     let compute = if p.2.raster == Some(crate::Raster::Compute) {
                         " compute"
                     } else {
                         ""
                     };
-                    format!("hybrid {n}x{compute} {} px", p.2.pixel_error)
-                } else if p.2.method.is_mesh() {
-                    format!("{} {} px", p.2.method, p.2.pixel_error)
+                    format!("{} {n}x{compute} {} px", p.2.method, p.2.pixel_error)
                 } else {
                     p.2.method.to_string()
                 };
