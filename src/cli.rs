@@ -121,55 +121,6 @@ pub fn command() -> Command {
                         .allow_hyphen_values(true)
                         .value_name("PIXELS")
                         .help(format!("image height [allowed: {}]", IMAGE_SIDE.allowed())),
-                )
-                .arg(
-                    Arg::new("method")
-                        .long("method")
-                        .default_value("auto")
-                        .value_name("METHOD")
-                        .help(format!(
-                            "how the frame is drawn: auto (the fastest of {} on this GPU, \
-                             measured over a few frames first; --timings says which and why); {} \
-                             [allowed: {}]",
-                            ["tile", "endless"]
-                                .map(|w| {
-                                    let world = crate::WorldKind::from_name(w).unwrap_or_default();
-                                    let all = crate::choice::Candidate::all(world);
-                                    let names: Vec<String> =
-                                        all.iter().map(|c| c.to_string()).collect();
-                                    format!("{} in the {w} world", names.join(", "))
-                                })
-                                .join("; "),
-                            crate::Method::ALL
-                                .iter()
-                                .map(|m| format!("{m} ({})", m.doc()))
-                                .collect::<Vec<_>>()
-                                .join("; "),
-                            METHODS.allowed()
-                        )),
-                )
-                .arg(
-                    Arg::new("samples")
-                        .long("samples")
-                        .value_name("N")
-                        .help(format!(
-                            "samples a pixel the visibility method and the hybrid rasterise and \
-                             shade (4: edges anti-aliased; 1: a quarter of the raster work) \
-                             [default: 4] [allowed: {}]",
-                            SAMPLES.allowed()
-                        )),
-                )
-                .arg(
-                    Arg::new("raster")
-                        .long("raster")
-                        .value_name("WHERE")
-                        .help(format!(
-                            "where the visibility method and the hybrid rasterise their mesh: \
-                             the GPU's rasteriser, or a compute pass (at --samples 1 only; on a \
-                             GPU with few raster units it is the faster) [default: hardware] \
-                             [allowed: {}]",
-                            RASTERS.allowed()
-                        )),
                 ),
         )
         .subcommand(
@@ -299,6 +250,58 @@ pub fn command() -> Command {
                  over --size must be a power of two (metres per sample) and its corner a \
                  multiple of it [default: 0,0,4096,4096]",
             ),
+    )
+    .arg(
+        Arg::new("method")
+            .long("method")
+            .global(true)
+            .value_name("METHOD")
+            .help(format!(
+                "render and the window: how frames are drawn: auto (the fastest of {} on this GPU, \
+                 measured over a few frames first; --timings says which and why); {} \
+                 [default: auto for render, mesh for the window (M steps through the methods)] \
+                 [allowed: {}]",
+                ["tile", "endless"]
+                    .map(|w| {
+                        let world = crate::WorldKind::from_name(w).unwrap_or_default();
+                        let all = crate::choice::Candidate::all(world);
+                        let names: Vec<String> =
+                            all.iter().map(|c| c.to_string()).collect();
+                        format!("{} in the {w} world", names.join(", "))
+                    })
+                    .join("; "),
+                crate::Method::ALL
+                    .iter()
+                    .map(|m| format!("{m} ({})", m.doc()))
+                    .collect::<Vec<_>>()
+                    .join("; "),
+                METHODS.allowed()
+            )),
+    )
+    .arg(
+        Arg::new("samples")
+            .long("samples")
+            .global(true)
+            .value_name("N")
+            .help(format!(
+                "render and the window: samples a pixel the visibility method and the hybrid rasterise and \
+                 shade (4: edges anti-aliased; 1: a quarter of the raster work) \
+                 [default: 4] [allowed: {}]",
+                SAMPLES.allowed()
+            )),
+    )
+    .arg(
+        Arg::new("raster")
+            .long("raster")
+            .global(true)
+            .value_name("WHERE")
+            .help(format!(
+                "render and the window: where the visibility method and the hybrid rasterise their mesh: \
+                 the GPU's rasteriser, or a compute pass (at --samples 1 only; on a \
+                 GPU with few raster units it is the faster) [default: hardware] \
+                 [allowed: {}]",
+                RASTERS.allowed()
+            )),
     )
     .arg(
         Arg::new("camera")
@@ -566,9 +569,10 @@ impl Drawn {
     }
 }
 
-/// `--method`, `--samples` and `--raster` of `relief render`.
-fn drawn(m: &ArgMatches) -> Result<Drawn> {
-    let drawn = drawn_samples(m)?;
+/// `--method`, `--samples` and `--raster` of `relief render` and the window, `default` where
+/// `--method` is not given.
+fn drawn(m: &ArgMatches, default: Drawn) -> Result<Drawn> {
+    let drawn = drawn_samples(m, default)?;
     let Some(given) = string(m, "raster") else {
         return Ok(drawn);
     };
@@ -591,16 +595,20 @@ fn drawn(m: &ArgMatches) -> Result<Drawn> {
     }
 }
 
-/// `--method` and `--samples` of `relief render`.
-fn drawn_samples(m: &ArgMatches) -> Result<Drawn> {
-    let text = string(m, "method").unwrap_or_default();
-    let method =
-        match text.trim() {
+/// `--method` and `--samples` of `relief render` and the window.
+fn drawn_samples(m: &ArgMatches, default: Drawn) -> Result<Drawn> {
+    let method = match string(m, "method") {
+        None => match default {
+            Drawn::Auto => None,
+            Drawn::Pinned(c) => Some(c.method),
+        },
+        Some(text) => match text.trim() {
             "auto" => None,
             t => Some(crate::Method::from_name(t).ok_or_else(|| {
                 Error::invalid("--method", table::shorten(&text), METHODS.allowed())
             })?),
-        };
+        },
+    };
     let Some(given) = string(m, "samples") else {
         return Ok(method.map_or(Drawn::Auto, |m| {
             Drawn::Pinned(Candidate::new(m, crate::gpu::visibility::SAMPLES))
@@ -938,6 +946,19 @@ fn resolve_scene(m: &ArgMatches) -> Result<TerrainParams> {
     Ok(p)
 }
 
+/// Sets the window to draw what `drawn` stands for: a method with its samples and raster, or
+/// `auto` (chosen by measurement before the first frame).
+fn draw_window_with(o: &mut AppOptions, drawn: Drawn) {
+    match drawn {
+        Drawn::Auto => o.auto = true,
+        Drawn::Pinned(c) => {
+            o.method = c.method;
+            o.samples = c.samples;
+            o.raster = c.raster;
+        }
+    }
+}
+
 fn resolve_app(m: &ArgMatches, params: TerrainParams) -> Result<AppOptions> {
     let mut o = AppOptions {
         params,
@@ -1010,7 +1031,7 @@ fn run(top: &ArgMatches) -> Result<()> {
             out: PathBuf::from(string(m, "out").unwrap_or_default()),
             width: image_side(m, "width")?,
             height: image_side(m, "height")?,
-            method: drawn(m)?,
+            method: drawn(m, Drawn::Auto)?,
             camera: camera(m)?,
             stats: m.get_flag("stats"),
         },
@@ -1045,6 +1066,36 @@ fn run(top: &ArgMatches) -> Result<()> {
     };
     if !matches!(run, Run::Window) {
         refuse_flags(m, name, &window_only, "it applies to the window only")?;
+    }
+    if !matches!(run, Run::Window | Run::Render { .. }) {
+        refuse_flags(
+            m,
+            name,
+            &["method", "samples", "raster"],
+            "it applies to relief render and the window only",
+        )?;
+    }
+    // The window's method (the mesh unless given), checked against its world as render's is.
+    let window_drawn = match run {
+        Run::Window => Some(drawn(m, Drawn::Pinned(Candidate::MESH))?),
+        _ => None,
+    };
+    if let Some(Drawn::Pinned(c)) = window_drawn {
+        let drawn_here = match world_kind(m)? {
+            WorldKind::Tile => c.method.in_tile(),
+            WorldKind::Endless => c.method.in_world(),
+        };
+        if !drawn_here {
+            return Err(Error::Usage(format!(
+                "--method {} draws {} only",
+                c.method,
+                if c.method.in_tile() {
+                    "the tile world (its own terrain)"
+                } else {
+                    "the endless world (--world endless)"
+                }
+            )));
+        }
     }
     let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
     if endless_window {
@@ -1168,12 +1219,15 @@ fn run(top: &ArgMatches) -> Result<()> {
                         "the window starts the path at 0 s and follows it",
                     )?;
                 }
-                let options = AppOptions {
+                let mut options = AppOptions {
                     world: Some((params, fly)),
                     path: cam.path.is_some(),
                     timings: m.get_flag("timings"),
                     ..Default::default()
                 };
+                if let Some(d) = window_drawn {
+                    draw_window_with(&mut options, d);
+                }
                 return crate::app::run_native(options, script(m)?);
             }
             // A region bake's --size is its samples per side.
@@ -1229,7 +1283,13 @@ fn run(top: &ArgMatches) -> Result<()> {
     let params = resolve_scene(m)?;
     let timings = m.get_flag("timings");
     match run {
-        Run::Window => crate::app::run_native(resolve_app(m, params)?, script(m)?),
+        Run::Window => {
+            let mut options = resolve_app(m, params)?;
+            if let Some(d) = window_drawn {
+                draw_window_with(&mut options, d);
+            }
+            crate::app::run_native(options, script(m)?)
+        }
         Run::Render {
             out,
             width,

@@ -2250,3 +2250,47 @@ fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
     );
     rejects(&["render", "--axis", "scroll"], &["--axis"]);
 }
+
+/// `--method`, `--samples` and `--raster` reach `relief render` and the window; the other
+/// commands refuse them in words, and the window refuses a method its world does not draw
+/// (before any window opens).
+#[test]
+fn method_samples_and_raster_reach_render_and_the_window_only() {
+    let dir = scratch("method-reach");
+    let d = dir.to_str().unwrap();
+    for (args, flag) in [
+        (
+            &["bake", "--out-dir", d, "--method", "mesh"][..],
+            "--method",
+        ),
+        (
+            &["bench", "--out-dir", d, "--raster", "compute"][..],
+            "--raster",
+        ),
+        (&["height", "--samples", "1", "0,0"][..], "--samples"),
+        (
+            &["stability", "--out-dir", d, "--method", "auto"][..],
+            "--method",
+        ),
+    ] {
+        rejects(args, &[flag, "render and the window only"]);
+    }
+    rejects(
+        &["--world", "endless", "--method", "blog"],
+        &["--method blog", "tile"],
+    );
+    rejects(&["--method", "hybrid"], &["--method hybrid", "endless"]);
+    // The window's default is the mesh, which takes no samples.
+    rejects(
+        &["--samples", "1"],
+        &["--samples", "visibility and hybrid", "mesh"],
+    );
+    rejects(
+        &["window", "--method", "mesh", "--raster", "compute"],
+        &["--raster", "visibility and hybrid only", "mesh"],
+    );
+    assert!(
+        files_in(&dir).is_empty(),
+        "a refused command writes nothing"
+    );
+}

@@ -229,9 +229,9 @@ fn m_steps_the_window_to_the_next_method() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
     // The frames after each M are drawn by the next method in the list (the visibility
-    // method, then the hybrid), and their timings say so.
+    // method, then the hybrid, at the window's 4 samples a pixel), and their timings say so.
     for next in &relief::Method::WORLD_NAMES[1..3] {
-        let next = format!(", {next})");
+        let next = format!(", {next} at 4 samples a pixel)");
         assert!(
             stdout
                 .lines()
@@ -311,4 +311,97 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
         titles[2].1 < titles[1].1 - 2.0,
         "the sun after - held: {stdout}"
     );
+}
+
+/// `relief --method M --samples N --raster R` draws the window with that method, its samples a
+/// pixel and its raster, and the timings name all three.
+#[test]
+fn the_window_draws_the_method_samples_and_raster_it_is_given() {
+    let args = [
+        "--world",
+        "endless",
+        "--pixel-error",
+        "16",
+        "--method",
+        "visibility",
+        "--samples",
+        "1",
+        "--raster",
+        "compute",
+        "--timings",
+        "--exit-after",
+        "20",
+    ];
+    let (code, stdout, err) = window(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        err, "",
+        "a pinned method measures nothing and says nothing on stderr"
+    );
+    let named = ", visibility at 1 sample a pixel rasterised in compute)";
+    let drawn: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("timings") && l.contains(named))
+        .collect();
+    assert!(!drawn.is_empty(), "{stdout}");
+    // Its raster and shading passes ran.
+    assert!(
+        drawn
+            .iter()
+            .any(|l| l.contains("raster ") && l.contains("shade ")),
+        "{stdout}"
+    );
+    assert!(frames_drawn(&stdout) > 0, "{stdout}");
+}
+
+/// `relief --method auto` measures the world's candidates before the first frame, as `relief
+/// render` does, says so on stderr, prints the choice with `--timings`, and draws with it.
+#[test]
+fn the_window_chooses_its_method_by_measurement_with_method_auto() {
+    let args = [
+        "--method",
+        "auto",
+        "--size",
+        "64",
+        "--grid",
+        "16",
+        "--timings",
+        "--exit-after",
+        "30",
+    ];
+    let (code, stdout, err) = window(&args);
+    assert_eq!(code, 0, "{err}");
+    let candidates = relief::choice::Candidate::all(relief::WorldKind::Tile);
+    assert!(
+        err.contains(&format!("measuring {} methods", candidates.len())),
+        "{err}"
+    );
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("method "))
+        .unwrap_or_else(|| panic!("no choice in {stdout}"));
+    if !line.contains("no GPU timestamps") {
+        for c in candidates {
+            assert!(line.contains(&format!("{c} ")), "{c} missing: {line}");
+        }
+    }
+    // The frames are drawn by the method chosen.
+    let chosen = candidates
+        .iter()
+        .find(|c| line.starts_with(&format!("method {c} (")))
+        .unwrap_or_else(|| panic!("no candidate chosen in {line}"));
+    assert!(frames_drawn(&stdout) > 0, "{stdout}");
+    let timed: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("timings"))
+        .collect();
+    assert!(!timed.is_empty(), "{stdout}");
+    for l in timed {
+        let says = if chosen.method == relief::Method::Mesh {
+            !l.contains(", visibility")
+        } else {
+            l.contains(&format!(", {chosen})"))
+        };
+        assert!(says, "{chosen}: {l}");
+    }
 }

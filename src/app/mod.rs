@@ -34,8 +34,10 @@ use winit::window::{Window, WindowId};
 
 /// Depth format of the window's depth buffer.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// MSAA samples in the window, the same as `relief render`, so both show the same picture.
-pub const SAMPLES: u32 = 4;
+/// MSAA samples of the window's target for the mesh, the same as `relief render`, so both show
+/// the same picture; the visibility method and the hybrid draw into a single-sampled target, as
+/// `relief render` does too ([`crate::gpu::render_samples`]).
+pub const SAMPLES: u32 = crate::gpu::RENDER_SAMPLES;
 /// How long without a new frame before the readout says the window is idle.
 pub const IDLE_AFTER: Duration = Duration::from_millis(500);
 /// Least time between two timed frames, so each printed timing is a new measurement.
@@ -112,6 +114,10 @@ pub struct Stats {
     pub idle: bool,
     /// How the last frame was drawn.
     pub method: crate::Method,
+    /// The visibility method's and the hybrid's samples a pixel and raster in the last frame.
+    pub samples: u32,
+    /// ... and where they rasterised.
+    pub raster: crate::Raster,
     /// CPU time of a frame on the app's side (input, animation, recording and submitting the
     /// GPU work; not the GPU's time, nor the wait for the surface's next texture and its
     /// present), mean over the frames of the last half second, ms.
@@ -131,6 +137,9 @@ pub trait Report {
     fn accepted(&mut self) {}
     /// The parameters changed (the page updates its URL and controls).
     fn options(&mut self, _options: &AppOptions) {}
+    /// The method was chosen by measurement (`relief --method auto`): which, and `line`, which
+    /// says why.
+    fn chosen(&mut self, _candidate: crate::choice::Candidate, _line: &str) {}
     /// A frame was presented.
     fn frame(&mut self, _stats: &Stats) {}
     /// The app stopped on an error.
@@ -162,9 +171,18 @@ impl Report for Terminal {
         }
         if fresh_timings {
             if let Some((frame, t)) = stats.gpu {
-                // The method is named where it is not the mesh.
+                // The method is named where it is not the mesh, with its samples and raster
+                // where it has them.
                 let method = match stats.method {
                     crate::Method::Mesh => String::new(),
+                    m @ (crate::Method::Visibility | crate::Method::Hybrid) => {
+                        let c = crate::choice::Candidate {
+                            method: m,
+                            samples: stats.samples,
+                            raster: stats.raster,
+                        };
+                        format!(", {c}")
+                    }
                     m => format!(", {m}"),
                 };
                 // The app's own CPU time a frame, beside the GPU's passes.
@@ -188,6 +206,17 @@ impl Report for Terminal {
     }
     fn warn(&mut self, message: &str) {
         eprintln!("{}", one_line(&format!("warning: {message}")));
+    }
+    fn chosen(&mut self, candidate: crate::choice::Candidate, line: &str) {
+        // With --timings the whole line, as `relief render` prints it; else which, in short.
+        if self.timings {
+            println!("{line}");
+        } else {
+            eprintln!(
+                "relief: drawing with {candidate} ({}), the fastest measured; --timings says why",
+                candidate.flags()
+            );
+        }
     }
     fn frame(&mut self, _stats: &Stats) {}
     fn fatal(&mut self, _message: &str) {
@@ -440,11 +469,76 @@ impl App {
                 state.describe
             ));
         }
+        // `--method auto`: chosen on this device before the first frame (once: a new device
+        // after a loss draws what was chosen).
+        #[cfg(not(target_arch = "wasm32"))]
+        if self.options.auto {
+            self.choose(&mut state);
+        }
+        let drawn = crate::choice::Candidate {
+            method: self.options.method,
+            samples: self.options.samples,
+            raster: self.options.raster,
+        };
+        if let Err(e) = state.use_candidate(drawn) {
+            self.report.warn(&e.to_string());
+        }
         self.state = Some(state);
         self.last_tick = Instant::now();
         self.keep_camera_above();
         self.report.options(&self.options);
         self.changed();
+    }
+
+    /// Chooses the method as `relief render --method auto` does
+    /// ([`crate::gpu::headless::choose_method`]): a few frames of each candidate of the world
+    /// shown, at the window's size, into offscreen targets; the mesh where that fails.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn choose(&mut self, state: &mut State) {
+        use crate::gpu::headless::{choose_method, Gpu, TrialScene};
+        self.options.auto = false;
+        let world = if state.world.is_some() {
+            crate::WorldKind::Endless
+        } else {
+            crate::WorldKind::Tile
+        };
+        self.report.notice(&format!(
+            "relief: measuring {} methods on {} before the first frame (--method pins one)",
+            crate::choice::Candidate::all(world).len(),
+            state.describe
+        ));
+        let gpu = Gpu {
+            adapter: state.adapter.clone(),
+            device: state.device.clone(),
+            queue: state.queue.clone(),
+        };
+        let size = (state.config.width, state.config.height);
+        let chosen = match (&mut state.world, &self.fly) {
+            (Some(world), Some(fly)) => {
+                let view = fly.view(size);
+                choose_method(&gpu, TrialScene::Endless(world, &view))
+            }
+            _ => {
+                let view = self.camera.view(state.aspect());
+                choose_method(&gpu, TrialScene::Tile(&mut state.terrain, &view, size))
+            }
+        };
+        let candidate = match chosen {
+            Ok(choice) => {
+                self.report
+                    .chosen(choice.candidate, &choice.describe(&state.describe));
+                choice.candidate
+            }
+            Err(e) => {
+                self.report.warn(&format!(
+                    "choosing the method failed ({e}); drawing the mesh"
+                ));
+                crate::choice::Candidate::MESH
+            }
+        };
+        self.options.method = candidate.method;
+        self.options.samples = candidate.samples;
+        self.options.raster = candidate.raster;
     }
 
     fn device_lost(&mut self, event_loop: &ActiveEventLoop, reason: String) {
@@ -527,6 +621,8 @@ impl App {
                 .is_none_or(|t| now.duration_since(t) >= TIMING_INTERVAL);
         let view = self.camera.view(s.aspect());
         self.stats.method = self.options.method;
+        self.stats.samples = self.options.samples;
+        self.stats.raster = self.options.raster;
         if let Some(world) = &mut s.world {
             // The water's ripples move on while frames come (an idle window draws none).
             world.set_time(self.started.elapsed().as_secs_f32());

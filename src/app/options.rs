@@ -34,6 +34,14 @@ pub struct AppOptions {
     pub path_time: f64,
     /// How frames are drawn (`method` in the URL): the mesh, or a ray caster.
     pub method: crate::Method,
+    /// Samples a pixel of the visibility method and the hybrid (`relief --samples`, 4 or 1).
+    pub samples: u32,
+    /// Where the visibility method and the hybrid rasterise (`relief --raster`).
+    pub raster: crate::Raster,
+    /// Choose the method by measurement before the first frame (`relief --method auto`, the
+    /// native window only): [`crate::gpu::headless::choose_method`], then `method`, `samples`
+    /// and `raster` hold the choice.
+    pub auto: bool,
 }
 
 impl Default for AppOptions {
@@ -47,6 +55,9 @@ impl Default for AppOptions {
             path: false,
             path_time: 0.0,
             method: crate::Method::Mesh,
+            samples: crate::gpu::visibility::SAMPLES,
+            raster: crate::Raster::Hardware,
+            auto: false,
         }
     }
 }

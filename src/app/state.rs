@@ -62,6 +62,9 @@ pub struct State {
     pub(crate) config: wgpu::SurfaceConfiguration,
     depth: Option<wgpu::TextureView>,
     msaa: Option<wgpu::TextureView>,
+    /// Samples of the window's depth and colour targets: [`crate::gpu::render_samples`] of the
+    /// method last drawn with the mesh.
+    samples: u32,
     pub(crate) terrain: Terrain,
     /// The endless world, when the window shows it instead of the tile.
     pub(crate) world: Option<World>,
@@ -71,7 +74,14 @@ pub struct State {
     pub(crate) waited: web_time::Duration,
     // The instance and adapter the surface and device came from, kept for the window's life.
     _instance: wgpu::Instance,
-    _adapter: wgpu::Adapter,
+    #[cfg_attr(
+        target_arch = "wasm32",
+        expect(
+            dead_code,
+            reason = "the page does not choose its method by measurement"
+        )
+    )]
+    pub(crate) adapter: wgpu::Adapter,
     /// "name (backend)" of the adapter.
     pub describe: String,
     /// The ray caster's targets when the method is a ray caster (rebuilt for a new size or
@@ -202,11 +212,12 @@ impl State {
             config,
             depth: None,
             msaa: None,
+            samples: SAMPLES,
             terrain,
             world,
             timer,
             _instance: instance,
-            _adapter: adapter,
+            adapter,
             describe,
             rays: None,
             blit: None,
@@ -239,7 +250,7 @@ impl State {
                         depth_or_array_layers: 1,
                     },
                     mip_level_count: 1,
-                    sample_count: SAMPLES,
+                    sample_count: self.samples,
                     dimension: wgpu::TextureDimension::D2,
                     format,
                     usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
@@ -248,7 +259,48 @@ impl State {
                 .create_view(&Default::default())
         };
         self.depth = Some(make("relief:window:depth", DEPTH_FORMAT));
-        self.msaa = (SAMPLES > 1).then(|| make("relief:window:msaa", self.config.format));
+        self.msaa = (self.samples > 1).then(|| make("relief:window:msaa", self.config.format));
+    }
+
+    /// The window's targets at `samples` a pixel, as the terrain and the world draw into them.
+    fn targets(&self, samples: u32) -> Targets {
+        Targets {
+            color_format: self.config.format,
+            depth_format: Some(DEPTH_FORMAT),
+            sample_count: samples,
+        }
+    }
+
+    /// Sets the window's targets to `samples` a pixel (a mesh-based method's
+    /// [`crate::gpu::render_samples`]): the terrain's and the world's pipelines, and the depth
+    /// and colour textures. The blog's pipeline is built again when next drawn.
+    fn set_samples(&mut self, samples: u32) -> Result<()> {
+        let targets = self.targets(samples);
+        self.samples = samples;
+        self.blog = None;
+        self.blog_failed = false;
+        self.terrain.set_targets(&self.device, targets)?;
+        if let Some(world) = &mut self.world {
+            world.set_targets(&self.device, targets)?;
+        }
+        let (w, h) = (self.config.width, self.config.height);
+        if self.depth.is_some() {
+            self.resize(w, h);
+        }
+        Ok(())
+    }
+
+    /// Draws with `c` from the next frame on: its method's samples a pixel and raster in the
+    /// terrain and the world, and the window's targets for its method (the method itself is the
+    /// app's, given to each [`State::draw`]).
+    pub fn use_candidate(&mut self, c: crate::choice::Candidate) -> Result<()> {
+        self.terrain.set_visibility_samples(c.samples)?;
+        self.terrain.set_visibility_raster(c.raster);
+        if let Some(world) = &mut self.world {
+            world.set_visibility_samples(c.samples)?;
+            world.set_visibility_raster(c.raster);
+        }
+        self.set_samples(crate::gpu::render_samples(c.method))
     }
 
     /// Creates the window's surface again (after [`Drawn::SurfaceLost`]) on the same device.
@@ -283,6 +335,16 @@ impl State {
         timed: bool,
         method: Method,
     ) -> Drawn {
+        // The mesh-based methods draw into targets of their own samples a pixel (ray casters
+        // show their image without them).
+        if method.ray_path().is_none() {
+            let samples = crate::gpu::render_samples(Self::mesh_method(method));
+            if samples != self.samples {
+                if let Err(e) = self.set_samples(samples) {
+                    log::warn!("{e}");
+                }
+            }
+        }
         if method == Method::Blog && fly.is_none() && self.blog.is_none() && !self.blog_failed {
             // Built on first use, for the window's targets; tried once.
             match crate::gpu::blog::Blog::new(&self.device, *self.terrain.targets()) {

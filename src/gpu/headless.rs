@@ -532,20 +532,8 @@ fn bake_in_passes(
     Ok(())
 }
 
-/// MSAA samples of `relief render` images and the window.
-pub const RENDER_SAMPLES: u32 = 4;
+pub use super::{render_samples, RENDER_SAMPLES};
 
-/// The MSAA samples of the target `relief render` and the benchmarks draw `method` into: the
-/// visibility method and the hybrid anti-alias in their own compute pass, so the host's pass
-/// they composite into needs none (on an H100 a 4x target costs that full-screen draw some
-/// 1.8 ms at 1080p).
-pub fn render_samples(method: crate::Method) -> u32 {
-    if matches!(method, crate::Method::Visibility | crate::Method::Hybrid) {
-        1
-    } else {
-        RENDER_SAMPLES
-    }
-}
 /// Largest image side `relief render` accepts.
 pub const MAX_IMAGE: u32 = 16384;
 /// Largest tile [`render_image`] draws at once: bigger images are drawn in tiles, so their
