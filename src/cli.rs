@@ -582,7 +582,10 @@ fn drawn(m: &ArgMatches, default: Drawn) -> Result<Drawn> {
         Drawn::Pinned(c)
             if matches!(c.method, crate::Method::Visibility | crate::Method::Hybrid) =>
         {
-            Ok(Drawn::Pinned(Candidate { raster, ..c }))
+            match raster.refusal(c.samples) {
+                Some(why) => Err(Error::invalid("--raster", raster, why)),
+                None => Ok(Drawn::Pinned(Candidate { raster, ..c })),
+            }
         }
         other => Err(Error::Usage(format!(
             "--raster applies to --method visibility and hybrid only, not {}: the forward mesh \

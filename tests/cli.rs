@@ -2289,6 +2289,19 @@ fn method_samples_and_raster_reach_render_and_the_window_only() {
         &["window", "--method", "mesh", "--raster", "compute"],
         &["--raster", "visibility and hybrid only", "mesh"],
     );
+    // The compute raster draws one sample a pixel: refused at the default 4, in the window as
+    // in render.
+    rejects(
+        &["--method", "visibility", "--raster", "compute"],
+        &["--raster", "--samples 1"],
+    );
+    rejects(
+        &[
+            "render", "--out", "x.png", "--world", "endless", "--method", "hybrid", "--raster",
+            "compute",
+        ],
+        &["--raster", "--samples 1"],
+    );
     assert!(
         files_in(&dir).is_empty(),
         "a refused command writes nothing"

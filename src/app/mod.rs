@@ -137,9 +137,8 @@ pub trait Report {
     fn accepted(&mut self) {}
     /// The parameters changed (the page updates its URL and controls).
     fn options(&mut self, _options: &AppOptions) {}
-    /// The method was chosen by measurement (`relief --method auto`): which, and `line`, which
-    /// says why.
-    fn chosen(&mut self, _candidate: crate::choice::Candidate, _line: &str) {}
+    /// The method was chosen (`relief --method auto`): `choice`, and `line`, which says why.
+    fn chosen(&mut self, _choice: &crate::choice::Choice, _line: &str) {}
     /// A frame was presented.
     fn frame(&mut self, _stats: &Stats) {}
     /// The app stopped on an error.
@@ -207,14 +206,20 @@ impl Report for Terminal {
     fn warn(&mut self, message: &str) {
         eprintln!("{}", one_line(&format!("warning: {message}")));
     }
-    fn chosen(&mut self, candidate: crate::choice::Candidate, line: &str) {
+    fn chosen(&mut self, choice: &crate::choice::Choice, line: &str) {
         // With --timings the whole line, as `relief render` prints it; else which, in short.
+        let c = choice.candidate;
         if self.timings {
             println!("{line}");
+        } else if choice.why == crate::choice::Why::NoTimestamps {
+            eprintln!(
+                "relief: drawing with {c} ({}): nothing could be measured (no GPU timestamps)",
+                c.flags()
+            );
         } else {
             eprintln!(
-                "relief: drawing with {candidate} ({}), the fastest measured; --timings says why",
-                candidate.flags()
+                "relief: drawing with {c} ({}), the fastest measured; --timings says why",
+                c.flags()
             );
         }
     }
@@ -526,7 +531,7 @@ impl App {
         let candidate = match chosen {
             Ok(choice) => {
                 self.report
-                    .chosen(choice.candidate, &choice.describe(&state.describe));
+                    .chosen(&choice, &choice.describe(&state.describe));
                 choice.candidate
             }
             Err(e) => {

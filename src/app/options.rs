@@ -62,9 +62,9 @@ impl Default for AppOptions {
     }
 }
 
-/// The `method` key of the window and the page (not a CLI flag of the window: `relief render
-/// --method` has its own) in the endless world: the methods it draws, from [`crate::Method`]'s
-/// one list.
+/// The `method` key of the window and the page (not a CLI flag: `relief --method`, which the
+/// window shares with `relief render`, also takes `auto` and goes with `--samples` and
+/// `--raster`) in the endless world: the methods it draws, from [`crate::Method`]'s one list.
 pub static METHOD: Param<AppOptions> = Param {
     kind: Kind::Choice(crate::Method::WORLD_NAMES),
     ..METHOD_ROW

@@ -65,6 +65,8 @@ pub struct State {
     /// Samples of the window's depth and colour targets: [`crate::gpu::render_samples`] of the
     /// method last drawn with the mesh.
     samples: u32,
+    /// Setting the terrain's or the world's targets to [`State::samples`] failed.
+    targets_failed: bool,
     pub(crate) terrain: Terrain,
     /// The endless world, when the window shows it instead of the tile.
     pub(crate) world: Option<World>,
@@ -213,6 +215,7 @@ impl State {
             depth: None,
             msaa: None,
             samples: SAMPLES,
+            targets_failed: false,
             terrain,
             world,
             timer,
@@ -240,6 +243,11 @@ impl State {
         self.config.width = width.min(max);
         self.config.height = height.min(max);
         self.surface.configure(&self.device, &self.config);
+        self.make_textures();
+    }
+
+    /// The depth and (for MSAA) colour textures at the surface's size and [`State::samples`].
+    fn make_textures(&mut self) {
         let make = |label, format| {
             self.device
                 .create_texture(&wgpu::TextureDescriptor {
@@ -274,20 +282,26 @@ impl State {
     /// Sets the window's targets to `samples` a pixel (a mesh-based method's
     /// [`crate::gpu::render_samples`]): the terrain's and the world's pipelines, and the depth
     /// and colour textures. The blog's pipeline is built again when next drawn.
+    /// Every step is tried and the textures rebuilt whatever fails (so the pipelines and the
+    /// textures never differ in samples); the first error is returned, and the next frame of a
+    /// method of these samples tries again.
     fn set_samples(&mut self, samples: u32) -> Result<()> {
         let targets = self.targets(samples);
-        self.samples = samples;
         self.blog = None;
         self.blog_failed = false;
-        self.terrain.set_targets(&self.device, targets)?;
-        if let Some(world) = &mut self.world {
-            world.set_targets(&self.device, targets)?;
-        }
-        let (w, h) = (self.config.width, self.config.height);
+        let terrain = self.terrain.set_targets(&self.device, targets);
+        let world = match &mut self.world {
+            Some(world) => world.set_targets(&self.device, targets),
+            None => Ok(()),
+        };
+        self.samples = samples;
         if self.depth.is_some() {
-            self.resize(w, h);
+            self.make_textures();
         }
-        Ok(())
+        let failed = terrain.and(world);
+        // Not set after all: the next frame tries again.
+        self.targets_failed = failed.is_err();
+        failed
     }
 
     /// Draws with `c` from the next frame on: its method's samples a pixel and raster in the
@@ -339,7 +353,7 @@ impl State {
         // show their image without them).
         if method.ray_path().is_none() {
             let samples = crate::gpu::render_samples(Self::mesh_method(method));
-            if samples != self.samples {
+            if samples != self.samples || self.targets_failed {
                 if let Err(e) = self.set_samples(samples) {
                     log::warn!("{e}");
                 }
