@@ -37,6 +37,47 @@ struct RasterUniforms {
 // The endless world's attributes (1x1 stand-ins for the tile): as `fs_attributes` writes them.
 @group(1) @binding(3) var surface_out: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(4) var valley_out: texture_storage_2d<r32float, write>;
+// Triangles whose bounding box is over BIG_PIXELS, left by `raster_cells` for `raster_big`;
+// their tiles of pixels as (triangle, tile) entries, a workgroup's work each; for each
+// dispatch mode the counts of both (triangles at `mode`, tiles at 2 + `mode`); and the
+// arguments of `raster_big`'s indirect dispatch for each mode (workgroups at 3 `mode`, then
+// 1, 1): as many as there are tiles, at most BIG_GROUPS, none where nothing is big. The last
+// is bound to `raster_cells` only: `raster_big` is dispatched from it.
+@group(1) @binding(5) var<storage, read_write> big: array<BigTriangle>;
+@group(1) @binding(6) var<storage, read_write> big_count: array<atomic<u32>, 4>;
+@group(1) @binding(7) var<storage, read_write> big_tiles: array<vec2<u32>>;
+@group(1) @binding(8) var<storage, read_write> big_args: array<atomic<u32>, 6>;
+
+// A triangle's bounding box over this many pixels is rasterised by a workgroup
+// (`raster_big`), not by the one thread that placed it: a camera near the ground sees
+// triangles spanning much of the screen, and one thread looping over them held the pass.
+const BIG_PIXELS: f32 = 256.0;
+// Threads of a `raster_big` workgroup, and the side of the square of pixels it takes at once.
+const BIG_GROUP: u32 = 64u;
+const BIG_TILE: u32 = 16u;
+// Most workgroups of `raster_big` (src/gpu/raster.rs's BIG_GROUPS).
+const BIG_GROUPS: u32 = 1024u;
+
+// A RasterVertex as stored for `raster_big` (the valley in `extra.x`).
+struct BigVertex {
+    clip: vec4<f32>,
+    surface: vec4<f32>,
+    extra: vec4<f32>,
+}
+
+struct BigTriangle {
+    v0: BigVertex,
+    v1: BigVertex,
+    v2: BigVertex,
+}
+
+fn to_big(v: RasterVertex) -> BigVertex {
+    return BigVertex(v.clip, v.surface, vec4<f32>(v.valley, 0.0, 0.0, 0.0));
+}
+
+fn from_big(v: BigVertex) -> RasterVertex {
+    return RasterVertex(v.clip, v.surface, v.extra.x);
+}
 
 // A vertex: its clip position and the attributes `fs_attributes` writes (slope in x and z,
 // colour channel, horizon; valley depth).
@@ -84,59 +125,113 @@ fn to_screen(c: vec4<f32>) -> vec3<f32> {
     return vec3<f32>((n.x * 0.5 + 0.5) * s.x, (0.5 - n.y * 0.5) * s.y, n.z);
 }
 
-fn raster_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex) {
-    var v1 = v1_in;
-    var v2 = v2_in;
-    let s0 = to_screen(v0.clip);
-    var s1 = to_screen(v1.clip);
-    var s2 = to_screen(v2.clip);
-    var area = edge(s0.xy, s1.xy, s2.xy);
+// A triangle set up for its pixels: screen points (x, y, depth) turned to face forward, its
+// vertices in the same order, 1 / twice its area, and its pixels' bounding box (pixel
+// indices, inclusive); `valid` false where it covers no pixel centre.
+struct Setup {
+    s0: vec3<f32>,
+    s1: vec3<f32>,
+    s2: vec3<f32>,
+    v0: RasterVertex,
+    v1: RasterVertex,
+    v2: RasterVertex,
+    inv: f32,
+    lo: vec2<f32>,
+    hi: vec2<f32>,
+    valid: bool,
+}
+
+fn setup_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex) -> Setup {
+    var t: Setup;
+    t.valid = false;
+    t.v0 = v0;
+    t.v1 = v1_in;
+    t.v2 = v2_in;
+    t.s0 = to_screen(v0.clip);
+    t.s1 = to_screen(v1_in.clip);
+    t.s2 = to_screen(v2_in.clip);
+    var area = edge(t.s0.xy, t.s1.xy, t.s2.xy);
     if !(abs(area) > 0.0) {
-        return;
+        return t;
     }
     // Back faces are drawn too (the raster pass culls nothing): turn them to face forward.
     if area < 0.0 {
-        let t = s1;
-        s1 = s2;
-        s2 = t;
-        let u = v1;
-        v1 = v2;
-        v2 = u;
+        let s = t.s1;
+        t.s1 = t.s2;
+        t.s2 = s;
+        let u = t.v1;
+        t.v1 = t.v2;
+        t.v2 = u;
         area = -area;
     }
     let size = vec2<f32>(ras.size);
-    let lo = max(ceil(min(s0.xy, min(s1.xy, s2.xy)) - 0.5), vec2<f32>(0.0));
-    let hi = min(floor(max(s0.xy, max(s1.xy, s2.xy)) - 0.5), size - 1.0);
-    if lo.x > hi.x || lo.y > hi.y {
+    t.lo = max(ceil(min(t.s0.xy, min(t.s1.xy, t.s2.xy)) - 0.5), vec2<f32>(0.0));
+    t.hi = min(floor(max(t.s0.xy, max(t.s1.xy, t.s2.xy)) - 0.5), size - 1.0);
+    t.valid = t.lo.x <= t.hi.x && t.lo.y <= t.hi.y;
+    t.inv = 1.0 / area;
+    return t;
+}
+
+// The pixel (x, y) of triangle `t`: its depth kept if nearest (mode 0), or its attributes
+// stored where its depth is the nearest (mode 1).
+fn raster_pixel(t: Setup, x: f32, y: f32) {
+    let p = vec2<f32>(x + 0.5, y + 0.5);
+    let e0 = edge(t.s1.xy, t.s2.xy, p);
+    let e1 = edge(t.s2.xy, t.s0.xy, p);
+    let e2 = edge(t.s0.xy, t.s1.xy, p);
+    if !(inside(e0, t.s1.xy, t.s2.xy) && inside(e1, t.s2.xy, t.s0.xy) && inside(e2, t.s0.xy, t.s1.xy)) {
         return;
     }
-    let inv = 1.0 / area;
-    for (var y = lo.y; y <= hi.y; y += 1.0) {
-        for (var x = lo.x; x <= hi.x; x += 1.0) {
-            let p = vec2<f32>(x + 0.5, y + 0.5);
-            let e0 = edge(s1.xy, s2.xy, p);
-            let e1 = edge(s2.xy, s0.xy, p);
-            let e2 = edge(s0.xy, s1.xy, p);
-            if !(inside(e0, s1.xy, s2.xy) && inside(e1, s2.xy, s0.xy) && inside(e2, s0.xy, s1.xy)) {
-                continue;
+    let z = (e0 * t.s0.z + e1 * t.s1.z + e2 * t.s2.z) * t.inv;
+    if !(z >= 0.0 && z < 1.0) {
+        return;
+    }
+    let at = u32(y) * ras.size.x + u32(x);
+    let bits = ~bitcast<u32>(abs(z));
+    if ras.mode == 0u {
+        atomicMax(&raster_depth[at], bits);
+    } else if atomicLoad(&raster_depth[at]) == bits {
+        // Perspective-correct: the screen weights over each vertex's clip w.
+        let q = vec3<f32>(e0 / t.v0.clip.w, e1 / t.v1.clip.w, e2 / t.v2.clip.w);
+        let k = q / (q.x + q.y + q.z);
+        let px = vec2<i32>(i32(x), i32(y));
+        textureStore(surface_out, px, k.x * t.v0.surface + k.y * t.v1.surface + k.z * t.v2.surface);
+        let valley = k.x * t.v0.valley + k.y * t.v1.valley + k.z * t.v2.valley;
+        textureStore(valley_out, px, vec4<f32>(valley, 0.0, 0.0, 0.0));
+    }
+}
+
+fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex) {
+    let t = setup_triangle(v0, v1, v2);
+    if !t.valid {
+        return;
+    }
+    let extent = t.hi - t.lo + 1.0;
+    if extent.x * extent.y > BIG_PIXELS {
+        // Listed with its tiles for `raster_big`, which sets it up again from the same
+        // vertices. Where a list is full it is drawn here too (drawing a pixel twice keeps the
+        // same depth and stores the same attributes).
+        let i = atomicAdd(&big_count[ras.mode], 1u);
+        if i < arrayLength(&big) {
+            big[i] = BigTriangle(to_big(v0), to_big(v1), to_big(v2));
+            let size = vec2<u32>(extent);
+            let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
+            let tiles = across * ((size.y + BIG_TILE - 1u) / BIG_TILE);
+            let first = atomicAdd(&big_count[2u + ras.mode], tiles);
+            let room = arrayLength(&big_tiles);
+            let listed = min(tiles, room - min(first, room));
+            for (var k = 0u; k < listed; k++) {
+                big_tiles[first + k] = vec2<u32>(i, k);
             }
-            let z = (e0 * s0.z + e1 * s1.z + e2 * s2.z) * inv;
-            if !(z >= 0.0 && z < 1.0) {
-                continue;
+            atomicMax(&big_args[3u * ras.mode], min(first + listed, BIG_GROUPS));
+            if listed == tiles {
+                return;
             }
-            let at = u32(y) * ras.size.x + u32(x);
-            let bits = ~bitcast<u32>(abs(z));
-            if ras.mode == 0u {
-                atomicMax(&raster_depth[at], bits);
-            } else if atomicLoad(&raster_depth[at]) == bits {
-                // Perspective-correct: the screen weights over each vertex's clip w.
-                let q = vec3<f32>(e0 / v0.clip.w, e1 / v1.clip.w, e2 / v2.clip.w);
-                let k = q / (q.x + q.y + q.z);
-                let px = vec2<i32>(i32(x), i32(y));
-                textureStore(surface_out, px, k.x * v0.surface + k.y * v1.surface + k.z * v2.surface);
-                let valley = k.x * v0.valley + k.y * v1.valley + k.z * v2.valley;
-                textureStore(valley_out, px, vec4<f32>(valley, 0.0, 0.0, 0.0));
-            }
+        }
+    }
+    for (var y = t.lo.y; y <= t.hi.y; y += 1.0) {
+        for (var x = t.lo.x; x <= t.hi.x; x += 1.0) {
+            raster_pixel(t, x, y);
         }
     }
 }
@@ -216,4 +311,30 @@ fn raster_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     let vd = raster_vertex(a + row + 1u, p);
     raster_clipped(va, vb, vd);
     raster_clipped(va, vd, vc);
+}
+
+// The tiles of the triangles `raster_cells` listed as big, a workgroup each (strided over the
+// dispatch), its threads sharing the tile's BIG_TILE x BIG_TILE pixels: the same setup and
+// the same pixels as one thread would draw, so the same bits.
+@compute @workgroup_size(64)
+fn raster_big(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let count = min(atomicLoad(&big_count[2u + ras.mode]), arrayLength(&big_tiles));
+    for (var e = group.x; e < count; e += groups.x) {
+        let entry = big_tiles[e];
+        let b = big[entry.x];
+        let t = setup_triangle(from_big(b.v0), from_big(b.v1), from_big(b.v2));
+        let size = vec2<u32>(t.hi - t.lo + 1.0);
+        let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
+        let origin = vec2<u32>(entry.y % across, entry.y / across) * BIG_TILE;
+        for (var k = lane; k < BIG_TILE * BIG_TILE; k += BIG_GROUP) {
+            let at = origin + vec2<u32>(k % BIG_TILE, k / BIG_TILE);
+            if at.x < size.x && at.y < size.y {
+                raster_pixel(t, t.lo.x + f32(at.x), t.lo.y + f32(at.y));
+            }
+        }
+    }
 }

@@ -14,6 +14,12 @@
 //! an atomic on depth cannot carry: a second dispatch of the same pipeline rasterises again and
 //! stores them where a triangle's depth is the pixel's nearest, bit for bit. (The same
 //! instructions compute it in both dispatches, so the comparison is exact.)
+//!
+//! A thread draws the triangles of its cell itself unless one's bounding box covers over 256
+//! pixels: then it lists the triangle and its tiles of 16x16 pixels, and a second dispatch
+//! (`raster_big`) draws the listed tiles, a workgroup each. Near the ground the nearest
+//! triangles span much of the screen, and one thread looping over all their pixels held up the
+//! whole pass.
 
 use crate::error::{Error, Result};
 
@@ -86,6 +92,22 @@ pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Fl
 
 /// Threads in a workgroup of `raster_cells`.
 const GROUP: u32 = 64;
+/// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 144 bytes each): a camera a
+/// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
+/// draws its triangle alone, as before the list (slow, not wrong).
+const BIG_TRIANGLES: u64 = 16_384;
+/// Bytes of one entry of the list.
+const BIG_TRIANGLE_BYTES: u64 = 3 * 3 * 16;
+/// Tiles of 16x16 pixels the big triangles' tile list holds (8 bytes each): over 30 times a
+/// 1080p screen's.
+const BIG_TILES: u64 = 262_144;
+/// Bytes of `raster.wgsl`'s `big_count`: the triangles and the tiles listed, for each mode.
+const BIG_COUNT_BYTES: u64 = 16;
+/// The arguments of each mode's indirect dispatch of `raster_big` (`raster.wgsl`'s
+/// `big_args`) as a frame starts: (0, 1, 1). `raster_cells` raises the workgroups to the tiles
+/// listed, at most `BIG_GROUPS` (1024, in `raster.wgsl`), each then taking every 1024th tile;
+/// a frame with no big triangle dispatches none.
+const BIG_ARGS_CLEAR: [u32; 6] = [0, 1, 1, 0, 1, 1];
 /// Most workgroups in one dimension of a dispatch (WebGPU's default limit).
 const MAX_GROUPS: u32 = 65_535;
 
@@ -101,7 +123,19 @@ pub(crate) struct Patches<'a> {
 /// The compute raster's pipeline, uniforms and depth buffer (see the module docs).
 pub(crate) struct ComputeRaster {
     pipeline: wgpu::ComputePipeline,
+    /// Draws the triangles `pipeline` left as big, a workgroup to a tile of pixels.
+    big_pipeline: wgpu::ComputePipeline,
+    /// The big triangles' list, their tiles', the counts of both (one a dispatch mode,
+    /// cleared every frame), and `raster_big`'s indirect arguments.
+    big: wgpu::Buffer,
+    big_tiles: wgpu::Buffer,
+    big_count: wgpu::Buffer,
+    big_args: wgpu::Buffer,
+    /// [`BIG_ARGS_CLEAR`], copied into `big_args` before each raster.
+    big_args_clear: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
+    /// `layout` without `big_args`, for `raster_big` (whose dispatch reads them).
+    big_layout: wgpu::BindGroupLayout,
     /// Whether a second dispatch writes each pixel's attributes (the endless world's).
     attributes: bool,
     /// The uniforms of the depth dispatch (`mode` 0) and of the attributes' (`mode` 1): one
@@ -109,8 +143,9 @@ pub(crate) struct ComputeRaster {
     uniforms: [wgpu::Buffer; 2],
     /// Per pixel, row by row: the nearest depth's complemented bits, 0 where nothing is drawn.
     depth: Option<(u32, u32, wgpu::Buffer)>,
-    /// The two dispatches' bind groups ([`ComputeRaster::bind`]).
-    groups: Option<[wgpu::BindGroup; 2]>,
+    /// The two modes' bind groups for `raster_cells` and for `raster_big`
+    /// ([`ComputeRaster::bind`]).
+    groups: Option<[[wgpu::BindGroup; 2]; 2]>,
 }
 
 impl ComputeRaster {
@@ -138,31 +173,73 @@ impl ComputeRaster {
             },
             count: None,
         };
+        let entries = [
+            super::uniform_entry::<RasterUniforms>(0, c),
+            storage(1, true),
+            storage(2, false),
+            super::storage_entry(3, SURFACE_FORMAT),
+            super::storage_entry(4, VALLEY_FORMAT),
+            storage(5, false),
+            storage(6, false),
+            storage(7, false),
+            storage(8, false),
+        ];
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:raster:layout"),
-            entries: &[
-                super::uniform_entry::<RasterUniforms>(0, c),
-                storage(1, true),
-                storage(2, false),
-                super::storage_entry(3, SURFACE_FORMAT),
-                super::storage_entry(4, VALLEY_FORMAT),
-            ],
+            entries: &entries,
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("relief:raster:pipeline-layout"),
-            bind_group_layouts: &[Some(world_layout), Some(&layout)],
-            immediate_size: 0,
+        let big_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:raster:big-layout"),
+            entries: &entries[..8],
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("relief:raster:cells"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("raster_cells"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let entry = |label, entry_point, layout| {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("relief:raster:pipeline-layout"),
+                bind_group_layouts: &[Some(world_layout), Some(layout)],
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let pipeline = entry("relief:raster:cells", "raster_cells", &layout);
+        let big_pipeline = entry("relief:raster:big", "raster_big", &big_layout);
+        let buffer = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
         Self {
             pipeline,
+            big_pipeline,
+            big: buffer("relief:raster:big", BIG_TRIANGLES * BIG_TRIANGLE_BYTES),
+            big_tiles: buffer("relief:raster:big-tiles", BIG_TILES * 8),
+            big_count: buffer("relief:raster:big-count", BIG_COUNT_BYTES),
+            big_args: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("relief:raster:big-args"),
+                size: std::mem::size_of_val(&BIG_ARGS_CLEAR) as u64,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::INDIRECT
+                    | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            big_args_clear: wgpu::util::DeviceExt::create_buffer_init(
+                device,
+                &wgpu::util::BufferInitDescriptor {
+                    label: Some("relief:raster:big-args-clear"),
+                    contents: bytemuck::cast_slice(&BIG_ARGS_CLEAR),
+                    usage: wgpu::BufferUsages::COPY_SRC,
+                },
+            ),
+            big_layout,
             layout,
             attributes,
             uniforms: [
@@ -204,34 +281,39 @@ impl ComputeRaster {
         let Some((_, _, depth)) = &self.depth else {
             return;
         };
-        let layout = &self.layout;
-        self.groups = Some([0, 1].map(|mode| {
+        let entries = |mode: usize| {
+            [
+                self.uniforms[mode].as_entire_binding(),
+                instances.as_entire_binding(),
+                depth.as_entire_binding(),
+                wgpu::BindingResource::TextureView(surface),
+                wgpu::BindingResource::TextureView(valley),
+                self.big.as_entire_binding(),
+                self.big_count.as_entire_binding(),
+                self.big_tiles.as_entire_binding(),
+                self.big_args.as_entire_binding(),
+            ]
+            .into_iter()
+            .enumerate()
+            .map(|(binding, resource)| wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource,
+            })
+            .collect::<Vec<_>>()
+        };
+        let group = |mode: usize, layout: &wgpu::BindGroupLayout, bindings: usize| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("relief:raster:group"),
                 layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.uniforms[mode].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: instances.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: depth.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::TextureView(surface),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::TextureView(valley),
-                    },
-                ],
+                entries: &entries(mode)[..bindings],
             })
+        };
+        // `raster_big`'s groups leave out its own indirect arguments (binding 8).
+        self.groups = Some([0, 1].map(|mode| {
+            [
+                group(mode, &self.layout, 9),
+                group(mode, &self.big_layout, 8),
+            ]
         }));
     }
 
@@ -272,6 +354,10 @@ impl ComputeRaster {
             queue.write_buffer(&self.uniforms[mode], 0, bytemuck::bytes_of(&u));
         }
         encoder.clear_buffer(depth, 0, None);
+        // In the encoder's order, as the depth is cleared: each raster recorded starts from
+        // no big triangles.
+        encoder.clear_buffer(&self.big_count, 0, None);
+        encoder.copy_buffer_to_buffer(&self.big_args_clear, 0, &self.big_args, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:raster:pass"),
             timestamp_writes: timestamps,
@@ -279,11 +365,15 @@ impl ComputeRaster {
         if cells == 0 {
             return;
         }
-        pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, patches.group, &[]);
-        for group in &groups[..dispatches] {
-            pass.set_bind_group(1, group, &[]);
+        // Each mode: every cell's triangles, then the big ones they left.
+        for (mode, [cells_group, big_group]) in groups[..dispatches].iter().enumerate() {
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(1, cells_group, &[]);
             pass.dispatch_workgroups(x, y, 1);
+            pass.set_pipeline(&self.big_pipeline);
+            pass.set_bind_group(1, big_group, &[]);
+            pass.dispatch_workgroups_indirect(&self.big_args, 12 * mode as u64);
         }
     }
 }
@@ -307,6 +397,23 @@ mod tests {
         }
         let e = Raster::from_name("software").unwrap_err().to_string();
         assert!(e.contains("hardware or compute"), "{e}");
+    }
+
+    #[test]
+    fn the_big_triangles_constants_match_the_wgsl() {
+        let wgsl = super::super::shader::RASTER;
+        assert!(wgsl.contains(&format!(
+            "big_count: array<atomic<u32>, {}>",
+            BIG_COUNT_BYTES / 4
+        )));
+        assert!(wgsl.contains(&format!(
+            "big_args: array<atomic<u32>, {}>",
+            BIG_ARGS_CLEAR.len()
+        )));
+        // Each mode's indirect arguments: no workgroups, then 1, 1.
+        for mode in 0..2 {
+            assert_eq!(BIG_ARGS_CLEAR[3 * mode..3 * mode + 3], [0, 1, 1]);
+        }
     }
 
     #[test]
