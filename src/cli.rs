@@ -949,6 +949,19 @@ fn resolve_scene(m: &ArgMatches) -> Result<TerrainParams> {
     Ok(p)
 }
 
+/// Refuses, in words, a `--method` that `world` does not draw.
+fn drawn_in(method: crate::Method, world: WorldKind) -> Result<()> {
+    match world {
+        WorldKind::Endless if !method.in_world() => Err(Error::Usage(format!(
+            "--method {method} draws the tile world only (its own terrain)"
+        ))),
+        WorldKind::Tile if !method.in_tile() => Err(Error::Usage(format!(
+            "--method {method} draws the endless world only so far (--world endless)"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Sets the window to draw what `drawn` stands for: a method with its samples and raster, or
 /// `auto` (chosen by measurement before the first frame).
 fn draw_window_with(o: &mut AppOptions, drawn: Drawn) {
@@ -1083,22 +1096,20 @@ fn run(top: &ArgMatches) -> Result<()> {
         Run::Window => Some(drawn(m, Drawn::Pinned(Candidate::MESH))?),
         _ => None,
     };
-    if let Some(Drawn::Pinned(c)) = window_drawn {
-        let drawn_here = match world_kind(m)? {
-            WorldKind::Tile => c.method.in_tile(),
-            WorldKind::Endless => c.method.in_world(),
-        };
-        if !drawn_here {
-            return Err(Error::Usage(format!(
-                "--method {} draws {} only",
-                c.method,
-                if c.method.in_tile() {
-                    "the tile world (its own terrain)"
-                } else {
-                    "the endless world (--world endless)"
-                }
-            )));
-        }
+    // A pinned method of render or the window must be one its world draws.
+    let pinned = match (&run, &window_drawn) {
+        (
+            Run::Render {
+                method: Drawn::Pinned(c),
+                ..
+            },
+            _,
+        )
+        | (_, Some(Drawn::Pinned(c))) => Some(c.method),
+        _ => None,
+    };
+    if let Some(method) = pinned {
+        drawn_in(method, world_kind(m)?)?;
     }
     let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
     if endless_window {
@@ -1258,29 +1269,7 @@ fn run(top: &ArgMatches) -> Result<()> {
                 let region = region(m)?;
                 return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
             }
-            if let Run::Render {
-                method: Drawn::Pinned(Candidate { method, .. }),
-                ..
-            } = run
-            {
-                if !method.in_world() {
-                    return Err(Error::Usage(format!(
-                        "--method {method} draws the tile world only (its own terrain)"
-                    )));
-                }
-            }
             return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
-        }
-    }
-    if let Run::Render {
-        method: Drawn::Pinned(Candidate { method, .. }),
-        ..
-    } = run
-    {
-        if !method.in_tile() {
-            return Err(Error::Usage(format!(
-                "--method {method} draws the endless world only so far (--world endless)"
-            )));
         }
     }
     let params = resolve_scene(m)?;
