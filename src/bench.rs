@@ -413,7 +413,6 @@ fn mesh_row(
     terrain.set_visibility_samples(config.samples)?;
     terrain.set_visibility_raster(config.raster);
     terrain.set_method(&gpu.device, config.method)?;
-    let color_view = target.color.create_view(&Default::default());
     terrain.set_viewport((options.width, options.height));
     headless::bake_whole(gpu, &mut terrain, view, None)?;
     let mut failed = None;
@@ -425,13 +424,7 @@ fn mesh_row(
         }
         terrain.prepare(&gpu.queue, view);
         let clear = crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
-        let mut pass = target.begin_pass(
-            encoder,
-            &color_view,
-            clear,
-            timer.map(|t| t.render_writes(Slot::Render)),
-        );
-        terrain.render(&mut pass);
+        target.draw(encoder, &terrain, clear, timer);
     })?;
     if let Some(e) = failed {
         return Err(e);
@@ -443,14 +436,9 @@ fn mesh_row(
             .collect::<Vec<f64>>()
     };
     let (bake, normals) = (slot(Slot::Bake), slot(Slot::Normals));
-    // The draw: the host's pass, and the visibility method's raster and shading before it.
-    let render: Vec<f64> = times
-        .iter()
-        .filter_map(|t| {
-            let draw = [Slot::Render, Slot::Raster, Slot::Shade].map(|s| t[s as usize]);
-            draw[0].map(|r| r + draw[1].unwrap_or(0.0) + draw[2].unwrap_or(0.0))
-        })
-        .collect();
+    // The draw: the host's pass (or the present), and the visibility method's raster and
+    // shading before it.
+    let render: Vec<f64> = times.iter().filter_map(crate::choice::draw_ms).collect();
     let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
     let (flip_mean, flip_p99) = metrics::image_error(
         &reference.rgb,
@@ -460,7 +448,7 @@ fn mesh_row(
     );
 
     // Distances from a single-sampled render's depth buffer.
-    let single = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
+    let single = Offscreen::new(&gpu.device, options.width, options.height, 1)?.keeping_depth();
     let mut terrain1 = Terrain::new(
         &gpu.device,
         &gpu.queue,

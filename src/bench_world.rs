@@ -135,14 +135,9 @@ impl WorldRow {
     ) -> Self {
         let timed = &texels[texels.len().saturating_sub(wall.len())..];
         let slot = |slot: Slot| times.iter().filter_map(move |t| t[slot as usize]);
-        // The draw: the host's pass, and the visibility method's raster and shading before it.
-        let draw = times.iter().filter_map(|t| {
-            let r = t[Slot::Render as usize]?;
-            Some(
-                r + t[Slot::Raster as usize].unwrap_or(0.0)
-                    + t[Slot::Shade as usize].unwrap_or(0.0),
-            )
-        });
+        // The draw: the host's pass (or the present), and the visibility method's raster and
+        // shading before it.
+        let draw = times.iter().filter_map(crate::choice::draw_ms);
         Self {
             view: view.to_owned(),
             method,
@@ -275,15 +270,7 @@ pub fn run(
             .encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)
             .unwrap_or(0);
         world.prepare(&gpu.queue, view);
-        let target = target_for(world.method());
-        let color = target.color.create_view(&Default::default());
-        let mut pass = target.begin_pass(
-            encoder,
-            &color,
-            wgpu::Color::BLACK,
-            timer.map(|t| t.render_writes(Slot::Render)),
-        );
-        world.render(&mut pass);
+        target_for(world.method()).draw(encoder, world, wgpu::Color::BLACK, timer);
         texels
     };
     for &knob in knobs {

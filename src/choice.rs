@@ -208,12 +208,14 @@ impl Choice {
     }
 }
 
-/// A frame's draw in milliseconds from its timings: the host's render pass, and the visibility
-/// method's (or the hybrid's) raster and shading passes before it. `None` where the render pass
-/// was not timed.
+/// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
+/// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
+/// hybrid's) raster and shading passes before it. `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let render = t[Slot::Render as usize]?;
-    Some(render + t[Slot::Raster as usize].unwrap_or(0.0) + t[Slot::Shade as usize].unwrap_or(0.0))
+    let [render, present, raster, shade] =
+        [Slot::Render, Slot::Present, Slot::Raster, Slot::Shade].map(|s| t[s as usize]);
+    render.or(present)?;
+    Some([render, present, raster, shade].iter().flatten().sum())
 }
 
 #[cfg(test)]

@@ -125,3 +125,32 @@ fn composite_fs_color(@builtin(position) position: vec4<f32>) -> @location(0) ve
     }
     return composite_color(c);
 }
+
+// The frame written without a render pass (Visibility::present), for an opaque image (the sky
+// fills what no terrain covers): each pixel's colour sRGB-encoded to 8 bits a channel, packed
+// in the byte order of the target's format, into rows of `presented` padded to 256 bytes (64
+// pixels), which a copy then puts in the target. On a compute chip a full-screen draw costs
+// what the whole shading pass does several times over (docs/bench/present).
+@group(0) @binding(20) var<storage, read_write> presented: array<u32>;
+
+fn present_pixel(id: vec2<u32>, bgra: bool) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
+    }
+    let c = srgb_encode(clamp(textureLoad(shown, vec2<i32>(id), 0).rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
+    let ordered = select(c, c.bgr, bgra);
+    let pitch = (vis.size.x + 63u) & ~63u;
+    presented[id.y * pitch + id.x] = pack4x8unorm(vec4<f32>(ordered, 1.0));
+}
+
+// Into an RGBA8 target (sRGB or not: the bytes are the encoded values either way).
+@compute @workgroup_size(8, 8)
+fn present_rgba(@builtin(global_invocation_id) id: vec3<u32>) {
+    present_pixel(id.xy, false);
+}
+
+// Into a BGRA8 target (a window's surface, often).
+@compute @workgroup_size(8, 8)
+fn present_bgra(@builtin(global_invocation_id) id: vec3<u32>) {
+    present_pixel(id.xy, true);
+}

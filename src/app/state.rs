@@ -170,8 +170,11 @@ impl State {
         // headless Chromium (SwiftShader) wrote through such views without encoding; relief
         // encodes in its shader instead when the target is not sRGB, which works everywhere.
         let size = window.inner_size();
+        // A copy into the surface lets the visibility method write its frame without a render
+        // pass (`World::present`), where the surface allows one.
+        let copy = caps.usages & wgpu::TextureUsages::COPY_DST;
         let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | copy,
             format,
             width: size.width.max(1),
             height: size.height.max(1),
@@ -471,7 +474,16 @@ impl State {
                 None
             }
         };
-        {
+        // The visibility method and the hybrid write their frame straight into the surface
+        // where they can: no render pass (on a compute chip a full-screen draw costs more than
+        // their shading).
+        let presented = self.msaa.is_none()
+            && match (world, &self.blog) {
+                (Some(world), _) => world.present(&mut encoder, &frame.texture, timer),
+                (None, Some(_)) if method == Method::Blog => false,
+                _ => self.terrain.present(&mut encoder, &frame.texture, timer),
+            };
+        if !presented {
             let (target, resolve_target) = match &self.msaa {
                 Some(msaa) => (msaa, Some(&target_view)),
                 None => (&target_view, None),

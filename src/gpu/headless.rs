@@ -417,7 +417,6 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
         scene.set(&gpu.device, c)?;
         let samples = render_samples(c.method);
         let target = Offscreen::new(&gpu.device, size.0, size.1, samples)?;
-        let color = target.color.create_view(&Default::default());
         let mut failed = None;
         let (times, _) = match &mut scene {
             TrialScene::Tile(terrain, view, _) => {
@@ -432,9 +431,7 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                         failed.get_or_insert(e);
                     }
                     terrain.prepare(&gpu.queue, view);
-                    let writes = timer.map(|t| t.render_writes(Slot::Render));
-                    let mut pass = target.begin_pass(encoder, &color, clear, writes);
-                    terrain.render(&mut pass);
+                    target.draw(encoder, &**terrain, clear, timer);
                 })?
             }
             TrialScene::Endless(world, view) => {
@@ -464,9 +461,7 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                             failed.get_or_insert(e);
                         }
                         world.prepare(&gpu.queue, &view);
-                        let writes = timer.map(|t| t.render_writes(Slot::Render));
-                        let mut pass = target.begin_pass(encoder, &color, clear, writes);
-                        world.render(&mut pass);
+                        target.draw(encoder, &**world, clear, timer);
                     });
                 world.set_bake_budget(budget);
                 measured?
@@ -663,6 +658,58 @@ pub struct Offscreen {
     depth: wgpu::TextureView,
     depth_texture: wgpu::Texture,
     targets: Targets,
+    /// Whether a method may write its frame straight in ([`Offscreen::draw`]).
+    present: bool,
+}
+
+/// What draws a frame into a target: in a render pass ([`Drawn::render`]), or where its method
+/// allows without one ([`Drawn::present`]). The tile's [`Terrain`], the endless [`World`] and
+/// the seed blog's pipeline.
+pub trait Drawn {
+    /// Writes the frame straight into `target`; false where it cannot ([`World::present`]).
+    fn present(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+        timer: Option<&GpuTimer>,
+    ) -> bool;
+    /// Draws the frame into the host's render pass.
+    fn render(&self, pass: &mut wgpu::RenderPass<'_>);
+}
+
+/// The tile's terrain and the endless world answer both calls themselves.
+macro_rules! drawn_by_their_own_calls {
+    ($($drawn:ty),*) => {$(
+        impl Drawn for $drawn {
+            fn present(
+                &self,
+                encoder: &mut wgpu::CommandEncoder,
+                target: &wgpu::Texture,
+                timer: Option<&GpuTimer>,
+            ) -> bool {
+                <$drawn>::present(self, encoder, target, timer)
+            }
+            fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+                <$drawn>::render(self, pass);
+            }
+        }
+    )*};
+}
+
+drawn_by_their_own_calls!(Terrain, World);
+
+impl Drawn for Blog {
+    fn present(
+        &self,
+        _: &mut wgpu::CommandEncoder,
+        _: &wgpu::Texture,
+        _: Option<&GpuTimer>,
+    ) -> bool {
+        false
+    }
+    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        Blog::render(self, pass);
+    }
 }
 
 impl Offscreen {
@@ -726,7 +773,7 @@ impl Offscreen {
                 "relief:offscreen:color",
                 Self::COLOR_FORMAT,
                 1,
-                attach | wgpu::TextureUsages::COPY_SRC,
+                attach | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
             );
             let msaa = (sample_count > 1).then(|| {
                 make(
@@ -757,9 +804,39 @@ impl Offscreen {
                 depth: depth_texture.create_view(&Default::default()),
                 depth_texture,
                 targets,
+                present: true,
             }
         })
         .map_err(too_big)
+    }
+
+    /// Draws `drawn`'s frame into this target: written straight in, with no render pass, where
+    /// its method can ([`World::present`]) and the target does not keep its depth
+    /// ([`Offscreen::keeping_depth`]); otherwise in a render pass cleared to `clear`. Timed
+    /// into `timer` as [`Slot::Present`] or [`Slot::Render`].
+    pub fn draw(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        drawn: &impl Drawn,
+        clear: wgpu::Color,
+        timer: Option<&GpuTimer>,
+    ) {
+        if self.present && drawn.present(encoder, &self.color, timer) {
+            return;
+        }
+        let color = self.color.create_view(&Default::default());
+        let writes = timer.map(|t| t.render_writes(Slot::Render));
+        let mut pass = self.begin_pass(encoder, &color, clear, writes);
+        drawn.render(&mut pass);
+    }
+
+    /// This target with every frame drawn in a render pass, so that its depth holds what was
+    /// drawn ([`Offscreen::read_depth`]): no method writes its frame straight in.
+    pub fn keeping_depth(self) -> Self {
+        Self {
+            present: false,
+            ..self
+        }
     }
 
     /// Begins a render pass on this target, cleared to `clear` (linear RGB).
@@ -819,7 +896,6 @@ impl Offscreen {
         let terrain = std::cell::RefCell::new(terrain);
         self.frame(
             gpu,
-            clear,
             timer,
             |encoder| {
                 let mut t = terrain.borrow_mut();
@@ -827,7 +903,7 @@ impl Offscreen {
                 t.prepare(&gpu.queue, view);
                 Ok(())
             },
-            |pass| terrain.borrow().render(pass),
+            |encoder| self.draw(encoder, &**terrain.borrow(), clear, timer),
         )
     }
 
@@ -881,7 +957,6 @@ impl Offscreen {
         let world = std::cell::RefCell::new(world);
         self.frame(
             gpu,
-            clear,
             timer,
             |encoder| {
                 let mut w = world.borrow_mut();
@@ -892,7 +967,7 @@ impl Offscreen {
                 w.prepare(&gpu.queue, view);
                 Ok(())
             },
-            |pass| world.borrow().render(pass),
+            |encoder| self.draw(encoder, &**world.borrow(), clear, timer),
         )
     }
 
@@ -907,32 +982,23 @@ impl Offscreen {
         Ok(())
     }
 
-    /// One frame: `record` records the compute work and writes uniforms, `draw` draws into
-    /// the pass (cleared to `clear`); the colour is read back as tightly packed RGBA8.
+    /// One frame: `record` records the compute work and writes uniforms, `draw` draws the
+    /// frame into this target ([`Offscreen::draw`]); the colour is read back as tightly packed
+    /// RGBA8.
     fn frame(
         &self,
         gpu: &Gpu,
-        clear: wgpu::Color,
         timer: Option<&GpuTimer>,
         record: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<()>,
-        draw: impl FnOnce(&mut wgpu::RenderPass<'_>),
+        draw: impl FnOnce(&mut wgpu::CommandEncoder),
     ) -> Result<(Vec<u8>, Option<Timings>)> {
         let device = &gpu.device;
         let buffer_pitch = super::scoped(device, || -> Result<_> {
-            let color_view = self.color.create_view(&Default::default());
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("relief:offscreen:frame"),
             });
             record(&mut encoder)?;
-            {
-                let mut pass = self.begin_pass(
-                    &mut encoder,
-                    &color_view,
-                    clear,
-                    timer.map(|t| t.render_writes(Slot::Render)),
-                );
-                draw(&mut pass);
-            }
+            draw(&mut encoder);
             let copy = encode_texture_copy(device, &mut encoder, &self.color);
             if let Some(t) = timer {
                 t.resolve(&mut encoder);
@@ -963,14 +1029,13 @@ impl Offscreen {
         let clear = super::clear_color(shading.sky_color, Self::COLOR_FORMAT);
         self.frame(
             gpu,
-            clear,
             timer,
             |encoder| {
                 blog.prepare(&gpu.queue, params, shading, view, 0.0);
                 blog.encode_bake(encoder, timer);
                 Ok(())
             },
-            |pass| blog.render(pass),
+            |encoder| self.draw(encoder, blog, clear, timer),
         )
     }
 }
@@ -1020,7 +1085,8 @@ pub fn render_blog(
 }
 
 impl Offscreen {
-    /// The depth buffer of the last frame (single-sampled targets only), row-major.
+    /// The depth buffer of the last frame (single-sampled targets only), row-major: what it
+    /// drew in a render pass (see [`Offscreen::keeping_depth`]).
     pub fn read_depth(&self, gpu: &Gpu) -> Result<Vec<f32>> {
         if self.msaa.is_some() {
             return Err(Error::invalid(
@@ -1169,7 +1235,7 @@ pub fn world_depth_metrics(
     stride: u32,
 ) -> Result<(ScreenError, Vec<f32>)> {
     let (w, h) = view.size;
-    let target = Offscreen::new(&gpu.device, w, h, 1)?;
+    let target = Offscreen::new(&gpu.device, w, h, 1)?.keeping_depth();
     target.render_world(gpu, world, view, None)?;
     let depth = target.read_depth(gpu)?;
     let inverse = world.relative_matrix().inverse().as_dmat4();

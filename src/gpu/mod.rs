@@ -489,6 +489,18 @@ impl Terrain {
         self.world.render(pass);
     }
 
+    /// Writes the frame shaded in compute straight into `target`, with no render pass, where
+    /// the method allows; false where it does not (draw with [`Terrain::render`]). See
+    /// [`world::World::present`].
+    pub fn present(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+        timer: Option<&GpuTimer>,
+    ) -> bool {
+        self.world.present(encoder, target, timer)
+    }
+
     /// The baked textures, for reading or for the host's own passes.
     pub fn textures(&self) -> &Textures {
         &self.textures
@@ -541,10 +553,12 @@ pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
     (h * f64::from(params.height_scale)) as f32
 }
 
-/// Requests a device from `adapter` with timestamps where available and the adapter's limits
-/// (so large textures work where the hardware allows them).
+/// Requests a device from `adapter` with timestamps where available (between passes too, where
+/// the adapter can) and the adapter's limits (so large textures work where the hardware allows
+/// them).
 pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
-    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    let features = adapter.features()
+        & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
     adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("relief:device"),

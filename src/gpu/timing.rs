@@ -20,11 +20,14 @@ pub enum Slot {
     Shade = 5,
     /// A ray-cast image shown in the target (the window's, the benchmark's): a full-screen draw.
     Show = 6,
+    /// The visibility method's image written into the target without a render pass: a compute
+    /// pass and a copy (the pass alone where the device cannot time the copy).
+    Present = 7,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 7] = [
+    pub const ALL: [Slot; 8] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -32,6 +35,7 @@ impl Slot {
         Slot::Raster,
         Slot::Shade,
         Slot::Show,
+        Slot::Present,
     ];
 
     /// The slot's name as printed.
@@ -44,6 +48,7 @@ impl Slot {
             Slot::Raster => "raster",
             Slot::Shade => "shade",
             Slot::Show => "show",
+            Slot::Present => "present",
         }
     }
 }
@@ -57,6 +62,8 @@ pub struct GpuTimer {
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
     period_ns: f64,
+    /// Whether timestamps can be written between passes (`TIMESTAMP_QUERY_INSIDE_ENCODERS`).
+    between_passes: bool,
     written: Cell<u32>,
     resolved: Cell<u32>,
 }
@@ -91,6 +98,9 @@ impl GpuTimer {
                 mapped_at_creation: false,
             }),
             period_ns: f64::from(queue.get_timestamp_period()),
+            between_passes: device
+                .features()
+                .contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS),
             written: Cell::new(0),
             resolved: Cell::new(0),
         })
@@ -103,6 +113,25 @@ impl GpuTimer {
             query_set: &self.queries,
             beginning_of_pass_write_index: Some(2 * slot as u32),
             end_of_pass_write_index: Some(2 * slot as u32 + 1),
+        }
+    }
+
+    /// Timestamp writes for a compute pass that begins `slot`, which
+    /// [`GpuTimer::end_after`] ends after the commands recorded after the pass (a copy). Where
+    /// the device cannot write timestamps between passes, the pass alone is timed.
+    pub fn compute_begins(&self, slot: Slot) -> wgpu::ComputePassTimestampWrites<'_> {
+        let mut writes = self.compute_writes(slot);
+        if self.between_passes {
+            writes.end_of_pass_write_index = None;
+        }
+        writes
+    }
+
+    /// Ends `slot`, begun by [`GpuTimer::compute_begins`], once what `encoder` recorded so far
+    /// has run.
+    pub fn end_after(&self, encoder: &mut wgpu::CommandEncoder, slot: Slot) {
+        if self.between_passes {
+            encoder.write_timestamp(&self.queries, 2 * slot as u32 + 1);
         }
     }
 

@@ -114,6 +114,9 @@ struct Images {
     valley: wgpu::TextureView,
     compute_group: wgpu::BindGroup,
     composite_group: wgpu::BindGroup,
+    /// The frame as the target's bytes, rows padded for the copy ([`Visibility::present`]).
+    presented: wgpu::Buffer,
+    present_group: wgpu::BindGroup,
 }
 
 /// The visibility method's pipelines and targets for one world (see the module docs).
@@ -133,6 +136,9 @@ pub struct Visibility {
     /// nothing is blended; on the H100 the two measured the same).
     composite: [wgpu::RenderPipeline; 2],
     composite_layout: wgpu::BindGroupLayout,
+    /// The frame packed for an RGBA8 and a BGRA8 target ([`Visibility::present`]).
+    present: [wgpu::ComputePipeline; 2],
+    present_layout: wgpu::BindGroupLayout,
     /// Whether the last encoded frame had the sky (every pixel opaque).
     opaque: bool,
     uniforms: wgpu::Buffer,
@@ -350,6 +356,32 @@ impl Visibility {
         let composite = [false, true].map(|opaque| {
             composite_pipeline(device, &composite_layout, &vis_module, (targets, opaque))
         });
+        let present_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:visibility:present-layout"),
+            entries: &[
+                super::uniform_entry::<VisUniforms>(12, c),
+                super::texture_entry(13, c, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 20,
+                    visibility: c,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: false },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let present = ["present_rgba", "present_bgra"].map(|entry| {
+            super::compute_pipeline(
+                device,
+                "relief:visibility:present",
+                &present_layout,
+                &vis_module,
+                entry,
+            )
+        });
         Self {
             world,
             samples,
@@ -363,6 +395,8 @@ impl Visibility {
             compute_layout,
             composite,
             composite_layout,
+            present,
+            present_layout,
             opaque: false,
             uniforms: super::uniform_buffer::<VisUniforms>(device, "relief:visibility:uniforms"),
             images: None,
@@ -400,7 +434,9 @@ impl Visibility {
         let bytes = super::texel_bytes;
         let samples = u64::from(self.samples);
         // Depth32Float, or the compute raster's u32: 4 bytes a sample.
-        let mut per_pixel = samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT);
+        // The presented frame: 4 bytes a pixel (its rows' padding left out).
+        let mut per_pixel =
+            samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT) + PRESENTED_BYTES;
         if self.world {
             let valley = if self.compute_raster.is_some() {
                 raster::VALLEY_FORMAT
@@ -510,6 +546,21 @@ impl Visibility {
                 entry(14, TextureView(&shaded_depth)),
             ],
         });
+        let presented = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:visibility:presented"),
+            size: u64::from(present_pitch(size.0)) * u64::from(size.1),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let present_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:visibility:present-group"),
+            layout: &self.present_layout,
+            entries: &[
+                entry(12, self.uniforms.as_entire_binding()),
+                entry(13, TextureView(&shaded)),
+                entry(20, presented.as_entire_binding()),
+            ],
+        });
         self.images = Some(Images {
             size,
             depth,
@@ -517,6 +568,8 @@ impl Visibility {
             valley,
             compute_group,
             composite_group,
+            presented,
+            present_group,
         });
     }
 
@@ -611,6 +664,66 @@ impl Visibility {
         );
     }
 
+    /// Writes the last shaded image straight into `target`, with no render pass: a compute
+    /// pass packs it as the target's bytes and a copy puts them there (timed together as
+    /// [`Slot::Present`] where the device writes timestamps between passes, else the compute
+    /// pass alone). Only where the image is opaque (the sky on) and `target` is a single-sampled 2D
+    /// RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`; otherwise it records
+    /// nothing and returns false, and [`Visibility::composite`] draws it. No depth is written.
+    pub(crate) fn present(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+        timer: Option<&GpuTimer>,
+    ) -> bool {
+        let Some(images) = &self.images else {
+            return false;
+        };
+        let (w, h) = images.size;
+        let fits = target.width() == w
+            && target.height() == h
+            && target.depth_or_array_layers() == 1
+            && target.dimension() == wgpu::TextureDimension::D2
+            && target.sample_count() == 1
+            && target.usage().contains(wgpu::TextureUsages::COPY_DST);
+        let Some(bgra) = present_order(target.format()).filter(|_| fits && self.opaque) else {
+            return false;
+        };
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief:visibility:present-pass"),
+                timestamp_writes: timer.map(|t| t.compute_begins(Slot::Present)),
+            });
+            pass.set_pipeline(&self.present[usize::from(bgra)]);
+            pass.set_bind_group(0, &images.present_group, &[]);
+            pass.dispatch_workgroups(
+                w.div_ceil(super::WORKGROUP),
+                h.div_ceil(super::WORKGROUP),
+                1,
+            );
+        }
+        encoder.copy_buffer_to_texture(
+            wgpu::TexelCopyBufferInfo {
+                buffer: &images.presented,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(present_pitch(w)),
+                    rows_per_image: Some(h),
+                },
+            },
+            target.as_image_copy(),
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        if let Some(t) = timer {
+            t.end_after(encoder, Slot::Present);
+        }
+        true
+    }
+
     /// Draws the last shaded image into the host's pass (nothing before the first
     /// [`Visibility::encode`]).
     pub(crate) fn composite(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -622,6 +735,26 @@ impl Visibility {
         pass.set_bind_group(0, &images.composite_group, &[]);
         pass.draw(0..3, 0..1);
         pass.pop_debug_group();
+    }
+}
+
+/// Bytes a pixel of the presented frame.
+const PRESENTED_BYTES: u64 = 4;
+
+/// Bytes a row of the presented frame `width` pixels wide: padded to what a copy into a
+/// texture needs (`wgsl/visibility.wgsl`'s `present_pixel` pads the same).
+fn present_pitch(width: u32) -> u32 {
+    (width * PRESENTED_BYTES as u32).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+}
+
+/// Whether [`Visibility::present`] packs for `format` as BGRA (`Some(true)`) or RGBA
+/// (`Some(false)`); `None` for a format it does not write.
+fn present_order(format: wgpu::TextureFormat) -> Option<bool> {
+    use wgpu::TextureFormat as F;
+    match format {
+        F::Rgba8Unorm | F::Rgba8UnormSrgb => Some(false),
+        F::Bgra8Unorm | F::Bgra8UnormSrgb => Some(true),
+        _ => None,
     }
 }
 

@@ -1256,6 +1256,28 @@ impl World {
         self.matrix
     }
 
+    /// Writes the frame that [`World::encode_bake`] shaded in compute straight into `target`,
+    /// with no render pass, for a host whose frame the world fills: `target` is then all the
+    /// frame needs (no depth is written). On a compute chip such as the H100 a full-screen draw
+    /// in a render pass costs more than the shading itself (docs/bench/present).
+    ///
+    /// Records a compute pass (timed as [`Slot::Present`](super::timing::Slot::Present)) and
+    /// a copy, and returns true, where the method shades in compute (the visibility method and
+    /// the hybrid), the sky is on (every pixel opaque) and `target` is a single-sampled 2D
+    /// RGBA8 or BGRA8 texture (sRGB or not) of the frame's size with `COPY_DST`. Otherwise it
+    /// records nothing and returns false: draw with [`World::render`] in a render pass.
+    pub fn present(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+        timer: Option<&GpuTimer>,
+    ) -> bool {
+        match (self.method, &self.visibility) {
+            (Method::Visibility | Method::Hybrid, Some(vis)) => vis.present(encoder, target, timer),
+            _ => false,
+        }
+    }
+
     /// Draws the patches selected by the last [`World::prepare`], and the sky behind them
     /// unless [`Shading::sky`] is off, into the host's pass (whose depth, if any, is cleared to
     /// 1.0).
