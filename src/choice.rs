@@ -230,6 +230,20 @@ mod tests {
     };
 
     #[test]
+    fn a_draw_is_its_render_pass_or_its_present_and_the_passes_before() {
+        let mut t: Timings = [None; Slot::ALL.len()];
+        t[Slot::Bake as usize] = Some(5.0);
+        assert_eq!(draw_ms(&t), None, "a frame that reached no target");
+        t[Slot::Raster as usize] = Some(0.5);
+        t[Slot::Shade as usize] = Some(0.25);
+        t[Slot::Present as usize] = Some(0.125);
+        assert_eq!(draw_ms(&t), Some(0.875), "the present, not the bake");
+        t[Slot::Present as usize] = None;
+        t[Slot::Render as usize] = Some(1.0);
+        assert_eq!(draw_ms(&t), Some(1.75), "the render pass");
+    }
+
+    #[test]
     fn the_fastest_wins_by_the_margin_and_the_mesh_keeps_a_tie() {
         // The H100's tile: visibility at 1 sample.
         let c = Choice::decide(

@@ -6,7 +6,7 @@
 
 mod common;
 
-use relief::gpu::headless::{Gpu, Offscreen};
+use relief::gpu::headless::{self, Gpu, Offscreen};
 use relief::gpu::timing::{GpuTimer, Slot, Timings};
 use relief::{Method, OrbitCamera, Raster, Terrain, TerrainParams, World, WorldParams};
 
@@ -129,7 +129,7 @@ fn presenting_the_endless_world_draws_what_the_composite_draws() {
     }
 }
 
-/// A texture for `present` to refuse or take.
+/// A texture for `present` to refuse or take (and to read back).
 fn texture(
     gpu: &Gpu,
     (w, h): (u32, u32),
@@ -137,6 +137,7 @@ fn texture(
     copy: bool,
 ) -> wgpu::Texture {
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+        | wgpu::TextureUsages::COPY_SRC
         | if copy {
             wgpu::TextureUsages::COPY_DST
         } else {
@@ -244,5 +245,77 @@ fn what_cannot_be_presented_is_left_to_the_render_pass() {
     assert!(
         !terrain.present(&mut encoder, &t, None),
         "the mesh presented"
+    );
+}
+
+/// The bytes land in the target's own order: an RGBA8 target, sRGB or not, holds the bytes
+/// `relief render` reads back, and a BGRA8 one (a window's surface, often) the same with red
+/// and blue swapped.
+#[test]
+fn presenting_writes_each_formats_byte_order() {
+    let gpu = common::gpu();
+    let target = Offscreen::new(&gpu.device, W, H, 1).unwrap();
+    let (world, (rgba, _)) = world_frame(&gpu, Method::Visibility, &target, None);
+    use wgpu::TextureFormat as F;
+    for format in [F::Rgba8Unorm, F::Bgra8UnormSrgb, F::Bgra8Unorm] {
+        let t = texture(&gpu, (W, H), format, true);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        assert!(world.present(&mut encoder, &t, None), "{format:?}");
+        gpu.queue.submit([encoder.finish()]);
+        let mut bytes = headless::read_texture(&gpu.device, &gpu.queue, &t).unwrap();
+        if matches!(format, F::Bgra8UnormSrgb | F::Bgra8Unorm) {
+            bytes.chunks_exact_mut(4).for_each(|p| p.swap(0, 2));
+        }
+        assert!(
+            bytes == rgba,
+            "{format:?}: not the frame relief render reads back"
+        );
+    }
+}
+
+/// A frame presented drew no depth: reading it back is refused in words, and a target that
+/// keeps its depth draws in a render pass and reads it.
+#[test]
+fn a_presented_frame_has_no_depth_to_read() {
+    let gpu = common::gpu();
+    let target = Offscreen::new(&gpu.device, W, H, 1).unwrap();
+    world_frame(&gpu, Method::Visibility, &target, None);
+    let e = target.read_depth(&gpu).unwrap_err().to_string();
+    assert!(e.contains("keeping_depth"), "{e}");
+    let target = target.keeping_depth();
+    world_frame(&gpu, Method::Visibility, &target, None);
+    let depth = target.read_depth(&gpu).unwrap();
+    assert!(
+        depth.iter().any(|&d| d < 1.0),
+        "the terrain's depth was drawn"
+    );
+}
+
+/// An image drawn in tiles presents each tile: its timings add the tiles' presents (and name
+/// no render pass that did not run).
+#[test]
+fn tiles_add_up_their_presents() {
+    let gpu = common::gpu();
+    let Some(timer) = GpuTimer::new(&gpu.device, &gpu.queue) else {
+        return;
+    };
+    let params = WorldParams {
+        pixel_error: 4.0,
+        ..Default::default()
+    };
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    world.set_visibility_samples(1).unwrap();
+    world.set_method(&gpu.device, Method::Visibility).unwrap();
+    let view = common::world_view(&params, (W, H));
+    let (_, whole) =
+        headless::render_world_image(&gpu, &mut world, &view, (W, H), W, Some(&timer)).unwrap();
+    let (_, tiled) =
+        headless::render_world_image(&gpu, &mut world, &view, (W, H), W / 2, Some(&timer)).unwrap();
+    let (whole, tiled) = (whole.unwrap(), tiled.unwrap());
+    let (present, render) = (Slot::Present as usize, Slot::Render as usize);
+    assert!(whole[present].is_some() && tiled[present].is_some());
+    assert!(
+        whole[render].is_none() && tiled[render].is_none(),
+        "a render pass that did not run: {tiled:?}"
     );
 }

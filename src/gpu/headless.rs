@@ -538,7 +538,7 @@ pub const TILE: u32 = 4096;
 /// Draws `terrain` seen through `view` into a `width` x `height` sRGB RGBA8 image, through
 /// the same [`Terrain`] calls as the window, in tiles of at most `tile` pixels per side (each
 /// tile is the full view's frustum cropped to its pixels, so tiles join without a seam).
-/// With `timer`, returns the bake's timings and the render pass summed over the tiles.
+/// With `timer`, returns the bake's timings and the draw's passes summed over the tiles.
 pub fn render_image(
     gpu: &Gpu,
     terrain: &mut Terrain,
@@ -606,8 +606,13 @@ fn tiled(
             match (&mut total, t) {
                 (None, t) => total = t,
                 (Some(sum), Some(t)) => {
-                    let r = Slot::Render as usize;
-                    sum[r] = Some(sum[r].unwrap_or(0.0) + t[r].unwrap_or(0.0));
+                    // Each tile draws again: its draw's passes add up (the bake ran once).
+                    for s in [Slot::Render, Slot::Present, Slot::Raster, Slot::Shade] {
+                        let i = s as usize;
+                        if t[i].is_some() {
+                            sum[i] = Some(sum[i].unwrap_or(0.0) + t[i].unwrap_or(0.0));
+                        }
+                    }
                 }
                 (Some(_), None) => {}
             }
@@ -660,6 +665,8 @@ pub struct Offscreen {
     targets: Targets,
     /// Whether a method may write its frame straight in ([`Offscreen::draw`]).
     present: bool,
+    /// Whether the last frame was written straight in: its depth was not drawn.
+    presented: std::cell::Cell<bool>,
 }
 
 /// What draws a frame into a target: in a render pass ([`Drawn::render`]), or where its method
@@ -805,6 +812,7 @@ impl Offscreen {
                 depth_texture,
                 targets,
                 present: true,
+                presented: std::cell::Cell::new(false),
             }
         })
         .map_err(too_big)
@@ -821,7 +829,9 @@ impl Offscreen {
         clear: wgpu::Color,
         timer: Option<&GpuTimer>,
     ) {
-        if self.present && drawn.present(encoder, &self.color, timer) {
+        let presented = self.present && drawn.present(encoder, &self.color, timer);
+        self.presented.set(presented);
+        if presented {
             return;
         }
         let color = self.color.create_view(&Default::default());
@@ -1093,6 +1103,11 @@ impl Offscreen {
                 "sample_count",
                 self.targets.sample_count,
                 "1 to read depth back",
+            ));
+        }
+        if self.presented.get() {
+            return Err(Error::Usage(
+                "the last frame was written without a render pass and drew no depth: read depth from a target made with Offscreen::keeping_depth".into(),
             ));
         }
         let bytes = read_texture(&gpu.device, &gpu.queue, &self.depth_texture)?;

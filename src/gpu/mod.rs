@@ -553,12 +553,10 @@ pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
     (h * f64::from(params.height_scale)) as f32
 }
 
-/// Requests a device from `adapter` with timestamps where available (between passes too, where
-/// the adapter can) and the adapter's limits (so large textures work where the hardware allows
-/// them).
+/// Requests a device from `adapter` with timestamps where available and the adapter's limits
+/// (so large textures work where the hardware allows them).
 pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
-    let features = adapter.features()
-        & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
     adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("relief:device"),

@@ -21,7 +21,7 @@ pub enum Slot {
     /// A ray-cast image shown in the target (the window's, the benchmark's): a full-screen draw.
     Show = 6,
     /// The visibility method's image written into the target without a render pass: a compute
-    /// pass and a copy (the pass alone where the device cannot time the copy).
+    /// pass and a copy.
     Present = 7,
 }
 
@@ -62,8 +62,6 @@ pub struct GpuTimer {
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
     period_ns: f64,
-    /// Whether timestamps can be written between passes (`TIMESTAMP_QUERY_INSIDE_ENCODERS`).
-    between_passes: bool,
     written: Cell<u32>,
     resolved: Cell<u32>,
 }
@@ -98,9 +96,6 @@ impl GpuTimer {
                 mapped_at_creation: false,
             }),
             period_ns: f64::from(queue.get_timestamp_period()),
-            between_passes: device
-                .features()
-                .contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS),
             written: Cell::new(0),
             resolved: Cell::new(0),
         })
@@ -116,23 +111,26 @@ impl GpuTimer {
         }
     }
 
-    /// Timestamp writes for a compute pass that begins `slot`, which
-    /// [`GpuTimer::end_after`] ends after the commands recorded after the pass (a copy). Where
-    /// the device cannot write timestamps between passes, the pass alone is timed.
+    /// Timestamp writes for a compute pass that begins `slot`: [`GpuTimer::end_after`] ends it
+    /// after the commands recorded after the pass (a copy, which cannot be timed by itself).
     pub fn compute_begins(&self, slot: Slot) -> wgpu::ComputePassTimestampWrites<'_> {
         let mut writes = self.compute_writes(slot);
-        if self.between_passes {
-            writes.end_of_pass_write_index = None;
-        }
+        writes.end_of_pass_write_index = None;
         writes
     }
 
-    /// Ends `slot`, begun by [`GpuTimer::compute_begins`], once what `encoder` recorded so far
-    /// has run.
+    /// Ends `slot`, begun by [`GpuTimer::compute_begins`], after what `encoder` recorded so
+    /// far: an empty compute pass that only writes the end timestamp (what every device with
+    /// timestamps can do, where a timestamp between passes needs a feature of its own).
     pub fn end_after(&self, encoder: &mut wgpu::CommandEncoder, slot: Slot) {
-        if self.between_passes {
-            encoder.write_timestamp(&self.queries, 2 * slot as u32 + 1);
-        }
+        encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:timing:end"),
+            timestamp_writes: Some(wgpu::ComputePassTimestampWrites {
+                query_set: &self.queries,
+                beginning_of_pass_write_index: None,
+                end_of_pass_write_index: Some(2 * slot as u32 + 1),
+            }),
+        });
     }
 
     /// Timestamp writes for a render pass timed as `slot`.

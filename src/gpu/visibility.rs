@@ -114,9 +114,9 @@ struct Images {
     valley: wgpu::TextureView,
     compute_group: wgpu::BindGroup,
     composite_group: wgpu::BindGroup,
-    /// The frame as the target's bytes, rows padded for the copy ([`Visibility::present`]).
-    presented: wgpu::Buffer,
-    present_group: wgpu::BindGroup,
+    /// The frame as the target's bytes, rows padded for the copy, and its bind group
+    /// ([`Visibility::present`]); `None` where the buffer would pass the device's limits.
+    presented: Option<(wgpu::Buffer, wgpu::BindGroup)>,
 }
 
 /// The visibility method's pipelines and targets for one world (see the module docs).
@@ -546,20 +546,27 @@ impl Visibility {
                 entry(14, TextureView(&shaded_depth)),
             ],
         });
-        let presented = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("relief:visibility:presented"),
-            size: u64::from(present_pitch(size.0)) * u64::from(size.1),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let present_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("relief:visibility:present-group"),
-            layout: &self.present_layout,
-            entries: &[
-                entry(12, self.uniforms.as_entire_binding()),
-                entry(13, TextureView(&shaded)),
-                entry(20, presented.as_entire_binding()),
-            ],
+        let bytes = u64::from(present_pitch(size.0)) * u64::from(size.1);
+        let limits = device.limits();
+        let fits =
+            bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size;
+        let presented = fits.then(|| {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("relief:visibility:presented"),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:visibility:present-group"),
+                layout: &self.present_layout,
+                entries: &[
+                    entry(12, self.uniforms.as_entire_binding()),
+                    entry(13, TextureView(&shaded)),
+                    entry(20, buffer.as_entire_binding()),
+                ],
+            });
+            (buffer, group)
         });
         self.images = Some(Images {
             size,
@@ -569,7 +576,6 @@ impl Visibility {
             compute_group,
             composite_group,
             presented,
-            present_group,
         });
     }
 
@@ -666,10 +672,10 @@ impl Visibility {
 
     /// Writes the last shaded image straight into `target`, with no render pass: a compute
     /// pass packs it as the target's bytes and a copy puts them there (timed together as
-    /// [`Slot::Present`] where the device writes timestamps between passes, else the compute
-    /// pass alone). Only where the image is opaque (the sky on) and `target` is a single-sampled 2D
-    /// RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`; otherwise it records
-    /// nothing and returns false, and [`Visibility::composite`] draws it. No depth is written.
+    /// [`Slot::Present`]). Only where the image is opaque (the sky on) and `target` is a single-sampled 2D
+    /// RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`, and the frame's
+    /// bytes fit one storage buffer on the device; otherwise it records nothing and returns
+    /// false, and [`Visibility::composite`] draws it. No depth is written.
     pub(crate) fn present(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -677,6 +683,9 @@ impl Visibility {
         timer: Option<&GpuTimer>,
     ) -> bool {
         let Some(images) = &self.images else {
+            return false;
+        };
+        let Some((presented, present_group)) = &images.presented else {
             return false;
         };
         let (w, h) = images.size;
@@ -695,7 +704,7 @@ impl Visibility {
                 timestamp_writes: timer.map(|t| t.compute_begins(Slot::Present)),
             });
             pass.set_pipeline(&self.present[usize::from(bgra)]);
-            pass.set_bind_group(0, &images.present_group, &[]);
+            pass.set_bind_group(0, present_group, &[]);
             pass.dispatch_workgroups(
                 w.div_ceil(super::WORKGROUP),
                 h.div_ceil(super::WORKGROUP),
@@ -704,7 +713,7 @@ impl Visibility {
         }
         encoder.copy_buffer_to_texture(
             wgpu::TexelCopyBufferInfo {
-                buffer: &images.presented,
+                buffer: presented,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
                     bytes_per_row: Some(present_pitch(w)),

@@ -1261,7 +1261,7 @@ impl World {
     /// frame needs (no depth is written). On a compute chip such as the H100 a full-screen draw
     /// in a render pass costs more than the shading itself (docs/bench/present).
     ///
-    /// Records a compute pass (timed as [`Slot::Present`](super::timing::Slot::Present)) and
+    /// Records a compute pass (timed as [`Slot::Present`]) and
     /// a copy, and returns true, where the method shades in compute (the visibility method and
     /// the hybrid), the sky is on (every pixel opaque) and `target` is a single-sampled 2D
     /// RGBA8 or BGRA8 texture (sRGB or not) of the frame's size with `COPY_DST`. Otherwise it

@@ -4,8 +4,10 @@
 # commit before it, 592d1f9) and the Vulkan loader's .debs in .gl/ carried (see the tool's
 # README). `render-timings.txt`: one 1080p frame of each view with each method, both binaries,
 # twice. `render-auto.txt`: `relief render`'s default (auto) on each view, twice. Then, in a call
-# of its own, `relief bench --world endless` in full. (`composite-variants.txt` came from a
-# third call with a temporary switch in the composite, not committed: see the README.)
+# of its own, `relief bench --world endless` in full (`bench`); in a third, `relief bench` of the
+# tile in full and `relief render`'s default on each view again (`tile`); in a fourth, the present
+# timed to an empty pass after its copy (`end`). (The variants files
+# came from calls with temporary switches, not committed: see the README.)
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -45,6 +47,28 @@ if [ "${1:-render}" = render ]; then
             .devbin/relief render --width 1920 --height 1080 --timings --out "/tmp/auto-$name.png" "$@"
         done
     done 2>&1 | tee "$out/render-auto.txt"
+elif [ "$1" = tile ]; then
+    for v in "${views[@]}"; do
+        set -- $v
+        name=$1
+        shift
+        echo "== auto $name"
+        .devbin/relief render --width 1920 --height 1080 --timings --out "/tmp/auto-$name.png" "$@"
+    done 2>&1 | tee "$out/render-auto-final.txt"
+    time timeout 500 .devbin/relief bench --out-dir "$out/tile" >"$out/bench-stdout.txt" 2>"$out/bench-stderr.txt"
+    tail -n 40 "$out/bench-stdout.txt"
+elif [ "$1" = end ]; then
+    # The present timed to an empty pass after its copy (the final binary).
+    for i in 1 2; do
+        for v in "${views[@]:3:2}"; do
+            set -- $v
+            name=$1
+            shift
+            echo "== $name ($i)"
+            .devbin/relief render --width 1920 --height 1080 --timings --out "/tmp/$name.png" "$@" \
+                --method visibility --samples 1 --raster compute
+        done
+    done 2>&1 | tee "$out/render-end-pass.txt"
 else
     time timeout 575 .devbin/relief bench --world endless --out-dir "$out/landscape" \
         >"$out/landscape-stdout.txt" 2>"$out/landscape-stderr.txt"
