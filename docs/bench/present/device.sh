@@ -6,7 +6,8 @@
 # twice. `render-auto.txt`: `relief render`'s default (auto) on each view, twice. Then, in a call
 # of its own, `relief bench --world endless` in full (`bench`); in a third, `relief bench` of the
 # tile in full and `relief render`'s default on each view again (`tile`); in a fourth, the present
-# timed to an empty pass after its copy (`end`). (The variants files
+# timed to an empty pass after its copy (`end`). (raster-variants.txt came from a temporary
+# switch in src/gpu/raster.rs, not committed: see the README.) (The variants files
 # came from calls with temporary switches, not committed: see the README.)
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
