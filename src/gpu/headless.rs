@@ -673,13 +673,16 @@ pub struct Offscreen {
 /// allows without one ([`Drawn::present`]). The tile's [`Terrain`], the endless [`World`] and
 /// the seed blog's pipeline.
 pub trait Drawn {
-    /// Writes the frame straight into `target`; false where it cannot ([`World::present`]).
+    /// Writes the frame straight into `target`; false where it cannot ([`World::present`]),
+    /// as by default: only a frame shaded in compute can be.
     fn present(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
-        target: &wgpu::Texture,
-        timer: Option<&GpuTimer>,
-    ) -> bool;
+        _encoder: &mut wgpu::CommandEncoder,
+        _target: &wgpu::Texture,
+        _timer: Option<&GpuTimer>,
+    ) -> bool {
+        false
+    }
     /// Draws the frame into the host's render pass.
     fn render(&self, pass: &mut wgpu::RenderPass<'_>);
 }
@@ -706,14 +709,6 @@ macro_rules! drawn_by_their_own_calls {
 drawn_by_their_own_calls!(Terrain, World);
 
 impl Drawn for Blog {
-    fn present(
-        &self,
-        _: &mut wgpu::CommandEncoder,
-        _: &wgpu::Texture,
-        _: Option<&GpuTimer>,
-    ) -> bool {
-        false
-    }
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         Blog::render(self, pass);
     }

@@ -801,6 +801,20 @@ pub(crate) fn blended_pipeline(
     })
 }
 
+/// A storage buffer at `binding` (read-only or read-write), for compute.
+pub(crate) fn storage_buffer_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// A write-only storage texture of `format` at `binding`, for compute.
 pub(crate) fn storage_entry(
     binding: u32,

@@ -163,16 +163,7 @@ impl ComputeRaster {
             &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::RASTER]),
         );
         let c = wgpu::ShaderStages::COMPUTE;
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: c,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let storage = super::storage_buffer_entry;
         let entries = [
             super::uniform_entry::<RasterUniforms>(0, c),
             storage(1, true),

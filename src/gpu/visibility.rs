@@ -314,16 +314,7 @@ impl Visibility {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
         if compute_raster.is_some() {
-            entries.push(wgpu::BindGroupLayoutEntry {
-                binding: 19,
-                visibility: c,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only: true },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            });
+            entries.push(super::storage_buffer_entry(19, true));
         }
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:visibility:compute-layout"),
@@ -361,16 +352,7 @@ impl Visibility {
             entries: &[
                 super::uniform_entry::<VisUniforms>(12, c),
                 super::texture_entry(13, c, false),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 20,
-                    visibility: c,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: false },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                super::storage_buffer_entry(20, false),
             ],
         });
         let present = ["present_rgba", "present_bgra"].map(|entry| {
@@ -672,8 +654,8 @@ impl Visibility {
 
     /// Writes the last shaded image straight into `target`, with no render pass: a compute
     /// pass packs it as the target's bytes and a copy puts them there (timed together as
-    /// [`Slot::Present`]). Only where the image is opaque (the sky on) and `target` is a single-sampled 2D
-    /// RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`, and the frame's
+    /// [`Slot::Present`]). Only where the image is opaque (the sky on) and `target` is a
+    /// single-sampled 2D RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`, and the frame's
     /// bytes fit one storage buffer on the device; otherwise it records nothing and returns
     /// false, and [`Visibility::composite`] draws it. No depth is written.
     pub(crate) fn present(
