@@ -276,6 +276,46 @@ fn the_compute_raster_draws_the_endless_world_with_its_attributes() {
     }
 }
 
+/// Where the device has 64-bit atomics (lavapipe does), the compute raster keeps each pixel's
+/// triangle beside its depth and stores the attributes of that one triangle after one raster;
+/// without them it rasterises a second time. Both draw the same picture: only pixels where two
+/// triangles meet at exactly one depth may differ (the ids choose the same one every frame).
+#[test]
+fn the_raster_with_ids_draws_what_the_second_raster_draws() {
+    let gpu = gpu();
+    assert!(
+        gpu.device
+            .features()
+            .contains(relief::gpu::raster::ID_FEATURES),
+        "lavapipe has 64-bit atomics: this test compares the raster with ids to the one without"
+    );
+    let without = Gpu::with_features(wgpu::Features::TIMESTAMP_QUERY).unwrap();
+    assert!(!without
+        .device
+        .features()
+        .contains(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX));
+    for method in [Method::Visibility, Method::Hybrid] {
+        let ids = world_rasterised(&gpu, method, Raster::Compute);
+        let twice = world_rasterised(&without, method, Raster::Compute);
+        let (same, off) = (flip(&ids, &twice), differing(&ids, &twice));
+        eprintln!(
+            "{method}: raster with ids vs rastered twice: FLIP {same:.5}, {:.4}% of pixels differ",
+            100.0 * off
+        );
+        assert!(
+            same < 0.001 && off < 0.001,
+            "{method}: the raster with ids drew FLIP {same:.5} and {:.4}% of pixels away",
+            100.0 * off
+        );
+        // The same frame again: the ids settle ties the same way every time.
+        assert_eq!(
+            ids,
+            world_rasterised(&gpu, method, Raster::Compute),
+            "{method}"
+        );
+    }
+}
+
 fn world(gpu: &Gpu, params: WorldParams, method: Method) -> Vec<u8> {
     common::world_image(gpu, params, method, (W, H))
 }

@@ -19,9 +19,23 @@ fn parse(name: &str, source: &str) -> naga::Module {
 #[test]
 fn every_module_validates() {
     let modules = shader::all_modules();
-    assert_eq!(modules.len(), 18);
+    assert_eq!(modules.len(), 19);
     for (name, source) in modules {
         parse(name, &source);
+    }
+}
+
+#[test]
+fn only_the_raster_with_ids_needs_64_bit_integers() {
+    // The page's WebGPU has no 64-bit integers: every other module builds without them.
+    use naga::valid::Capabilities as C;
+    let int64 = C::SHADER_INT64 | C::SHADER_INT64_ATOMIC_MIN_MAX | C::SHADER_INT64_ATOMIC_ALL_OPS;
+    for (name, source) in shader::all_modules() {
+        let module = naga::front::wgsl::parse_str(&source).expect("parses");
+        let without =
+            naga::valid::Validator::new(naga::valid::ValidationFlags::all(), C::all() - int64)
+                .validate(&module);
+        assert_eq!(without.is_ok(), name != "raster_ids", "{name}: {without:?}");
     }
 }
 
@@ -105,6 +119,7 @@ fn visibility_uniforms_match_wgsl() {
         ("sky", offset_of!(VisUniforms, sky)),
         ("world", offset_of!(VisUniforms, world)),
         ("encode_srgb", offset_of!(VisUniforms, encode_srgb)),
+        ("depth_stride", offset_of!(VisUniforms, depth_stride)),
     ] {
         assert_eq!(offset(&members, name), at, "VisUniforms.{name}");
     }

@@ -1,20 +1,29 @@
 // The visibility method's raster pass in compute (src/gpu/raster.rs; one sample a pixel): the
 // same patches and vertices as the hardware raster pass (world.wgsl's `place`), one thread a
-// cell, its two triangles clipped to the near plane, projected, and rasterised at pixel centres;
-// each covered pixel keeps the nearest depth by an atomic maximum of the depth's complemented
-// bits (non-negative floats order as their bits do, so the complement orders them nearest first,
-// and a cleared buffer's 0 reads as no terrain). The endless world's shading also needs each
-// pixel's attributes (world.wgsl's `fs_attributes`): a second dispatch of the same pipeline
-// (`mode` 1) rasterises again, and where a triangle's depth is the pixel's nearest, bit for bit
-// (the same code computed it), stores its attributes, interpolated perspective-correct.
+// cell, its two triangles clipped to the near plane, projected, and rasterised at pixel centres.
+// What a covered pixel keeps is the next file's (`keep`):
+//
+// - raster_depth.wgsl (any device, the page): the nearest depth, by an atomic maximum of the
+//   depth's complemented bits (non-negative floats order as their bits do, so the complement
+//   orders them nearest first, and a cleared buffer's 0 reads as no terrain). The endless
+//   world's shading also needs each pixel's attributes (world.wgsl's `fs_attributes`): a second
+//   dispatch of the same pipeline (`mode` 1) rasterises again, and where a triangle's depth is
+//   the pixel's nearest, bit for bit (the same code computed it), stores its attributes;
+// - raster_ids.wgsl (devices with 64-bit atomic maximum): the same depth bits above the
+//   triangle's id in one 64-bit atomic maximum, so one raster finds the nearest triangle of
+//   every pixel, and a dispatch a pixel (`raster_resolve`) sets that one triangle up again from
+//   its id and stores its attributes. A tie in depth goes to the greater id, the same every
+//   frame.
 //
 // Why: the H100 has few raster units; its depth-only raster of the tile's 131k triangles took
-// 0.50 ms at 1080p, a pass that shades nothing. A thread a cell does the same in compute.
+// 0.50 ms at 1080p, a pass that shades nothing. A thread a cell does the same in compute; the
+// second raster of the attributes cost as much again as the first.
 //
 // Watertight: an edge shared by two triangles is evaluated with its end points in one order
 // (the lesser point first) by both, so the two see exactly opposite values; a pixel centre
 // exactly on the edge goes to the triangle that runs along it from the lesser point. Composed
-// after shade.wgsl, level_texel.wgsl and world.wgsl (their uniforms, `place`).
+// after shade.wgsl, level_texel.wgsl and world.wgsl (their uniforms, `place`), and before
+// raster_depth.wgsl or raster_ids.wgsl.
 
 struct RasterUniforms {
     // The image's size in pixels.
@@ -27,13 +36,14 @@ struct RasterUniforms {
     sub_cells: u32,
     // Threads per row of the dispatch (its x extent times the workgroup's).
     row_threads: u32,
-    // 0: the nearest depth; 1: the attributes of the triangles that are nearest.
+    // raster_depth.wgsl's: 0 the nearest depth, 1 the attributes of the triangles that are
+    // nearest. raster_ids.wgsl's: 0.
     mode: u32,
 }
 
 @group(1) @binding(0) var<uniform> ras: RasterUniforms;
 @group(1) @binding(1) var<storage, read> patches: array<vec4<u32>>;
-@group(1) @binding(2) var<storage, read_write> raster_depth: array<atomic<u32>>;
+// Binding 2, the depth buffer, is raster_depth.wgsl's or raster_ids.wgsl's.
 // The endless world's attributes (1x1 stand-ins for the tile): as `fs_attributes` writes them.
 @group(1) @binding(3) var surface_out: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(4) var valley_out: texture_storage_2d<r32float, write>;
@@ -69,6 +79,8 @@ struct BigTriangle {
     v0: BigVertex,
     v1: BigVertex,
     v2: BigVertex,
+    // Its id (`Setup`'s).
+    id: u32,
 }
 
 fn to_big(v: RasterVertex) -> BigVertex {
@@ -139,11 +151,15 @@ struct Setup {
     lo: vec2<f32>,
     hi: vec2<f32>,
     valid: bool,
+    // The triangle's id: its cell's thread (`raster_cells`) times 4, plus 2 for the cell's
+    // second triangle, plus 1 for the second triangle of its cut to the near plane.
+    id: u32,
 }
 
-fn setup_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex) -> Setup {
+fn setup_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex, id: u32) -> Setup {
     var t: Setup;
     t.valid = false;
+    t.id = id;
     t.v0 = v0;
     t.v1 = v1_in;
     t.v2 = v2_in;
@@ -172,37 +188,39 @@ fn setup_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex) ->
     return t;
 }
 
-// The pixel (x, y) of triangle `t`: its depth kept if nearest (mode 0), or its attributes
-// stored where its depth is the nearest (mode 1).
-fn raster_pixel(t: Setup, x: f32, y: f32) {
+// The edge values of pixel (x, y) for triangle `t` (each the area opposite one vertex).
+fn pixel_edges(t: Setup, x: f32, y: f32) -> vec3<f32> {
     let p = vec2<f32>(x + 0.5, y + 0.5);
-    let e0 = edge(t.s1.xy, t.s2.xy, p);
-    let e1 = edge(t.s2.xy, t.s0.xy, p);
-    let e2 = edge(t.s0.xy, t.s1.xy, p);
-    if !(inside(e0, t.s1.xy, t.s2.xy) && inside(e1, t.s2.xy, t.s0.xy) && inside(e2, t.s0.xy, t.s1.xy)) {
+    return vec3<f32>(edge(t.s1.xy, t.s2.xy, p), edge(t.s2.xy, t.s0.xy, p), edge(t.s0.xy, t.s1.xy, p));
+}
+
+// Stores the attributes of triangle `t` at pixel (x, y) with edge values `e`, interpolated
+// perspective-correct: the screen weights over each vertex's clip w.
+fn store_attributes(t: Setup, e: vec3<f32>, x: f32, y: f32) {
+    let q = e / vec3<f32>(t.v0.clip.w, t.v1.clip.w, t.v2.clip.w);
+    let k = q / (q.x + q.y + q.z);
+    let px = vec2<i32>(i32(x), i32(y));
+    textureStore(surface_out, px, k.x * t.v0.surface + k.y * t.v1.surface + k.z * t.v2.surface);
+    let valley = k.x * t.v0.valley + k.y * t.v1.valley + k.z * t.v2.valley;
+    textureStore(valley_out, px, vec4<f32>(valley, 0.0, 0.0, 0.0));
+}
+
+// The pixel (x, y) of triangle `t`: where it is covered and in front of the far plane, `keep`
+// (raster_depth.wgsl or raster_ids.wgsl) is given its depth's complemented bits.
+fn raster_pixel(t: Setup, x: f32, y: f32) {
+    let e = pixel_edges(t, x, y);
+    if !(inside(e.x, t.s1.xy, t.s2.xy) && inside(e.y, t.s2.xy, t.s0.xy) && inside(e.z, t.s0.xy, t.s1.xy)) {
         return;
     }
-    let z = (e0 * t.s0.z + e1 * t.s1.z + e2 * t.s2.z) * t.inv;
+    let z = (e.x * t.s0.z + e.y * t.s1.z + e.z * t.s2.z) * t.inv;
     if !(z >= 0.0 && z < 1.0) {
         return;
     }
-    let at = u32(y) * ras.size.x + u32(x);
-    let bits = ~bitcast<u32>(abs(z));
-    if ras.mode == 0u {
-        atomicMax(&raster_depth[at], bits);
-    } else if atomicLoad(&raster_depth[at]) == bits {
-        // Perspective-correct: the screen weights over each vertex's clip w.
-        let q = vec3<f32>(e0 / t.v0.clip.w, e1 / t.v1.clip.w, e2 / t.v2.clip.w);
-        let k = q / (q.x + q.y + q.z);
-        let px = vec2<i32>(i32(x), i32(y));
-        textureStore(surface_out, px, k.x * t.v0.surface + k.y * t.v1.surface + k.z * t.v2.surface);
-        let valley = k.x * t.v0.valley + k.y * t.v1.valley + k.z * t.v2.valley;
-        textureStore(valley_out, px, vec4<f32>(valley, 0.0, 0.0, 0.0));
-    }
+    keep(t, e, x, y, u32(y) * ras.size.x + u32(x), ~bitcast<u32>(abs(z)));
 }
 
-fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex) {
-    let t = setup_triangle(v0, v1, v2);
+fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex, id: u32) {
+    let t = setup_triangle(v0, v1, v2, id);
     if !t.valid {
         return;
     }
@@ -213,7 +231,7 @@ fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex) {
         // same depth and stores the same attributes).
         let i = atomicAdd(&big_count[ras.mode], 1u);
         if i < arrayLength(&big) {
-            big[i] = BigTriangle(to_big(v0), to_big(v1), to_big(v2));
+            big[i] = BigTriangle(to_big(v0), to_big(v1), to_big(v2), id);
             let size = vec2<u32>(extent);
             let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
             let tiles = across * ((size.y + BIG_TILE - 1u) / BIG_TILE);
@@ -242,75 +260,114 @@ fn near_crossing(a: RasterVertex, b: RasterVertex) -> RasterVertex {
     return mix_vertex(a, b, a.clip.z / (a.clip.z - b.clip.z));
 }
 
-// The triangle cut to the near plane (clip z >= 0, where w > 0): none, one or two triangles.
-fn raster_clipped(c0: RasterVertex, c1: RasterVertex, c2: RasterVertex) {
+// A triangle cut to the near plane (clip z >= 0, where w > 0): `n` points of `poly`, 0 (none
+// in front), 3 (the triangle, whole or cut) or 4 (a quadrilateral, drawn as the triangles
+// (0, 1, 2) and (0, 2, 3)).
+struct Clipped {
+    poly: array<RasterVertex, 4>,
+    n: u32,
+}
+
+fn clip_near(c0: RasterVertex, c1: RasterVertex, c2: RasterVertex) -> Clipped {
     let v = array<RasterVertex, 3>(c0, c1, c2);
+    var out: Clipped;
     var front = 0u;
     for (var i = 0u; i < 3u; i++) {
         front += u32(v[i].clip.z >= 0.0);
     }
     if front == 3u {
-        raster_triangle(c0, c1, c2);
-        return;
+        out.poly[0] = c0;
+        out.poly[1] = c1;
+        out.poly[2] = c2;
+        out.n = 3u;
+        return out;
     }
+    out.n = 0u;
     if front == 0u {
-        return;
+        return out;
     }
-    var poly: array<RasterVertex, 4>;
-    var n = 0u;
     for (var i = 0u; i < 3u; i++) {
         let a = v[i];
         let b = v[(i + 1u) % 3u];
         let a_in = a.clip.z >= 0.0;
         if a_in {
-            poly[n] = a;
-            n += 1u;
+            out.poly[out.n] = a;
+            out.n += 1u;
         }
         if a_in != (b.clip.z >= 0.0) {
             if a_in {
-                poly[n] = near_crossing(a, b);
+                out.poly[out.n] = near_crossing(a, b);
             } else {
-                poly[n] = near_crossing(b, a);
+                out.poly[out.n] = near_crossing(b, a);
             }
-            n += 1u;
+            out.n += 1u;
         }
     }
-    raster_triangle(poly[0], poly[1], poly[2]);
-    if n == 4u {
-        raster_triangle(poly[0], poly[2], poly[3]);
+    return out;
+}
+
+// The triangle with id `id` (its last bit clear) cut to the near plane and drawn.
+fn raster_clipped(c0: RasterVertex, c1: RasterVertex, c2: RasterVertex, id: u32) {
+    let c = clip_near(c0, c1, c2);
+    if c.n >= 3u {
+        raster_triangle(c.poly[0], c.poly[1], c.poly[2], id);
+    }
+    if c.n == 4u {
+        raster_triangle(c.poly[0], c.poly[2], c.poly[3], id | 1u);
     }
 }
 
-@compute @workgroup_size(64)
-fn raster_cells(@builtin(global_invocation_id) id: vec3<u32>) {
-    var c = id.y * ras.row_threads + id.x;
+// A cell of the mesh: its patch instance and its first corner in the patch's vertex numbering;
+// `valid` false past the last cell.
+struct Cell {
+    instance: u32,
+    corner: u32,
+    valid: bool,
+}
+
+// The cell of thread `thread` (row by row over the dispatch): whole patches' cells first.
+fn cell_of(thread: u32) -> Cell {
+    var c = thread;
     let whole_cells = ras.patch_cells * ras.patch_cells;
     let sub_cells = ras.sub_cells * ras.sub_cells;
-    var instance = 0u;
+    var out: Cell;
+    out.valid = true;
     var side = ras.patch_cells;
     if c < ras.whole * whole_cells {
-        instance = c / whole_cells;
+        out.instance = c / whole_cells;
         c = c % whole_cells;
     } else {
         c -= ras.whole * whole_cells;
         if sub_cells == 0u || c >= ras.subs * sub_cells {
-            return;
+            out.valid = false;
+            return out;
         }
-        instance = ras.whole + c / sub_cells;
+        out.instance = ras.whole + c / sub_cells;
         c = c % sub_cells;
         side = ras.sub_cells;
     }
-    // The cell's corners in the patch's vertex numbering, split as the index buffer splits it
-    // (world.rs `patch_indices`): (a, b, d) and (a, d, c).
+    out.corner = (c / side) * (ras.patch_cells + 1u) + c % side;
+    return out;
+}
+
+@compute @workgroup_size(64)
+fn raster_cells(@builtin(global_invocation_id) id: vec3<u32>) {
+    let thread = id.y * ras.row_threads + id.x;
+    let cell = cell_of(thread);
+    if !cell.valid {
+        return;
+    }
+    // The cell's corners, split as the index buffer splits it (world.rs `patch_indices`):
+    // (a, b, d) and (a, d, c).
     let row = ras.patch_cells + 1u;
-    let a = (c / side) * row + c % side;
-    let p = patches[instance];
+    let a = cell.corner;
+    let p = patches[cell.instance];
     let va = raster_vertex(a, p);
     let vb = raster_vertex(a + 1u, p);
     let vc = raster_vertex(a + row, p);
     let vd = raster_vertex(a + row + 1u, p);
-    raster_clipped(va, vb, vd);
-    raster_clipped(va, vd, vc);
+    raster_clipped(va, vb, vd, thread * 4u);
+    raster_clipped(va, vd, vc, thread * 4u + 2u);
 }
 
 // The tiles of the triangles `raster_cells` listed as big, a workgroup each (strided over the
@@ -326,7 +383,7 @@ fn raster_big(
     for (var e = group.x; e < count; e += groups.x) {
         let entry = big_tiles[e];
         let b = big[entry.x];
-        let t = setup_triangle(from_big(b.v0), from_big(b.v1), from_big(b.v2));
+        let t = setup_triangle(from_big(b.v0), from_big(b.v1), from_big(b.v2), b.id);
         let size = vec2<u32>(t.hi - t.lo + 1.0);
         let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
         let origin = vec2<u32>(entry.y % across, entry.y / across) * BIG_TILE;

@@ -19,7 +19,9 @@ struct VisUniforms {
     world: u32,
     // 1 where the host's target is not an sRGB format and the composite encodes.
     encode_srgb: u32,
-    _pad0: u32,
+    // 32-bit words a pixel of `raster_depth`: 2 where the raster kept each pixel's triangle
+    // (raster_ids.wgsl; the depth's the second word), else 1.
+    depth_stride: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -36,12 +38,14 @@ struct VisUniforms {
 @group(0) @binding(17) var valley_1: texture_2d<f32>;
 
 // The compute raster's depth (raster.wgsl): per pixel, row by row, the nearest depth's
-// complemented bits, 0 where nothing was drawn; its attributes are in surface_1 and valley_1.
+// complemented bits, 0 where nothing was drawn (`depth_stride` words a pixel, the depth's the
+// last); its attributes are in surface_1 and valley_1.
 @group(0) @binding(19) var<storage, read> raster_depth: array<u32>;
 
 // The compute raster's depth at pixel `id` (1: nothing drawn).
 fn rasterised_depth(id: vec2<u32>) -> f32 {
-    let bits = raster_depth[id.y * vis.size.x + id.x];
+    let stride = vis.depth_stride;
+    let bits = raster_depth[(id.y * vis.size.x + id.x) * stride + stride - 1u];
     return select(bitcast<f32>(~bits), 1.0, bits == 0u);
 }
 

@@ -24,6 +24,12 @@ impl Gpu {
     /// Picks the high-performance adapter (backends from `WGPU_BACKEND` if set) and creates a
     /// device with the adapter's own limits. Fails with [`Error::NoAdapter`] if there is none.
     pub fn new() -> Result<Self> {
+        Self::with_features(wgpu::Features::TIMESTAMP_QUERY | super::raster::ID_FEATURES)
+    }
+
+    /// As [`Gpu::new`], asking for only those of `wanted` the adapter has (the tests draw
+    /// without the compute raster's 64-bit atomics this way).
+    pub fn with_features(wanted: wgpu::Features) -> Result<Self> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter =
@@ -37,7 +43,7 @@ impl Gpu {
                 }),
             )
             .map_err(|e| Error::NoAdapter(e.to_string()))?;
-        let (device, queue) = pollster::block_on(super::request_device(&adapter))?;
+        let (device, queue) = pollster::block_on(super::request_device_with(&adapter, wanted))?;
         Ok(Self {
             adapter,
             device,

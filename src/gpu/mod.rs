@@ -553,10 +553,23 @@ pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
     (h * f64::from(params.height_scale)) as f32
 }
 
-/// Requests a device from `adapter` with timestamps where available and the adapter's limits
-/// (so large textures work where the hardware allows them).
+/// Requests a device from `adapter` with timestamps and the compute raster's 64-bit atomics
+/// ([`raster::ID_FEATURES`]) where available, and the adapter's limits (so large textures work
+/// where the hardware allows them).
 pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
-    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    request_device_with(
+        adapter,
+        wgpu::Features::TIMESTAMP_QUERY | raster::ID_FEATURES,
+    )
+    .await
+}
+
+/// As [`request_device`], asking for only those of `wanted` the adapter has.
+pub async fn request_device_with(
+    adapter: &wgpu::Adapter,
+    wanted: wgpu::Features,
+) -> Result<(wgpu::Device, wgpu::Queue)> {
+    let features = adapter.features() & wanted;
     adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("relief:device"),

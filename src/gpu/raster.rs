@@ -11,9 +11,14 @@
 //! The compute raster draws one sample a pixel. The tile's shading reads its textures at the
 //! depth's point, so depth is all its raster must leave. The endless world's shading also reads
 //! each pixel's attributes (slope, colour channel, the light bake's horizon and valley), which
-//! an atomic on depth cannot carry: a second dispatch of the same pipeline rasterises again and
-//! stores them where a triangle's depth is the pixel's nearest, bit for bit. (The same
-//! instructions compute it in both dispatches, so the comparison is exact.)
+//! a 32-bit atomic on depth cannot carry. Where the device has a 64-bit atomic maximum
+//! (`SHADER_INT64_ATOMIC_MIN_MAX`, native Vulkan, DX12 and Metal; [`crate::gpu::request_device`]
+//! asks for it), each pixel keeps its depth above its triangle's id in one atomic
+//! (`wgsl/raster_ids.wgsl`), and a dispatch a pixel sets that triangle up again and stores its
+//! attributes: one raster. Elsewhere (the page's WebGPU) a second dispatch of the same
+//! pipeline rasterises again and stores them where a triangle's depth is the pixel's nearest,
+//! bit for bit (`wgsl/raster_depth.wgsl`; the same instructions compute it in both dispatches,
+//! so the comparison is exact).
 //!
 //! A thread draws the triangles of its cell itself unless one's bounding box covers over 256
 //! pixels: then it lists the triangle and its tiles of 16x16 pixels, and a second dispatch
@@ -84,7 +89,7 @@ struct RasterUniforms {
     mode: u32,
 }
 
-/// The attribute images the second dispatch writes (the endless world's): slope in x and z,
+/// The attribute images the raster stores (the endless world's): slope in x and z,
 /// colour channel and horizon, as the hardware raster's surface target holds them ...
 pub(crate) const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// ... and the valley depth (32-bit: WebGPU's storage textures have no 16-bit red format).
@@ -92,12 +97,12 @@ pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Fl
 
 /// Threads in a workgroup of `raster_cells`.
 const GROUP: u32 = 64;
-/// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 144 bytes each): a camera a
+/// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 160 bytes each): a camera a
 /// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
 /// draws its triangle alone, as before the list (slow, not wrong).
 const BIG_TRIANGLES: u64 = 16_384;
-/// Bytes of one entry of the list.
-const BIG_TRIANGLE_BYTES: u64 = 3 * 3 * 16;
+/// Bytes of one entry of the list: three vertices of three `vec4`s, and the id, padded to 16.
+const BIG_TRIANGLE_BYTES: u64 = 3 * 3 * 16 + 16;
 /// Tiles of 16x16 pixels the big triangles' tile list holds (8 bytes each): over 30 times a
 /// 1080p screen's.
 const BIG_TILES: u64 = 262_144;
@@ -110,6 +115,12 @@ const BIG_COUNT_BYTES: u64 = 16;
 const BIG_ARGS_CLEAR: [u32; 6] = [0, 1, 1, 0, 1, 1];
 /// Most workgroups in one dimension of a dispatch (WebGPU's default limit).
 const MAX_GROUPS: u32 = 65_535;
+/// The side of `raster_resolve`'s square workgroups (`raster_ids.wgsl`).
+const RESOLVE_SIDE: u32 = 8;
+
+/// The device features the raster with ids needs (64-bit integers and their atomic maximum).
+pub const ID_FEATURES: wgpu::Features =
+    wgpu::Features::SHADER_INT64.union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// The mesh the raster draws: the world's bind group (its uniforms and level textures, group
 /// 0), how many patch instances of each kind (whole patches first; the instances are bound by
@@ -136,12 +147,21 @@ pub(crate) struct ComputeRaster {
     layout: wgpu::BindGroupLayout,
     /// `layout` without `big_args`, for `raster_big` (whose dispatch reads them).
     big_layout: wgpu::BindGroupLayout,
-    /// Whether a second dispatch writes each pixel's attributes (the endless world's).
+    /// Whether each pixel's attributes are stored (the endless world's).
     attributes: bool,
+    /// Whether the depth buffer keeps each pixel's triangle beside its depth (64-bit, where the
+    /// device allows it and there are attributes): `raster_resolve` then stores the attributes,
+    /// where otherwise a second raster does.
+    ids: bool,
+    /// `raster_resolve` and its bind group's layout (the raster with ids only).
+    resolve: Option<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
+    /// Its bind group ([`ComputeRaster::bind`]).
+    resolve_group: Option<wgpu::BindGroup>,
     /// The uniforms of the depth dispatch (`mode` 0) and of the attributes' (`mode` 1): one
     /// pipeline for both, so both compute a pixel's depth with the same instructions.
     uniforms: [wgpu::Buffer; 2],
-    /// Per pixel, row by row: the nearest depth's complemented bits, 0 where nothing is drawn.
+    /// Per pixel, row by row: the nearest depth's complemented bits (with ids: above the
+    /// triangle's id, 8 bytes a pixel), 0 where nothing is drawn.
     depth: Option<(u32, u32, wgpu::Buffer)>,
     /// The two modes' bind groups for `raster_cells` and for `raster_big`
     /// ([`ComputeRaster::bind`]).
@@ -150,17 +170,20 @@ pub(crate) struct ComputeRaster {
 
 impl ComputeRaster {
     /// The pipeline for a world whose bind group 0 has `world_layout` (visible to compute);
-    /// `attributes`: the endless world's, written by a second dispatch.
+    /// `attributes`: the endless world's, kept with ids where `device` has [`ID_FEATURES`],
+    /// else written by a second raster.
     pub(crate) fn new(
         device: &wgpu::Device,
         world_layout: &wgpu::BindGroupLayout,
         attributes: bool,
     ) -> Self {
         use super::shader as s;
+        let ids = attributes && device.features().contains(ID_FEATURES);
+        let keep = if ids { s::RASTER_IDS } else { s::RASTER_DEPTH };
         let module = s::module(
             device,
             "relief:raster:shader",
-            &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::RASTER]),
+            &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::RASTER, keep]),
         );
         let c = wgpu::ShaderStages::COMPUTE;
         let storage = super::storage_buffer_entry;
@@ -183,7 +206,7 @@ impl ComputeRaster {
             label: Some("relief:raster:big-layout"),
             entries: &entries[..8],
         });
-        let entry = |label, entry_point, layout| {
+        let entry = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("relief:raster:pipeline-layout"),
                 bind_group_layouts: &[Some(world_layout), Some(layout)],
@@ -200,6 +223,22 @@ impl ComputeRaster {
         };
         let pipeline = entry("relief:raster:cells", "raster_cells", &layout);
         let big_pipeline = entry("relief:raster:big", "raster_big", &big_layout);
+        // `raster_resolve` reads the depth buffer at binding 9, not as the raster's atomics.
+        let resolve = ids.then(|| {
+            let resolve_layout =
+                device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("relief:raster:resolve-layout"),
+                    entries: &[
+                        entries[0],
+                        entries[1],
+                        entries[3],
+                        entries[4],
+                        storage(9, true),
+                    ],
+                });
+            let pipeline = entry("relief:raster:resolve", "raster_resolve", &resolve_layout);
+            (pipeline, resolve_layout)
+        });
         let buffer = |label, size| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -233,6 +272,9 @@ impl ComputeRaster {
             big_layout,
             layout,
             attributes,
+            ids,
+            resolve,
+            resolve_group: None,
             uniforms: [
                 "relief:raster:depth-uniforms",
                 "relief:raster:attribute-uniforms",
@@ -249,7 +291,7 @@ impl ComputeRaster {
         if !matches!(&self.depth, Some((w, h, _)) if (*w, *h) == size) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("relief:raster:depth"),
-                size: u64::from(size.0) * u64::from(size.1) * 4,
+                size: u64::from(size.0) * u64::from(size.1) * 4 * u64::from(self.depth_stride()),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -257,6 +299,15 @@ impl ComputeRaster {
             self.groups = None;
         }
         &self.depth.as_ref().expect("made above").2
+    }
+
+    /// 32-bit words a pixel of the depth buffer: 2 with ids (the depth's the second), else 1.
+    pub(crate) fn depth_stride(&self) -> u32 {
+        if self.ids {
+            2
+        } else {
+            1
+        }
     }
 
     /// Binds the world's patch `instances`, the depth buffer of `size` and the attribute
@@ -299,6 +350,36 @@ impl ComputeRaster {
                 entries: &entries(mode)[..bindings],
             })
         };
+        self.resolve_group = self.resolve.as_ref().map(|(_, layout)| {
+            let all = entries(0);
+            let resource = |i: usize| all[i].resource.clone();
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:raster:resolve-group"),
+                layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: resource(0),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: resource(1),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: resource(3),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: resource(4),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 9,
+                        resource: resource(2),
+                    },
+                ],
+            })
+        });
         // `raster_big`'s groups leave out its own indirect arguments (binding 8).
         self.groups = Some([0, 1].map(|mode| {
             [
@@ -310,8 +391,9 @@ impl ComputeRaster {
 
     /// Records the raster of `patches` into an image of `size` (bound by
     /// [`ComputeRaster::bind`] at that size): clears the depth buffer, then one compute pass
-    /// (timed as `timestamps`) of one dispatch for the depth and, for the endless world, one
-    /// for the attributes.
+    /// (timed as `timestamps`) of one raster for the depth and, for the endless world, either
+    /// a dispatch a pixel that stores the kept triangles' attributes (with ids) or a second
+    /// raster that stores them.
     pub(crate) fn encode(
         &self,
         queue: &wgpu::Queue,
@@ -330,8 +412,9 @@ impl ComputeRaster {
         let groups_needed = cells.div_ceil(u64::from(GROUP));
         let x = groups_needed.min(u64::from(MAX_GROUPS)) as u32;
         let y = groups_needed.div_ceil(u64::from(x.max(1))) as u32;
-        // The attributes' dispatch (and its uniforms) only where there are attributes.
-        let dispatches = if self.attributes { 2 } else { 1 };
+        // The attributes' raster (and its uniforms) only where there are attributes, and no
+        // resolve of the ids.
+        let dispatches = if self.attributes && !self.ids { 2 } else { 1 };
         for mode in 0..dispatches {
             let u = RasterUniforms {
                 size: [size.0, size.1],
@@ -365,6 +448,15 @@ impl ComputeRaster {
             pass.set_pipeline(&self.big_pipeline);
             pass.set_bind_group(1, big_group, &[]);
             pass.dispatch_workgroups_indirect(&self.big_args, 12 * mode as u64);
+        }
+        if let (Some((resolve, _)), Some(group)) = (&self.resolve, &self.resolve_group) {
+            pass.set_pipeline(resolve);
+            pass.set_bind_group(1, group, &[]);
+            pass.dispatch_workgroups(
+                size.0.div_ceil(RESOLVE_SIDE),
+                size.1.div_ceil(RESOLVE_SIDE),
+                1,
+            );
         }
     }
 }

@@ -31,8 +31,14 @@ pub const VIS_COMMON: &str = include_str!("../../wgsl/vis_common.wgsl");
 /// [`SHADE`], [`LEVEL_TEXEL`], [`WORLD`] and [`VIS_COMMON`]).
 pub const VISIBILITY: &str = include_str!("../../wgsl/visibility.wgsl");
 /// `wgsl/raster.wgsl`: the visibility method's raster pass in compute (needs [`SHADE`],
-/// [`LEVEL_TEXEL`] and [`WORLD`]).
+/// [`LEVEL_TEXEL`] and [`WORLD`], then [`RASTER_DEPTH`] or [`RASTER_IDS`]).
 pub const RASTER: &str = include_str!("../../wgsl/raster.wgsl");
+/// `wgsl/raster_depth.wgsl`: what the compute raster keeps on any device (the nearest depth;
+/// the attributes by a second dispatch).
+pub const RASTER_DEPTH: &str = include_str!("../../wgsl/raster_depth.wgsl");
+/// `wgsl/raster_ids.wgsl`: what it keeps with a 64-bit atomic maximum (the nearest depth and
+/// its triangle; the attributes by a dispatch a pixel).
+pub const RASTER_IDS: &str = include_str!("../../wgsl/raster_ids.wgsl");
 /// `wgsl/sky.wgsl`: the sky behind the terrain (needs [`SHADE`]).
 pub const SKY: &str = include_str!("../../wgsl/sky.wgsl");
 /// `wgsl/raymarch.wgsl`: the tile's ray casters, reference and the seed's march (needs
@@ -92,7 +98,14 @@ pub fn all_modules() -> Vec<(&'static str, String)> {
         ("shade", SHADE.to_owned()),
         ("world", compose(&[SHADE, LEVEL_TEXEL, WORLD])),
         ("sky", compose(&[SHADE, SKY])),
-        ("raster", compose(&[SHADE, LEVEL_TEXEL, WORLD, RASTER])),
+        (
+            "raster",
+            compose(&[SHADE, LEVEL_TEXEL, WORLD, RASTER, RASTER_DEPTH]),
+        ),
+        (
+            "raster_ids",
+            compose(&[SHADE, LEVEL_TEXEL, WORLD, RASTER, RASTER_IDS]),
+        ),
         (
             "visibility",
             compose(&[SHADE, LEVEL_TEXEL, WORLD, VIS_COMMON, VISIBILITY]),

@@ -61,8 +61,11 @@ pub struct VisUniforms {
     pub world: u32,
     /// 1 where the host's target is not sRGB and the composite encodes.
     pub encode_srgb: u32,
+    /// 32-bit words a pixel of the compute raster's depth buffer (the depth's the last): 2
+    /// where it keeps each pixel's triangle, else 1.
+    pub depth_stride: u32,
     /// Padding.
-    pub _pad: [u32; 3],
+    pub _pad: [u32; 2],
 }
 
 impl VisUniforms {
@@ -90,7 +93,8 @@ impl VisUniforms {
             sky: u32::from(sky),
             world: u32::from(world),
             encode_srgb: u32::from(encode),
-            _pad: [0; 3],
+            depth_stride: 1,
+            _pad: [0; 2],
         }
     }
 }
@@ -415,10 +419,14 @@ impl Visibility {
         let pixels = u64::from(size.0) * u64::from(size.1);
         let bytes = super::texel_bytes;
         let samples = u64::from(self.samples);
-        // Depth32Float, or the compute raster's u32: 4 bytes a sample.
-        // The presented frame: 4 bytes a pixel (its rows' padding left out).
+        // Depth32Float, or the compute raster's u32 (8 bytes with each pixel's triangle): 4
+        // bytes a sample. The presented frame: 4 bytes a pixel (its rows' padding left out).
+        let depth = match &self.compute_raster {
+            Some(raster) => 4 * u64::from(raster.depth_stride()),
+            None => samples * 4,
+        };
         let mut per_pixel =
-            samples * 4 + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT) + PRESENTED_BYTES;
+            depth + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT) + PRESENTED_BYTES;
         if self.world {
             let valley = if self.compute_raster.is_some() {
                 raster::VALLEY_FORMAT
@@ -451,7 +459,8 @@ impl Visibility {
         );
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let (surface, valley) = if let Some(raster) = &mut self.compute_raster {
-            // The compute raster's second dispatch stores the attributes.
+            // The compute raster stores the attributes (after its raster with ids, or by a
+            // second raster).
             let [surface, valley] = [
                 ("relief:visibility:surface", raster::SURFACE_FORMAT),
                 ("relief:visibility:valley", raster::VALLEY_FORMAT),
@@ -585,7 +594,10 @@ impl Visibility {
     ) {
         let size = (size.0.max(1), size.1.max(1));
         self.images(device, size, world);
-        let u = VisUniforms::new(matrix, size, sky, self.world, self.encode_srgb);
+        let mut u = VisUniforms::new(matrix, size, sky, self.world, self.encode_srgb);
+        if let Some(raster) = &self.compute_raster {
+            u.depth_stride = raster.depth_stride();
+        }
         self.opaque = sky;
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
