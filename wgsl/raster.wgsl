@@ -34,8 +34,8 @@ struct RasterUniforms {
     // Cells per side of a whole patch and of a sub-patch.
     patch_cells: u32,
     sub_cells: u32,
-    // Threads per row of the dispatch (its x extent times the workgroup's).
-    row_threads: u32,
+    // Workgroups per row of `raster_cells`' dispatch (its x extent).
+    row_groups: u32,
     // raster_depth.wgsl's: 0 the nearest depth, 1 the attributes of the triangles that are
     // nearest. raster_ids.wgsl's: 0.
     mode: u32,
@@ -151,8 +151,8 @@ struct Setup {
     lo: vec2<f32>,
     hi: vec2<f32>,
     valid: bool,
-    // The triangle's id: its cell's thread (`raster_cells`) times 4, plus 2 for the cell's
-    // second triangle, plus 1 for the second triangle of its cut to the near plane.
+    // The triangle's id: its cell's number (`cell_of`) times 4, plus 2 for the cell's second
+    // triangle, plus 1 for the second triangle of its cut to the near plane.
     id: u32,
 }
 
@@ -317,57 +317,88 @@ fn raster_clipped(c0: RasterVertex, c1: RasterVertex, c2: RasterVertex, id: u32)
     }
 }
 
-// A cell of the mesh: its patch instance and its first corner in the patch's vertex numbering;
-// `valid` false past the last cell.
-struct Cell {
+// The side of the square block of cells a workgroup of `raster_cells` draws: its threads
+// place the block's corners once each, into `corners`, where a thread a cell would place
+// each corner four times (once for each cell that shares it).
+const BLOCK: u32 = 8u;
+var<workgroup> corners: array<RasterVertex, 81>;
+
+// A workgroup's block of cells: its patch instance, the patch's side in cells, the first cell
+// of the patch in `cell_of`'s numbering, and the block's first cell (column, row) in the
+// patch; `valid` false past the last block.
+struct Block {
     instance: u32,
-    corner: u32,
+    side: u32,
+    first: u32,
+    origin: vec2<u32>,
     valid: bool,
 }
 
-// The cell of thread `thread` (row by row over the dispatch): whole patches' cells first.
-fn cell_of(thread: u32) -> Cell {
-    var c = thread;
-    let whole_cells = ras.patch_cells * ras.patch_cells;
-    let sub_cells = ras.sub_cells * ras.sub_cells;
-    var out: Cell;
+// The block of workgroup `group` (row by row over the dispatch): whole patches' blocks first.
+fn block_of(group: u32) -> Block {
+    var out: Block;
     out.valid = true;
-    var side = ras.patch_cells;
-    if c < ras.whole * whole_cells {
-        out.instance = c / whole_cells;
-        c = c % whole_cells;
+    let whole_across = (ras.patch_cells + BLOCK - 1u) / BLOCK;
+    let sub_across = (ras.sub_cells + BLOCK - 1u) / BLOCK;
+    let whole_blocks = whole_across * whole_across;
+    let sub_blocks = sub_across * sub_across;
+    var g = group;
+    var across = whole_across;
+    if g < ras.whole * whole_blocks {
+        out.instance = g / whole_blocks;
+        out.side = ras.patch_cells;
+        out.first = out.instance * ras.patch_cells * ras.patch_cells;
+        g = g % whole_blocks;
     } else {
-        c -= ras.whole * whole_cells;
-        if sub_cells == 0u || c >= ras.subs * sub_cells {
+        g -= ras.whole * whole_blocks;
+        if sub_blocks == 0u || g >= ras.subs * sub_blocks {
             out.valid = false;
             return out;
         }
-        out.instance = ras.whole + c / sub_cells;
-        c = c % sub_cells;
-        side = ras.sub_cells;
+        let sub = g / sub_blocks;
+        out.instance = ras.whole + sub;
+        out.side = ras.sub_cells;
+        out.first = ras.whole * ras.patch_cells * ras.patch_cells + sub * ras.sub_cells * ras.sub_cells;
+        g = g % sub_blocks;
+        across = sub_across;
     }
-    out.corner = (c / side) * (ras.patch_cells + 1u) + c % side;
+    out.origin = vec2<u32>(g % across, g / across) * BLOCK;
     return out;
 }
 
+// A workgroup a block of BLOCK x BLOCK cells, a thread a cell: the block's corners placed once
+// into `corners`, then each thread's two triangles, split as the index buffer splits its cell
+// (world.rs `patch_indices`): (a, b, d) and (a, d, c), a the cell's first corner, b the next
+// in its row, c and d the row after. A triangle's id is the cell's number in `cell_of`'s
+// order times 4, plus 2 for the second (`Setup`).
 @compute @workgroup_size(64)
-fn raster_cells(@builtin(global_invocation_id) id: vec3<u32>) {
-    let thread = id.y * ras.row_threads + id.x;
-    let cell = cell_of(thread);
-    if !cell.valid {
+fn raster_cells(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let b = block_of(group.y * ras.row_groups + group.x);
+    if !b.valid {
         return;
     }
-    // The cell's corners, split as the index buffer splits it (world.rs `patch_indices`):
-    // (a, b, d) and (a, d, c).
+    let p = patches[b.instance];
     let row = ras.patch_cells + 1u;
-    let a = cell.corner;
-    let p = patches[cell.instance];
-    let va = raster_vertex(a, p);
-    let vb = raster_vertex(a + 1u, p);
-    let vc = raster_vertex(a + row, p);
-    let vd = raster_vertex(a + row + 1u, p);
-    raster_clipped(va, vb, vd, thread * 4u);
-    raster_clipped(va, vd, vc, thread * 4u + 2u);
+    for (var k = lane; k < (BLOCK + 1u) * (BLOCK + 1u); k += BLOCK * BLOCK) {
+        // Corners past the patch's last (a block over its edge) are never drawn: the last one
+        // stands in.
+        let v = min(b.origin + vec2<u32>(k % (BLOCK + 1u), k / (BLOCK + 1u)), vec2<u32>(b.side));
+        corners[k] = raster_vertex(v.y * row + v.x, p);
+    }
+    workgroupBarrier();
+    let local = vec2<u32>(lane % BLOCK, lane / BLOCK);
+    let cell = b.origin + local;
+    if cell.x >= b.side || cell.y >= b.side {
+        return;
+    }
+    let a = local.y * (BLOCK + 1u) + local.x;
+    let c = a + BLOCK + 1u;
+    let id = (b.first + cell.y * b.side + cell.x) * 4u;
+    raster_clipped(corners[a], corners[a + 1u], corners[c + 1u], id);
+    raster_clipped(corners[a], corners[c + 1u], corners[c], id + 2u);
 }
 
 // The tiles of the triangles `raster_cells` listed as big, a workgroup each (strided over the

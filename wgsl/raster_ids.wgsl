@@ -13,6 +13,39 @@ fn keep(t: Setup, e: vec3<f32>, x: f32, y: f32, at: u32, bits: u32) {
     atomicMax(&raster_depth[at], (u64(bits) << 32u) | u64(t.id));
 }
 
+// A cell of the mesh: its patch instance and its first corner in the patch's vertex numbering;
+// `valid` false past the last cell.
+struct Cell {
+    instance: u32,
+    corner: u32,
+    valid: bool,
+}
+
+// The cell numbered `number`: whole patches' cells first, each patch's row by row.
+fn cell_of(number: u32) -> Cell {
+    var c = number;
+    let whole_cells = ras.patch_cells * ras.patch_cells;
+    let sub_cells = ras.sub_cells * ras.sub_cells;
+    var out: Cell;
+    out.valid = true;
+    var side = ras.patch_cells;
+    if c < ras.whole * whole_cells {
+        out.instance = c / whole_cells;
+        c = c % whole_cells;
+    } else {
+        c -= ras.whole * whole_cells;
+        if sub_cells == 0u || c >= ras.subs * sub_cells {
+            out.valid = false;
+            return out;
+        }
+        out.instance = ras.whole + c / sub_cells;
+        c = c % sub_cells;
+        side = ras.sub_cells;
+    }
+    out.corner = (c / side) * (ras.patch_cells + 1u) + c % side;
+    return out;
+}
+
 // Each drawn pixel's attributes, a thread a pixel: its triangle set up again from the id (the
 // same cell, corners, cut and setup as `raster_cells` computed), interpolated at its centre.
 @compute @workgroup_size(8, 8)

@@ -85,7 +85,7 @@ struct RasterUniforms {
     subs: u32,
     patch_cells: u32,
     sub_cells: u32,
-    row_threads: u32,
+    row_groups: u32,
     mode: u32,
 }
 
@@ -95,8 +95,9 @@ pub(crate) const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba
 /// ... and the valley depth (32-bit: WebGPU's storage textures have no 16-bit red format).
 pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
-/// Threads in a workgroup of `raster_cells`.
-const GROUP: u32 = 64;
+/// The side of the square block of cells a workgroup of `raster_cells` draws, a thread a
+/// cell (`raster.wgsl`'s `BLOCK`).
+const BLOCK: u32 = 8;
 /// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 160 bytes each): a camera a
 /// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
 /// draws its triangle alone, as before the list (slow, not wrong).
@@ -409,7 +410,10 @@ impl ComputeRaster {
         let [patch_cells, sub_cells] = patches.cells;
         let cells = u64::from(whole) * u64::from(patch_cells).pow(2)
             + u64::from(subs) * u64::from(sub_cells).pow(2);
-        let groups_needed = cells.div_ceil(u64::from(GROUP));
+        // A workgroup a block of cells, blocks over a patch's edge included.
+        let blocks = |side: u32| u64::from(side.div_ceil(BLOCK)).pow(2);
+        let groups_needed =
+            u64::from(whole) * blocks(patch_cells) + u64::from(subs) * blocks(sub_cells);
         let x = groups_needed.min(u64::from(MAX_GROUPS)) as u32;
         let y = groups_needed.div_ceil(u64::from(x.max(1))) as u32;
         // The attributes' raster (and its uniforms) only where there are attributes, and no
@@ -422,7 +426,7 @@ impl ComputeRaster {
                 subs,
                 patch_cells,
                 sub_cells,
-                row_threads: x * GROUP,
+                row_groups: x,
                 mode: mode as u32,
             };
             queue.write_buffer(&self.uniforms[mode], 0, bytemuck::bytes_of(&u));
@@ -470,7 +474,7 @@ mod tests {
         // wgsl/raster.wgsl's RasterUniforms: a vec2<u32> and six u32, 32 bytes.
         assert_eq!(std::mem::size_of::<RasterUniforms>(), 32);
         assert_eq!(std::mem::offset_of!(RasterUniforms, whole), 8);
-        assert_eq!(std::mem::offset_of!(RasterUniforms, row_threads), 24);
+        assert_eq!(std::mem::offset_of!(RasterUniforms, row_groups), 24);
     }
 
     #[test]
@@ -485,6 +489,7 @@ mod tests {
     #[test]
     fn the_big_triangles_constants_match_the_wgsl() {
         let wgsl = super::super::shader::RASTER;
+        assert!(wgsl.contains(&format!("const BLOCK: u32 = {BLOCK}u;")));
         assert!(wgsl.contains(&format!(
             "big_count: array<atomic<u32>, {}>",
             BIG_COUNT_BYTES / 4
