@@ -226,6 +226,21 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
             "{method}: {e}"
         );
     }
+    // The endless world's raster keeps each pixel's triangle beside its depth (lavapipe has
+    // 64-bit atomics): 8 bytes a pixel, and the refusal says so.
+    world.set_visibility_samples(1).unwrap();
+    world.set_method(&gpu.device, Method::Visibility).unwrap();
+    world.set_target_size(Some((side, side)));
+    let view = common::world_view(&WorldParams::default(), (W, H));
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let e = world
+        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("65536x65536") && e.contains("8 bytes a pixel"),
+        "{e}"
+    );
 }
 
 /// The endless world drawn by `method` at one sample a pixel, rasterised by `raster`.

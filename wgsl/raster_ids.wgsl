@@ -47,7 +47,8 @@ fn cell_of(number: u32) -> Cell {
 }
 
 // Each drawn pixel's attributes, a thread a pixel: its triangle set up again from the id (the
-// same cell, corners, cut and setup as `raster_cells` computed), interpolated at its centre.
+// same functions of the same cell and corners as `raster_cells`: its cut and setup agree but for
+// rounding, which only interpolation sees), interpolated at its centre.
 @compute @workgroup_size(8, 8)
 fn raster_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= ras.size.x || id.y >= ras.size.y {
@@ -73,10 +74,12 @@ fn raster_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         c = clip_near(va, vd, raster_vertex(a + row, p));
     }
-    let second = (triangle & 1u) == 1u;
-    if c.n < 3u || (second && c.n < 4u) {
+    if c.n < 3u {
         return;
     }
+    // The second half of a cut, unless this pipeline's rounding cut the triangle into one
+    // (a vertex within rounding of the near plane): then the one, so the pixel is stored.
+    let second = (triangle & 1u) == 1u && c.n == 4u;
     var t: Setup;
     if second {
         t = setup_triangle(c.poly[0], c.poly[2], c.poly[3], triangle);

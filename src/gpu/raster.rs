@@ -12,8 +12,8 @@
 //! depth's point, so depth is all its raster must leave. The endless world's shading also reads
 //! each pixel's attributes (slope, colour channel, the light bake's horizon and valley), which
 //! a 32-bit atomic on depth cannot carry. Where the device has a 64-bit atomic maximum
-//! (`SHADER_INT64_ATOMIC_MIN_MAX`, native Vulkan, DX12 and Metal; [`crate::gpu::request_device`]
-//! asks for it), each pixel keeps its depth above its triangle's id in one atomic
+//! (`SHADER_INT64_ATOMIC_MIN_MAX`: native only, on GPUs whose Vulkan, DX12 or Metal driver
+//! offers 64-bit buffer atomics; [`crate::gpu::request_device`] asks for it), each pixel keeps its depth above its triangle's id in one atomic
 //! (`wgsl/raster_ids.wgsl`), and a dispatch a pixel sets that triangle up again and stores its
 //! attributes: one raster. Elsewhere (the page's WebGPU) a second dispatch of the same
 //! pipeline rasterises again and stores them where a triangle's depth is the pixel's nearest,
@@ -298,6 +298,7 @@ impl ComputeRaster {
             });
             self.depth = Some((size.0, size.1, buffer));
             self.groups = None;
+            self.resolve_group = None;
         }
         &self.depth.as_ref().expect("made above").2
     }
@@ -410,6 +411,8 @@ impl ComputeRaster {
         let [patch_cells, sub_cells] = patches.cells;
         let cells = u64::from(whole) * u64::from(patch_cells).pow(2)
             + u64::from(subs) * u64::from(sub_cells).pow(2);
+        // A triangle's id is its cell's number times 4, in 32 bits.
+        debug_assert!(cells < 1 << 30, "{cells} cells: past the ids' range");
         // A workgroup a block of cells, blocks over a patch's edge included.
         let blocks = |side: u32| u64::from(side.div_ceil(BLOCK)).pow(2);
         let groups_needed =
@@ -490,6 +493,8 @@ mod tests {
     fn the_big_triangles_constants_match_the_wgsl() {
         let wgsl = super::super::shader::RASTER;
         assert!(wgsl.contains(&format!("const BLOCK: u32 = {BLOCK}u;")));
+        assert!(super::super::shader::RASTER_IDS
+            .contains(&format!("@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})")));
         assert!(wgsl.contains(&format!(
             "big_count: array<atomic<u32>, {}>",
             BIG_COUNT_BYTES / 4

@@ -414,6 +414,14 @@ impl Visibility {
         }
     }
 
+    /// 32-bit words a pixel of the compute raster's depth buffer (2 where it keeps each pixel's
+    /// triangle), or `None` where the GPU's rasteriser draws.
+    pub(crate) fn raster_depth_words(&self) -> Option<u32> {
+        self.compute_raster
+            .as_ref()
+            .map(ComputeRaster::depth_stride)
+    }
+
     /// GPU memory of the method's own images at `size`, bytes.
     pub fn bytes(&self, size: (u32, u32)) -> u64 {
         let pixels = u64::from(size.0) * u64::from(size.1);

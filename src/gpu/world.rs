@@ -893,18 +893,24 @@ impl World {
         timer: Option<&GpuTimer>,
     ) -> Result<()> {
         let size = self.target_size.unwrap_or(view.size);
-        if self.visibility.as_ref().map(Visibility::raster) == Some(Raster::Compute) {
-            // Its depth buffer is bound whole: 4 bytes a pixel within the device's limit.
-            let bytes = 4 * u64::from(size.0) * u64::from(size.1);
+        if let Some(words) = self
+            .visibility
+            .as_ref()
+            .and_then(Visibility::raster_depth_words)
+        {
+            // Its depth buffer is bound whole: 4 bytes a pixel (8 with each pixel's triangle)
+            // within the device's limit.
+            let per_pixel = 4 * u64::from(words);
+            let bytes = per_pixel * u64::from(size.0) * u64::from(size.1);
             let limit = device.limits().max_storage_buffer_binding_size;
             if bytes > limit {
                 return Err(Error::invalid(
                     "image size for the compute raster",
                     format!("{}x{}", size.0, size.1),
                     format!(
-                        "at most {} pixels on this device (its depth buffer, 4 bytes a pixel, is \
-                         bound whole); --raster hardware draws larger",
-                        limit / 4
+                        "at most {} pixels on this device (its depth buffer, {per_pixel} bytes a \
+                         pixel, is bound whole); --raster hardware draws larger",
+                        limit / per_pixel
                     ),
                 ));
             }
