@@ -15,6 +15,10 @@
 //   its id and stores its attributes. A tie in depth goes to the greater id, the same every
 //   frame.
 //
+// The depth's raster runs in passes, nearest levels first (src/gpu/raster.rs's PASS_LEVELS);
+// a pass after the first skips the blocks of cells wholly behind what the passes before it
+// drew (`block_hidden`, against `hiz`).
+//
 // Why: the H100 has few raster units; its depth-only raster of the tile's 131k triangles took
 // 0.50 ms at 1080p, a pass that shades nothing. A thread a cell does the same in compute; the
 // second raster of the attributes cost as much again as the first.
@@ -39,11 +43,21 @@ struct RasterUniforms {
     // raster_depth.wgsl's: 0 the nearest depth, 1 the attributes of the triangles that are
     // nearest. raster_ids.wgsl's: 0.
     mode: u32,
+    // This dispatch's blocks of cells: `first_group` up to `end_group` (`block_of`'s order).
+    first_group: u32,
+    end_group: u32,
+    // 1 where a block hidden behind `hiz` is skipped (`block_hidden`).
+    cull: u32,
+    _pad: u32,
 }
 
 @group(1) @binding(0) var<uniform> ras: RasterUniforms;
 @group(1) @binding(1) var<storage, read> patches: array<vec4<u32>>;
 // Binding 2, the depth buffer, is raster_depth.wgsl's or raster_ids.wgsl's.
+// Per HIZ_TILE x HIZ_TILE tile of pixels, row by row, the farthest depth's complemented bits
+// drawn so far (`raster_hiz`; 0 where a pixel has none): a raster in passes, nearest levels
+// first, skips a block of cells wholly behind what the passes before it drew.
+@group(1) @binding(10) var<storage, read_write> hiz: array<u32>;
 // The endless world's attributes (1x1 stand-ins for the tile): as `fs_attributes` writes them.
 @group(1) @binding(3) var surface_out: texture_storage_2d<rgba16float, write>;
 @group(1) @binding(4) var valley_out: texture_storage_2d<r32float, write>;
@@ -366,6 +380,101 @@ fn block_of(group: u32) -> Block {
     return out;
 }
 
+// The side of the tiles of pixels `hiz` keeps a depth for, and the most tiles a block's
+// pixels may span to be tested (a block nearer the eye is drawn untested).
+const HIZ_TILE: u32 = 8u;
+const HIZ_MOST_TILES: u32 = 16u;
+// Whether the workgroup's block is skipped (`block_hidden`, by its first thread).
+var<workgroup> hidden: u32;
+// Its corners' bounds on screen, gathered by the threads that place them (`bound_corner`):
+// the least x and y, the greatest x and y, the least depth, and 1 where one is behind the
+// near plane. Each kept by an atomic maximum of a code that orders as the value does
+// (`ordered`), complemented for the least: workgroup memory starts at 0, less than any.
+var<workgroup> block_bounds: array<atomic<u32>, 6>;
+
+// A float's bits as a u32 that orders as the float does.
+fn ordered(f: f32) -> u32 {
+    let bits = bitcast<u32>(f);
+    return select(bits | 0x80000000u, ~bits, (bits >> 31u) == 1u);
+}
+
+fn unordered(o: u32) -> f32 {
+    return bitcast<f32>(select(~o, o & 0x7fffffffu, (o >> 31u) == 1u));
+}
+
+// Gathers a corner of the workgroup's block (its clip position) into `block_bounds`.
+fn bound_corner(c: vec4<f32>) {
+    if !(c.z >= 0.0 && c.w > 0.0) {
+        atomicMax(&block_bounds[5], 1u);
+        return;
+    }
+    let s = to_screen(c);
+    atomicMax(&block_bounds[0], ~ordered(s.x));
+    atomicMax(&block_bounds[1], ~ordered(s.y));
+    atomicMax(&block_bounds[2], ordered(s.x));
+    atomicMax(&block_bounds[3], ordered(s.y));
+    atomicMax(&block_bounds[4], ~ordered(s.z));
+}
+
+// Whether no triangle of the workgroup's block (its corners gathered in `block_bounds`) can be
+// the nearest at any pixel: it covers no pixel centre, or each tile of pixels its corners'
+// bounding box touches was drawn, all of it, strictly nearer than the nearest corner. A
+// triangle's depth at a pixel is a blend of its corners', so none is nearer than the nearest
+// corner (a margin of a millionth covers the blend's rounding). A block with a corner behind
+// the near plane (cut there) or over HIZ_MOST_TILES tiles is drawn.
+fn block_hidden() -> bool {
+    if atomicLoad(&block_bounds[5]) != 0u {
+        return false;
+    }
+    let lo = vec2<f32>(unordered(~atomicLoad(&block_bounds[0])), unordered(~atomicLoad(&block_bounds[1])));
+    let hi = vec2<f32>(unordered(atomicLoad(&block_bounds[2])), unordered(atomicLoad(&block_bounds[3])));
+    let nearest = unordered(~atomicLoad(&block_bounds[4]));
+    // The pixel centres of the bounding box, as `setup_triangle` finds them.
+    let first = max(ceil(lo - 0.5), vec2<f32>(0.0));
+    let last = min(floor(hi - 0.5), vec2<f32>(ras.size) - 1.0);
+    if first.x > last.x || first.y > last.y {
+        return true;
+    }
+    let t0 = vec2<u32>(first) / HIZ_TILE;
+    let t1 = vec2<u32>(last) / HIZ_TILE;
+    let tiles = t1 - t0 + 1u;
+    if tiles.x * tiles.y > HIZ_MOST_TILES {
+        return false;
+    }
+    let across = (ras.size.x + HIZ_TILE - 1u) / HIZ_TILE;
+    let bound = nearest - abs(nearest) * 1.0e-6;
+    for (var y = t0.y; y <= t1.y; y++) {
+        for (var x = t0.x; x <= t1.x; x++) {
+            let bits = hiz[y * across + x];
+            if bits == 0u || !(bitcast<f32>(~bits) < bound) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// `hiz` from the depth drawn so far, a thread a tile: the farthest of its pixels (the least of
+// their complemented bits; 0 where one has none). `drawn_bits` is raster_depth.wgsl's or
+// raster_ids.wgsl's.
+@compute @workgroup_size(8, 8)
+fn raster_hiz(@builtin(global_invocation_id) id: vec3<u32>) {
+    let across = (ras.size.x + HIZ_TILE - 1u) / HIZ_TILE;
+    let down = (ras.size.y + HIZ_TILE - 1u) / HIZ_TILE;
+    if id.x >= across || id.y >= down {
+        return;
+    }
+    let origin = id.xy * HIZ_TILE;
+    let end = min(origin + HIZ_TILE, ras.size);
+    var farthest = 0xffffffffu;
+    for (var y = origin.y; y < end.y; y++) {
+        for (var x = origin.x; x < end.x; x++) {
+            farthest = min(farthest, drawn_bits(y * ras.size.x + x));
+        }
+    }
+    hiz[id.y * across + id.x] = farthest;
+}
+
 // A workgroup a block of BLOCK x BLOCK cells, a thread a cell: the block's corners placed once
 // into `corners`, then each thread's two triangles, split as the index buffer splits its cell
 // (world.rs `patch_indices`): (a, b, d) and (a, d, c), a the cell's first corner, b the next
@@ -376,8 +485,9 @@ fn raster_cells(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let b = block_of(group.y * ras.row_groups + group.x);
-    if !b.valid {
+    let number = ras.first_group + group.y * ras.row_groups + group.x;
+    let b = block_of(number);
+    if !b.valid || number >= ras.end_group {
         return;
     }
     let p = patches[b.instance];
@@ -386,9 +496,21 @@ fn raster_cells(
         // Corners past the patch's last (a block over its edge) are never drawn: the last one
         // stands in.
         let v = min(b.origin + vec2<u32>(k % (BLOCK + 1u), k / (BLOCK + 1u)), vec2<u32>(b.side));
-        corners[k] = raster_vertex(v.y * row + v.x, p);
+        let corner = raster_vertex(v.y * row + v.x, p);
+        corners[k] = corner;
+        if ras.cull != 0u {
+            bound_corner(corner.clip);
+        }
     }
     workgroupBarrier();
+    if ras.cull != 0u {
+        if lane == 0u {
+            hidden = u32(block_hidden());
+        }
+        if workgroupUniformLoad(&hidden) != 0u {
+            return;
+        }
+    }
     let local = vec2<u32>(lane % BLOCK, lane / BLOCK);
     let cell = b.origin + local;
     if cell.x >= b.side || cell.y >= b.side {

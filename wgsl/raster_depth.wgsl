@@ -14,3 +14,8 @@ fn keep(t: Setup, e: vec3<f32>, x: f32, y: f32, at: u32, bits: u32) {
         store_attributes(t, e, x, y);
     }
 }
+
+// The nearest depth's complemented bits drawn at index `at` so far (0: none).
+fn drawn_bits(at: u32) -> u32 {
+    return atomicLoad(&raster_depth[at]);
+}

@@ -4,7 +4,8 @@
 // nothing is drawn. Stored little-endian: read as two words, the depth's is the second.
 
 @group(1) @binding(2) var<storage, read_write> raster_depth: array<atomic<u64>>;
-// The same buffer read by `raster_resolve` (bound to it alone, after the raster).
+// The same buffer read by `raster_resolve` and `raster_hiz` (bound to them alone, after the
+// raster).
 @group(1) @binding(9) var<storage, read> raster_ids: array<vec2<u32>>;
 
 // Pixel (x, y), at index `at`, covered by triangle `t` with depth bits `bits`: nearest first,
@@ -44,6 +45,11 @@ fn cell_of(number: u32) -> Cell {
     }
     out.corner = (c / side) * (ras.patch_cells + 1u) + c % side;
     return out;
+}
+
+// The nearest depth's complemented bits drawn at index `at` so far (0: none).
+fn drawn_bits(at: u32) -> u32 {
+    return raster_ids[at].y;
 }
 
 // Each drawn pixel's attributes, a thread a pixel: its triangle set up again from the id (the

@@ -13,12 +13,20 @@
 //! each pixel's attributes (slope, colour channel, the light bake's horizon and valley), which
 //! a 32-bit atomic on depth cannot carry. Where the device has a 64-bit atomic maximum
 //! (`SHADER_INT64_ATOMIC_MIN_MAX`: native only, on GPUs whose Vulkan, DX12 or Metal driver
-//! offers 64-bit buffer atomics; [`crate::gpu::request_device`] asks for it), each pixel keeps its depth above its triangle's id in one atomic
-//! (`wgsl/raster_ids.wgsl`), and a dispatch a pixel sets that triangle up again and stores its
+//! offers 64-bit buffer atomics; [`crate::gpu::request_device`] asks for it), each pixel keeps
+//! its depth above its triangle's id in one atomic (`wgsl/raster_ids.wgsl`), and a dispatch a pixel sets that triangle up again and stores its
 //! attributes: one raster. Elsewhere (the page's WebGPU) a second dispatch of the same
 //! pipeline rasterises again and stores them where a triangle's depth is the pixel's nearest,
 //! bit for bit (`wgsl/raster_depth.wgsl`; the same instructions compute it in both dispatches,
 //! so the comparison is exact).
+//!
+//! A workgroup draws a block of 8x8 cells, a thread a cell, their 81 corners placed once. The
+//! depth's raster runs in passes, nearest levels first ([`PASS_LEVELS`]). Between passes
+//! `raster_hiz` keeps each 8x8-pixel tile's farthest depth drawn so far, and a later pass skips
+//! a block whose corners' screen box covers no pixel centre, or lies on at most 16 tiles all
+//! drawn strictly nearer than its nearest corner. A triangle's depth at a pixel blends its
+//! corners' depths, so such a block cannot be nearest anywhere: the picture is the same, bit
+//! for bit. From near the ground most of the distant mesh lies behind nearer hills.
 //!
 //! A thread draws the triangles of its cell itself unless one's bounding box covers over 256
 //! pixels: then it lists the triangle and its tiles of 16x16 pixels, and a second dispatch
@@ -78,7 +86,7 @@ impl std::fmt::Display for Raster {
 
 /// Mirrors `RasterUniforms` in `wgsl/raster.wgsl`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 struct RasterUniforms {
     size: [u32; 2],
     whole: u32,
@@ -87,6 +95,10 @@ struct RasterUniforms {
     sub_cells: u32,
     row_groups: u32,
     mode: u32,
+    first_group: u32,
+    end_group: u32,
+    cull: u32,
+    _pad: u32,
 }
 
 /// The attribute images the raster stores (the endless world's): slope in x and z,
@@ -98,6 +110,8 @@ pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Fl
 /// The side of the square block of cells a workgroup of `raster_cells` draws, a thread a
 /// cell (`raster.wgsl`'s `BLOCK`).
 const BLOCK: u32 = 8;
+/// The side of the tiles of pixels whose farthest depth `raster_hiz` keeps (`HIZ_TILE`).
+const HIZ_TILE: u32 = 8;
 /// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 160 bytes each): a camera a
 /// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
 /// draws its triangle alone, as before the list (slow, not wrong).
@@ -116,27 +130,49 @@ const BIG_COUNT_BYTES: u64 = 16;
 const BIG_ARGS_CLEAR: [u32; 6] = [0, 1, 1, 0, 1, 1];
 /// Most workgroups in one dimension of a dispatch (WebGPU's default limit).
 const MAX_GROUPS: u32 = 65_535;
-/// The side of `raster_resolve`'s square workgroups (`raster_ids.wgsl`).
+/// The side of `raster_resolve`'s and `raster_hiz`'s square workgroups.
 const RESOLVE_SIDE: u32 = 8;
+/// The raster's dispatches of cells: the depth's in [`PASSES`] passes, nearest levels first,
+/// then, without ids, the attributes' in one.
+const DISPATCHES: usize = PASSES + 1;
+/// Passes of the depth's raster: the patches of the levels within [`PASS_LEVELS`] of the finest
+/// drawn, one pass each, then the rest ([`Patches::passes`]); each after the first skips the
+/// blocks of cells wholly behind what the passes before it drew.
+pub(crate) const PASSES: usize = 4;
+/// The levels the depth passes but the last end before, counted from the finest drawn.
+const PASS_LEVELS: [u32; PASSES - 1] = [2, 4, 7];
 
 /// The device features the raster with ids needs (64-bit integers and their atomic maximum).
 pub const ID_FEATURES: wgpu::Features =
     wgpu::Features::SHADER_INT64.union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// The mesh the raster draws: the world's bind group (its uniforms and level textures, group
-/// 0), how many patch instances of each kind (whole patches first; the instances are bound by
-/// [`ComputeRaster::bind`]), and the cells per side of a whole patch and of a sub-patch.
+/// 0), how many patch instances of each kind (whole patches first, finest level first; the
+/// instances are bound by [`ComputeRaster::bind`]), the cells per side of a whole patch and of
+/// a sub-patch, and the whole patches drawn by the end of each depth pass but the last.
 pub(crate) struct Patches<'a> {
     pub group: &'a wgpu::BindGroup,
     pub counts: [u32; 2],
     pub cells: [u32; 2],
+    pub passes: [u32; PASSES - 1],
 }
 
-/// The compute raster's pipeline, uniforms and depth buffer (see the module docs).
+/// The whole patches of `levels` (each patch's level, finest first) drawn by the end of each
+/// depth pass but the last ([`PASS_LEVELS`]).
+pub(crate) fn pass_ends(levels: impl Iterator<Item = u32> + Clone) -> [u32; PASSES - 1] {
+    let finest = levels.clone().min().unwrap_or(0);
+    PASS_LEVELS.map(|within| levels.clone().filter(|&l| l < finest + within).count() as u32)
+}
+
+/// The compute raster's pipelines, uniforms and buffers (see the module docs).
 pub(crate) struct ComputeRaster {
     pipeline: wgpu::ComputePipeline,
     /// Draws the triangles `pipeline` left as big, a workgroup to a tile of pixels.
     big_pipeline: wgpu::ComputePipeline,
+    /// Keeps the farthest depth of each tile of pixels drawn so far (`raster_hiz`).
+    hiz_pipeline: wgpu::ComputePipeline,
+    /// `raster_resolve` (the raster with ids only).
+    resolve: Option<wgpu::ComputePipeline>,
     /// The big triangles' list, their tiles', the counts of both (one a dispatch mode,
     /// cleared every frame), and `raster_big`'s indirect arguments.
     big: wgpu::Buffer,
@@ -145,32 +181,30 @@ pub(crate) struct ComputeRaster {
     big_args: wgpu::Buffer,
     /// [`BIG_ARGS_CLEAR`], copied into `big_args` before each raster.
     big_args_clear: wgpu::Buffer,
-    layout: wgpu::BindGroupLayout,
-    /// `layout` without `big_args`, for `raster_big` (whose dispatch reads them).
-    big_layout: wgpu::BindGroupLayout,
+    /// The bind group layouts of `raster_cells`, `raster_big` (without `big_args`, which its
+    /// dispatch reads), `raster_hiz` and `raster_resolve`.
+    layouts: [wgpu::BindGroupLayout; 4],
     /// Whether each pixel's attributes are stored (the endless world's).
     attributes: bool,
     /// Whether the depth buffer keeps each pixel's triangle beside its depth (64-bit, where the
     /// device allows it and there are attributes): `raster_resolve` then stores the attributes,
     /// where otherwise a second raster does.
     ids: bool,
-    /// `raster_resolve` and its bind group's layout (the raster with ids only).
-    resolve: Option<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
-    /// Its bind group ([`ComputeRaster::bind`]).
-    resolve_group: Option<wgpu::BindGroup>,
-    /// The uniforms of the depth dispatch (`mode` 0) and of the attributes' (`mode` 1): one
-    /// pipeline for both, so both compute a pixel's depth with the same instructions.
-    uniforms: [wgpu::Buffer; 2],
+    /// Each dispatch of cells' uniforms ([`DISPATCHES`]), a slot of `uniform_stride` bytes
+    /// each, bound with a dynamic offset: one pipeline for all, so every dispatch computes a
+    /// pixel's depth with the same instructions.
+    uniforms: wgpu::Buffer,
+    uniform_stride: u32,
     /// Per pixel, row by row: the nearest depth's complemented bits (with ids: above the
-    /// triangle's id, 8 bytes a pixel), 0 where nothing is drawn.
-    depth: Option<(u32, u32, wgpu::Buffer)>,
-    /// The two modes' bind groups for `raster_cells` and for `raster_big`
-    /// ([`ComputeRaster::bind`]).
-    groups: Option<[[wgpu::BindGroup; 2]; 2]>,
+    /// triangle's id, 8 bytes a pixel), 0 where nothing is drawn; and per tile of pixels the
+    /// farthest ([`HIZ_TILE`]).
+    depth: Option<(u32, u32, wgpu::Buffer, wgpu::Buffer)>,
+    /// The bind groups of the four layouts ([`ComputeRaster::bind`]).
+    groups: Option<[wgpu::BindGroup; 4]>,
 }
 
 impl ComputeRaster {
-    /// The pipeline for a world whose bind group 0 has `world_layout` (visible to compute);
+    /// The pipelines for a world whose bind group 0 has `world_layout` (visible to compute);
     /// `attributes`: the endless world's, kept with ids where `device` has [`ID_FEATURES`],
     /// else written by a second raster.
     pub(crate) fn new(
@@ -186,28 +220,40 @@ impl ComputeRaster {
             "relief:raster:shader",
             &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::RASTER, keep]),
         );
-        let c = wgpu::ShaderStages::COMPUTE;
         let storage = super::storage_buffer_entry;
-        let entries = [
-            super::uniform_entry::<RasterUniforms>(0, c),
-            storage(1, true),
-            storage(2, false),
-            super::storage_entry(3, SURFACE_FORMAT),
-            super::storage_entry(4, VALLEY_FORMAT),
-            storage(5, false),
-            storage(6, false),
-            storage(7, false),
-            storage(8, false),
-        ];
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("relief:raster:layout"),
-            entries: &entries,
+        let entry = |binding: u32| match binding {
+            0 => wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<RasterUniforms>() as u64
+                    ),
+                },
+                count: None,
+            },
+            1 | 9 => storage(binding, true),
+            3 => super::storage_entry(3, SURFACE_FORMAT),
+            4 => super::storage_entry(4, VALLEY_FORMAT),
+            _ => storage(binding, false),
+        };
+        // The depth buffer is read at binding 9 by the dispatches after the raster with ids.
+        let hiz_depth = if ids { 9 } else { 2 };
+        let layouts = [
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10][..],
+            &[0, 1, 2, 3, 4, 5, 6, 7],
+            &[0, hiz_depth, 10],
+            &[0, 1, 3, 4, 9],
+        ]
+        .map(|bindings| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("relief:raster:layout"),
+                entries: &bindings.iter().map(|&b| entry(b)).collect::<Vec<_>>(),
+            })
         });
-        let big_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("relief:raster:big-layout"),
-            entries: &entries[..8],
-        });
-        let entry = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
+        let pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("relief:raster:pipeline-layout"),
                 bind_group_layouts: &[Some(world_layout), Some(layout)],
@@ -222,24 +268,6 @@ impl ComputeRaster {
                 cache: None,
             })
         };
-        let pipeline = entry("relief:raster:cells", "raster_cells", &layout);
-        let big_pipeline = entry("relief:raster:big", "raster_big", &big_layout);
-        // `raster_resolve` reads the depth buffer at binding 9, not as the raster's atomics.
-        let resolve = ids.then(|| {
-            let resolve_layout =
-                device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some("relief:raster:resolve-layout"),
-                    entries: &[
-                        entries[0],
-                        entries[1],
-                        entries[3],
-                        entries[4],
-                        storage(9, true),
-                    ],
-                });
-            let pipeline = entry("relief:raster:resolve", "raster_resolve", &resolve_layout);
-            (pipeline, resolve_layout)
-        });
         let buffer = |label, size| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -248,9 +276,13 @@ impl ComputeRaster {
                 mapped_at_creation: false,
             })
         };
+        let uniform_stride = (std::mem::size_of::<RasterUniforms>() as u32)
+            .next_multiple_of(device.limits().min_uniform_buffer_offset_alignment);
         Self {
-            pipeline,
-            big_pipeline,
+            pipeline: pipeline("relief:raster:cells", "raster_cells", &layouts[0]),
+            big_pipeline: pipeline("relief:raster:big", "raster_big", &layouts[1]),
+            hiz_pipeline: pipeline("relief:raster:hiz", "raster_hiz", &layouts[2]),
+            resolve: ids.then(|| pipeline("relief:raster:resolve", "raster_resolve", &layouts[3])),
             big: buffer("relief:raster:big", BIG_TRIANGLES * BIG_TRIANGLE_BYTES),
             big_tiles: buffer("relief:raster:big-tiles", BIG_TILES * 8),
             big_count: buffer("relief:raster:big-count", BIG_COUNT_BYTES),
@@ -270,17 +302,16 @@ impl ComputeRaster {
                     usage: wgpu::BufferUsages::COPY_SRC,
                 },
             ),
-            big_layout,
-            layout,
+            layouts,
             attributes,
             ids,
-            resolve,
-            resolve_group: None,
-            uniforms: [
-                "relief:raster:depth-uniforms",
-                "relief:raster:attribute-uniforms",
-            ]
-            .map(|label| super::uniform_buffer::<RasterUniforms>(device, label)),
+            uniforms: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("relief:raster:uniforms"),
+                size: u64::from(uniform_stride) * DISPATCHES as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            uniform_stride,
             depth: None,
             groups: None,
         }
@@ -289,16 +320,27 @@ impl ComputeRaster {
     /// The depth buffer for an image of `size`, made again when the size changes (the caller
     /// binds it again, [`ComputeRaster::bind`]).
     pub(crate) fn depth(&mut self, device: &wgpu::Device, size: (u32, u32)) -> &wgpu::Buffer {
-        if !matches!(&self.depth, Some((w, h, _)) if (*w, *h) == size) {
-            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("relief:raster:depth"),
-                size: u64::from(size.0) * u64::from(size.1) * 4 * u64::from(self.depth_stride()),
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            self.depth = Some((size.0, size.1, buffer));
+        if !matches!(&self.depth, Some((w, h, _, _)) if (*w, *h) == size) {
+            let pixels = u64::from(size.0) * u64::from(size.1);
+            let tiles = u64::from(size.0.div_ceil(HIZ_TILE)) * u64::from(size.1.div_ceil(HIZ_TILE));
+            let buffer = |label, size| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            };
+            self.depth = Some((
+                size.0,
+                size.1,
+                buffer(
+                    "relief:raster:depth",
+                    pixels * 4 * u64::from(self.depth_stride()),
+                ),
+                buffer("relief:raster:hiz", tiles * 4),
+            ));
             self.groups = None;
-            self.resolve_group = None;
         }
         &self.depth.as_ref().expect("made above").2
     }
@@ -322,80 +364,57 @@ impl ComputeRaster {
         (surface, valley): (&wgpu::TextureView, &wgpu::TextureView),
     ) {
         self.depth(device, size);
-        let Some((_, _, depth)) = &self.depth else {
+        let Some((_, _, depth, hiz)) = &self.depth else {
             return;
         };
-        let entries = |mode: usize| {
-            [
-                self.uniforms[mode].as_entire_binding(),
-                instances.as_entire_binding(),
-                depth.as_entire_binding(),
-                wgpu::BindingResource::TextureView(surface),
-                wgpu::BindingResource::TextureView(valley),
-                self.big.as_entire_binding(),
-                self.big_count.as_entire_binding(),
-                self.big_tiles.as_entire_binding(),
-                self.big_args.as_entire_binding(),
-            ]
-            .into_iter()
-            .enumerate()
-            .map(|(binding, resource)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource,
-            })
-            .collect::<Vec<_>>()
+        let resource = |binding: u32| match binding {
+            0 => wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &self.uniforms,
+                offset: 0,
+                size: wgpu::BufferSize::new(std::mem::size_of::<RasterUniforms>() as u64),
+            }),
+            1 => instances.as_entire_binding(),
+            2 | 9 => depth.as_entire_binding(),
+            3 => wgpu::BindingResource::TextureView(surface),
+            4 => wgpu::BindingResource::TextureView(valley),
+            5 => self.big.as_entire_binding(),
+            6 => self.big_count.as_entire_binding(),
+            7 => self.big_tiles.as_entire_binding(),
+            8 => self.big_args.as_entire_binding(),
+            _ => hiz.as_entire_binding(),
         };
-        let group = |mode: usize, layout: &wgpu::BindGroupLayout, bindings: usize| {
+        let hiz_depth = if self.ids { 9 } else { 2 };
+        let bindings = [
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10][..],
+            &[0, 1, 2, 3, 4, 5, 6, 7],
+            &[0, hiz_depth, 10],
+            &[0, 1, 3, 4, 9],
+        ];
+        let mut k = 0;
+        self.groups = Some(bindings.map(|bindings| {
+            let layout = &self.layouts[k];
+            k += 1;
+            let entries: Vec<_> = bindings
+                .iter()
+                .map(|&binding| wgpu::BindGroupEntry {
+                    binding,
+                    resource: resource(binding),
+                })
+                .collect();
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("relief:raster:group"),
                 layout,
-                entries: &entries(mode)[..bindings],
+                entries: &entries,
             })
-        };
-        self.resolve_group = self.resolve.as_ref().map(|(_, layout)| {
-            let all = entries(0);
-            let resource = |i: usize| all[i].resource.clone();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("relief:raster:resolve-group"),
-                layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: resource(0),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: resource(1),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: resource(3),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: resource(4),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 9,
-                        resource: resource(2),
-                    },
-                ],
-            })
-        });
-        // `raster_big`'s groups leave out its own indirect arguments (binding 8).
-        self.groups = Some([0, 1].map(|mode| {
-            [
-                group(mode, &self.layout, 9),
-                group(mode, &self.big_layout, 8),
-            ]
         }));
     }
 
     /// Records the raster of `patches` into an image of `size` (bound by
     /// [`ComputeRaster::bind`] at that size): clears the depth buffer, then one compute pass
-    /// (timed as `timestamps`) of one raster for the depth and, for the endless world, either
-    /// a dispatch a pixel that stores the kept triangles' attributes (with ids) or a second
-    /// raster that stores them.
+    /// (timed as `timestamps`): the depth's raster in [`PASSES`] passes, nearest levels first,
+    /// each after the first skipping what the ones before it hide; then, for the endless world,
+    /// either a dispatch a pixel that stores the kept triangles' attributes (with ids) or a
+    /// second raster that stores them.
     pub(crate) fn encode(
         &self,
         queue: &wgpu::Queue,
@@ -403,7 +422,7 @@ impl ComputeRaster {
         (size, patches): ((u32, u32), &Patches<'_>),
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let (Some((w, h, depth)), Some(groups)) = (&self.depth, &self.groups) else {
+        let (Some((w, h, depth, _)), Some(groups)) = (&self.depth, &self.groups) else {
             return;
         };
         debug_assert_eq!((*w, *h), size, "bound at another size");
@@ -413,27 +432,51 @@ impl ComputeRaster {
             + u64::from(subs) * u64::from(sub_cells).pow(2);
         // A triangle's id is its cell's number times 4, in 32 bits.
         debug_assert!(cells < 1 << 30, "{cells} cells: past the ids' range");
-        // A workgroup a block of cells, blocks over a patch's edge included.
-        let blocks = |side: u32| u64::from(side.div_ceil(BLOCK)).pow(2);
-        let groups_needed =
-            u64::from(whole) * blocks(patch_cells) + u64::from(subs) * blocks(sub_cells);
-        let x = groups_needed.min(u64::from(MAX_GROUPS)) as u32;
-        let y = groups_needed.div_ceil(u64::from(x.max(1))) as u32;
-        // The attributes' raster (and its uniforms) only where there are attributes, and no
-        // resolve of the ids.
-        let dispatches = if self.attributes && !self.ids { 2 } else { 1 };
-        for mode in 0..dispatches {
+        // A workgroup a block of cells, blocks over a patch's edge included; the depth passes
+        // split the whole patches at `patches.passes` (the last takes the sub-patches too).
+        let blocks = |side: u32| side.div_ceil(BLOCK).pow(2);
+        let whole_blocks = blocks(patch_cells);
+        let total = whole * whole_blocks + subs * blocks(sub_cells);
+        let mut ends = [total; PASSES];
+        for (end, &patches_end) in ends.iter_mut().zip(&patches.passes) {
+            *end = patches_end.min(whole) * whole_blocks;
+        }
+        // (mode, first group, end group, cull) of each dispatch of cells.
+        let mut dispatches = Vec::with_capacity(DISPATCHES);
+        let mut first = 0;
+        for (pass, &end) in ends.iter().enumerate() {
+            dispatches.push((0, first, end.max(first), pass > 0));
+            first = end.max(first);
+        }
+        // The attributes' raster only where there are attributes and no resolve of the ids:
+        // every block, each skipped where the whole depth hides it.
+        if self.attributes && !self.ids {
+            dispatches.push((1, 0, total, true));
+        }
+        let stride = self.uniform_stride as usize;
+        let mut slots = vec![0u8; stride * DISPATCHES];
+        let split = |count: u32| {
+            let x = count.clamp(1, MAX_GROUPS);
+            (x, count.div_ceil(x))
+        };
+        for (k, &(mode, first, end, cull)) in dispatches.iter().enumerate() {
             let u = RasterUniforms {
                 size: [size.0, size.1],
                 whole,
                 subs,
                 patch_cells,
                 sub_cells,
-                row_groups: x,
-                mode: mode as u32,
+                row_groups: split(end - first).0,
+                mode,
+                first_group: first,
+                end_group: end,
+                cull: u32::from(cull),
+                _pad: 0,
             };
-            queue.write_buffer(&self.uniforms[mode], 0, bytemuck::bytes_of(&u));
+            slots[k * stride..][..std::mem::size_of::<RasterUniforms>()]
+                .copy_from_slice(bytemuck::bytes_of(&u));
         }
+        queue.write_buffer(&self.uniforms, 0, &slots);
         encoder.clear_buffer(depth, 0, None);
         // In the encoder's order, as the depth is cleared: each raster recorded starts from
         // no big triangles.
@@ -446,19 +489,37 @@ impl ComputeRaster {
         if cells == 0 {
             return;
         }
+        let [cells_group, big_group, hiz_group, resolve_group] = groups;
         pass.set_bind_group(0, patches.group, &[]);
-        // Each mode: every cell's triangles, then the big ones they left.
-        for (mode, [cells_group, big_group]) in groups[..dispatches].iter().enumerate() {
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(1, cells_group, &[]);
-            pass.dispatch_workgroups(x, y, 1);
-            pass.set_pipeline(&self.big_pipeline);
-            pass.set_bind_group(1, big_group, &[]);
-            pass.dispatch_workgroups_indirect(&self.big_args, 12 * mode as u64);
+        let tiles = (size.0.div_ceil(HIZ_TILE), size.1.div_ceil(HIZ_TILE));
+        for (k, &(mode, first, end, cull)) in dispatches.iter().enumerate() {
+            let offset = [(k * stride) as u32];
+            if cull && end > first {
+                // The farthest depth of each tile drawn so far, for this dispatch's test.
+                pass.set_pipeline(&self.hiz_pipeline);
+                pass.set_bind_group(1, hiz_group, &[0]);
+                pass.dispatch_workgroups(
+                    tiles.0.div_ceil(RESOLVE_SIDE),
+                    tiles.1.div_ceil(RESOLVE_SIDE),
+                    1,
+                );
+            }
+            if end > first {
+                let (x, y) = split(end - first);
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(1, cells_group, &offset);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+            // Each mode's big triangles after its last dispatch of cells.
+            if dispatches.get(k + 1).is_none_or(|next| next.0 != mode) {
+                pass.set_pipeline(&self.big_pipeline);
+                pass.set_bind_group(1, big_group, &offset);
+                pass.dispatch_workgroups_indirect(&self.big_args, 12 * u64::from(mode));
+            }
         }
-        if let (Some((resolve, _)), Some(group)) = (&self.resolve, &self.resolve_group) {
+        if let Some(resolve) = &self.resolve {
             pass.set_pipeline(resolve);
-            pass.set_bind_group(1, group, &[]);
+            pass.set_bind_group(1, resolve_group, &[0]);
             pass.dispatch_workgroups(
                 size.0.div_ceil(RESOLVE_SIDE),
                 size.1.div_ceil(RESOLVE_SIDE),
@@ -474,8 +535,9 @@ mod tests {
 
     #[test]
     fn the_uniforms_have_the_wgsl_layout() {
-        // wgsl/raster.wgsl's RasterUniforms: a vec2<u32> and six u32, 32 bytes.
-        assert_eq!(std::mem::size_of::<RasterUniforms>(), 32);
+        // wgsl/raster.wgsl's RasterUniforms: a vec2<u32> and ten u32, 48 bytes.
+        assert_eq!(std::mem::size_of::<RasterUniforms>(), 48);
+        assert_eq!(std::mem::offset_of!(RasterUniforms, cull), 40);
         assert_eq!(std::mem::offset_of!(RasterUniforms, whole), 8);
         assert_eq!(std::mem::offset_of!(RasterUniforms, row_groups), 24);
     }
@@ -493,6 +555,10 @@ mod tests {
     fn the_big_triangles_constants_match_the_wgsl() {
         let wgsl = super::super::shader::RASTER;
         assert!(wgsl.contains(&format!("const BLOCK: u32 = {BLOCK}u;")));
+        assert!(wgsl.contains(&format!("const HIZ_TILE: u32 = {HIZ_TILE}u;")));
+        assert!(wgsl.contains(&format!(
+            "@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})\nfn raster_hiz"
+        )));
         assert!(super::super::shader::RASTER_IDS
             .contains(&format!("@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})")));
         assert!(wgsl.contains(&format!(
@@ -507,6 +573,15 @@ mod tests {
         for mode in 0..2 {
             assert_eq!(BIG_ARGS_CLEAR[3 * mode..3 * mode + 3], [0, 1, 1]);
         }
+    }
+
+    #[test]
+    fn the_depth_passes_split_the_patches_by_level() {
+        // Finest first: two levels, then two, then three, then the rest.
+        let levels = [3, 3, 4, 4, 4, 5, 6, 7, 7, 8, 9, 10];
+        assert_eq!(pass_ends(levels.iter().copied()), [5, 7, 11]);
+        assert_eq!(pass_ends([0u32; 4].iter().copied()), [4, 4, 4]);
+        assert_eq!(pass_ends(std::iter::empty()), [0, 0, 0]);
     }
 
     #[test]

@@ -235,6 +235,9 @@ pub struct World {
     instances: wgpu::Buffer,
     /// Whole patches, then sub-patches, in `instances`.
     instance_counts: [u32; 2],
+    /// The whole patches the compute raster draws by the end of each depth pass but the last
+    /// ([`super::raster::pass_ends`]).
+    raster_passes: [u32; super::raster::PASSES - 1],
     stats: WorldStats,
     /// The reference sample of the last `prepare` (finest-level samples).
     reference: [i64; 2],
@@ -423,6 +426,7 @@ impl World {
                 index_counts,
                 instances,
                 instance_counts: [0; 2],
+                raster_passes: [0; super::raster::PASSES - 1],
                 stats: WorldStats::default(),
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
@@ -953,6 +957,7 @@ impl World {
             group: &self.bind_group,
             counts: self.instance_counts,
             cells: [self.map.patch, self.map.sub_cells()],
+            passes: self.raster_passes,
         };
         vis.encode(
             device,
@@ -1141,6 +1146,7 @@ impl World {
         let at = std::mem::size_of_val(whole.as_slice()) as u64;
         queue.write_buffer(&self.instances, at, bytemuck::cast_slice(&subs));
         self.instance_counts = [whole.len() as u32, subs.len() as u32];
+        self.raster_passes = super::raster::pass_ends(whole.iter().map(|p| p.level));
 
         let first = self.map.first_drawn();
         let mut levels = [LevelUniforms::default(); MAX_LEVELS];
