@@ -21,7 +21,7 @@
 //! so the comparison is exact).
 //!
 //! A workgroup draws a block of 8x8 cells, a thread a cell, their 81 corners placed once. The
-//! depth's raster runs in passes, nearest levels first ([`PASS_LEVELS`]). Between passes
+//! depth's raster runs in passes, nearest levels first (`PASS_LEVELS`). Between passes
 //! `raster_hiz` keeps each 8x8-pixel tile's farthest depth drawn so far, and a later pass skips
 //! a block whose corners' screen box covers no pixel centre, or lies on at most 16 tiles all
 //! drawn strictly nearer than its nearest corner. A triangle's depth at a pixel blends its
