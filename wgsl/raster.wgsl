@@ -226,7 +226,12 @@ fn raster_pixel(t: Setup, x: f32, y: f32) {
     if !(inside(e.x, t.s1.xy, t.s2.xy) && inside(e.y, t.s2.xy, t.s0.xy) && inside(e.z, t.s0.xy, t.s1.xy)) {
         return;
     }
-    let z = (e.x * t.s0.z + e.y * t.s1.z + e.z * t.s2.z) * t.inv;
+    // A blend of the corners' depths: in exact arithmetic never nearer than the nearest. The
+    // edge values' rounding can take a long thin triangle's blend nearer by some 1e-5 (their
+    // sum is not quite the area), poking it through nearer ground; held at the nearest corner
+    // it cannot, and a block of cells is hidden exactly when its nearest corner is
+    // (`block_hidden`).
+    let z = max((e.x * t.s0.z + e.y * t.s1.z + e.z * t.s2.z) * t.inv, min(t.s0.z, min(t.s1.z, t.s2.z)));
     if !(z >= 0.0 && z < 1.0) {
         return;
     }
@@ -404,11 +409,12 @@ fn unordered(o: u32) -> f32 {
 
 // Gathers a corner of the workgroup's block (its clip position) into `block_bounds`.
 fn bound_corner(c: vec4<f32>) {
-    if !(c.z >= 0.0 && c.w > 0.0) {
+    let s = to_screen(c);
+    // Behind the near plane (cut there), or not a finite point on screen: the block is drawn.
+    if !(c.z >= 0.0 && c.w > 0.0 && abs(s.x) < 1.0e30 && abs(s.y) < 1.0e30) {
         atomicMax(&block_bounds[5], 1u);
         return;
     }
-    let s = to_screen(c);
     atomicMax(&block_bounds[0], ~ordered(s.x));
     atomicMax(&block_bounds[1], ~ordered(s.y));
     atomicMax(&block_bounds[2], ordered(s.x));
@@ -419,9 +425,9 @@ fn bound_corner(c: vec4<f32>) {
 // Whether no triangle of the workgroup's block (its corners gathered in `block_bounds`) can be
 // the nearest at any pixel: it covers no pixel centre, or each tile of pixels its corners'
 // bounding box touches was drawn, all of it, strictly nearer than the nearest corner. A
-// triangle's depth at a pixel is a blend of its corners', so none is nearer than the nearest
-// corner (a margin of a millionth covers the blend's rounding). A block with a corner behind
-// the near plane (cut there) or over HIZ_MOST_TILES tiles is drawn.
+// triangle's depth at a pixel is a blend of its corners' held at the nearest (`raster_pixel`),
+// so none is nearer than the nearest corner (the margin of a millionth is to spare). A block
+// with a corner behind the near plane (cut there) or over HIZ_MOST_TILES tiles is drawn.
 fn block_hidden() -> bool {
     if atomicLoad(&block_bounds[5]) != 0u {
         return false;

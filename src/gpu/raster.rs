@@ -25,8 +25,10 @@
 //! `raster_hiz` keeps each 8x8-pixel tile's farthest depth drawn so far, and a later pass skips
 //! a block whose corners' screen box covers no pixel centre, or lies on at most 16 tiles all
 //! drawn strictly nearer than its nearest corner. A triangle's depth at a pixel blends its
-//! corners' depths, so such a block cannot be nearest anywhere: the picture is the same, bit
-//! for bit. From near the ground most of the distant mesh lies behind nearer hills.
+//! corners' depths, held at the nearest corner's (rounding could take a long thin triangle's
+//! blend nearer), so such a block cannot be nearest anywhere: the pixels are the same as with
+//! every block drawn (tested byte for byte). From near the ground most of the distant mesh
+//! lies behind nearer hills.
 //!
 //! A thread draws the triangles of its cell itself unless one's bounding box covers over 256
 //! pixels: then it lists the triangle and its tiles of 16x16 pixels, and a second dispatch
@@ -201,6 +203,9 @@ pub(crate) struct ComputeRaster {
     depth: Option<(u32, u32, wgpu::Buffer, wgpu::Buffer)>,
     /// The bind groups of the four layouts ([`ComputeRaster::bind`]).
     groups: Option<[wgpu::BindGroup; 4]>,
+    /// Whether a pass skips the blocks the passes before it hide (true but in the test that
+    /// the skipping changes nothing).
+    pub(crate) skip_hidden: bool,
 }
 
 impl ComputeRaster {
@@ -314,6 +319,7 @@ impl ComputeRaster {
             uniform_stride,
             depth: None,
             groups: None,
+            skip_hidden: true,
         }
     }
 
@@ -445,13 +451,13 @@ impl ComputeRaster {
         let mut dispatches = Vec::with_capacity(DISPATCHES);
         let mut first = 0;
         for (pass, &end) in ends.iter().enumerate() {
-            dispatches.push((0, first, end.max(first), pass > 0));
+            dispatches.push((0, first, end.max(first), pass > 0 && self.skip_hidden));
             first = end.max(first);
         }
         // The attributes' raster only where there are attributes and no resolve of the ids:
         // every block, each skipped where the whole depth hides it.
         if self.attributes && !self.ids {
-            dispatches.push((1, 0, total, true));
+            dispatches.push((1, 0, total, self.skip_hidden));
         }
         let stride = self.uniform_stride as usize;
         let mut slots = vec![0u8; stride * DISPATCHES];

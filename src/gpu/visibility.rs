@@ -414,6 +414,14 @@ impl Visibility {
         }
     }
 
+    /// Whether the compute raster's later passes skip the blocks of cells the earlier ones
+    /// hide (the default; off only to test that skipping changes nothing).
+    pub(crate) fn set_raster_skips_hidden(&mut self, on: bool) {
+        if let Some(raster) = &mut self.compute_raster {
+            raster.skip_hidden = on;
+        }
+    }
+
     /// 32-bit words a pixel of the compute raster's depth buffer (2 where it keeps each pixel's
     /// triangle), or `None` where the GPU's rasteriser draws.
     pub(crate) fn raster_depth_words(&self) -> Option<u32> {

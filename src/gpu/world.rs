@@ -592,6 +592,16 @@ impl World {
         self.vis_raster = raster;
     }
 
+    /// Whether the compute raster's later passes skip the blocks of cells that nearer levels
+    /// hide (on by default; for the test that skipping changes no pixel). Applies to the
+    /// current method's raster.
+    #[doc(hidden)]
+    pub fn set_raster_skips_hidden(&mut self, on: bool) {
+        if let Some(vis) = &mut self.visibility {
+            vis.set_raster_skips_hidden(on);
+        }
+    }
+
     /// Where the visibility method rasterises ([`World::set_visibility_raster`]).
     pub fn visibility_raster(&self) -> Raster {
         self.vis_raster

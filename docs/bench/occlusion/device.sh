@@ -51,3 +51,31 @@ for v in "${views[@]}"; do
     echo "== $name auto"
     timeout 30 .devbin/relief-p4 render --width 1920 --height 1080 --timings --out "/tmp/$name-auto.png" "$@"
 done 2>&1 | tee "$out/render-auto.txt"
+
+# The depth held at the nearest corner (clamp) against the benchmarked binary (blocks = 6fdced0)
+out=$OUT/clamp
+mkdir -p "$out"
+views=(
+    "horizon --world endless --eye 0,1202,0 --look-at 1,1201.99,0.2"
+    "ridge --world endless --eye 5730,1198.7011293135074,1000 --look-at 5730.3,1198.6811293135074,1001"
+    "oblique --world endless --eye -5000,4195.8573366294322,2000 --look-at -4999.2,4195.3573366294322,2000.33"
+    "default --world endless"
+    "tile"
+)
+for i in 1 2; do
+    for v in "${views[@]}"; do
+        set -- $v
+        name=$1
+        shift
+        for b in blocks clamp; do
+            bin=.devbin/relief
+            [ $b = blocks ] && bin=.devbin/relief-blocks
+            
+            echo "== $name $b ($i)"
+            $bin render --width 1920 --height 1080 --timings --out "/tmp/$name-$b.png" "$@" --method visibility --samples 1 --raster compute | grep -E "timings"
+        done
+    done
+done 2>&1 | tee "$out/raster-clamp.txt"
+for v in horizon ridge oblique default tile; do for b in clamp; do cmp -s /tmp/$v-blocks.png /tmp/$v-$b.png && echo "$v $b identical" || echo "$v $b differs"; done; done | tee "$out/clamp-identical.txt"
+
+for v in horizon ridge; do cp /tmp/$v-blocks.png /tmp/$v-clamp.png "$out/"; done
