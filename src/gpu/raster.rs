@@ -166,6 +166,28 @@ pub(crate) fn pass_ends(levels: impl Iterator<Item = u32> + Clone) -> [u32; PASS
     PASS_LEVELS.map(|within| levels.clone().filter(|&l| l < finest + within).count() as u32)
 }
 
+/// The bindings of group 1 for `raster_cells`, `raster_big` (without `big_args`, which its
+/// dispatch reads), `raster_hiz` and `raster_resolve`. After the raster with ids the depth
+/// buffer is read at binding 9, not as the raster's atomics at 2.
+fn bindings(ids: bool) -> [&'static [u32]; 4] {
+    [
+        &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10],
+        &[0, 1, 2, 3, 4, 5, 6, 7],
+        if ids { &[0, 9, 10] } else { &[0, 2, 10] },
+        &[0, 1, 3, 4, 9],
+    ]
+}
+
+/// A storage buffer the raster's passes write, cleared by copies.
+fn storage_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
 /// The compute raster's pipelines, uniforms and buffers (see the module docs).
 pub(crate) struct ComputeRaster {
     pipeline: wgpu::ComputePipeline,
@@ -244,15 +266,7 @@ impl ComputeRaster {
             4 => super::storage_entry(4, VALLEY_FORMAT),
             _ => storage(binding, false),
         };
-        // The depth buffer is read at binding 9 by the dispatches after the raster with ids.
-        let hiz_depth = if ids { 9 } else { 2 };
-        let layouts = [
-            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10][..],
-            &[0, 1, 2, 3, 4, 5, 6, 7],
-            &[0, hiz_depth, 10],
-            &[0, 1, 3, 4, 9],
-        ]
-        .map(|bindings| {
+        let layouts = bindings(ids).map(|bindings| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:raster:layout"),
                 entries: &bindings.iter().map(|&b| entry(b)).collect::<Vec<_>>(),
@@ -273,14 +287,7 @@ impl ComputeRaster {
                 cache: None,
             })
         };
-        let buffer = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
+        let buffer = |label, size| storage_buffer(device, label, size);
         let uniform_stride = (std::mem::size_of::<RasterUniforms>() as u32)
             .next_multiple_of(device.limits().min_uniform_buffer_offset_alignment);
         Self {
@@ -329,14 +336,7 @@ impl ComputeRaster {
         if !matches!(&self.depth, Some((w, h, _, _)) if (*w, *h) == size) {
             let pixels = u64::from(size.0) * u64::from(size.1);
             let tiles = u64::from(size.0.div_ceil(HIZ_TILE)) * u64::from(size.1.div_ceil(HIZ_TILE));
-            let buffer = |label, size| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                })
-            };
+            let buffer = |label, size| storage_buffer(device, label, size);
             self.depth = Some((
                 size.0,
                 size.1,
@@ -389,15 +389,8 @@ impl ComputeRaster {
             8 => self.big_args.as_entire_binding(),
             _ => hiz.as_entire_binding(),
         };
-        let hiz_depth = if self.ids { 9 } else { 2 };
-        let bindings = [
-            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10][..],
-            &[0, 1, 2, 3, 4, 5, 6, 7],
-            &[0, hiz_depth, 10],
-            &[0, 1, 3, 4, 9],
-        ];
         let mut k = 0;
-        self.groups = Some(bindings.map(|bindings| {
+        self.groups = Some(bindings(self.ids).map(|bindings| {
             let layout = &self.layouts[k];
             k += 1;
             let entries: Vec<_> = bindings
