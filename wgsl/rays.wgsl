@@ -3,13 +3,24 @@
 // storage textures and a full-screen fragment shader writing two colour targets. The caster's
 // files declare `color_out`, `distance_out` and `cast_pixel(pixel) -> (colour, distance)`.
 
+// The colour `c` (0..1) rounded to the nearest of 255 steps, as `pack4x8unorm` and the
+// visibility method's presented frame round, then a quarter step up. A store into an 8-bit
+// target converts by a rounding the device chooses: the H100's put a smooth sky one step under
+// the nearest in about 3% of its values, where lavapipe's rounds to the nearest. Any rounding
+// to a neighbouring step takes a value a quarter step over a step to that step, so the cast's
+// 8 bits (and the reference made from them) are the same on every device.
+fn unorm8_exact(c: vec3<f32>) -> vec3<f32> {
+    let steps = floor(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0 + 0.5);
+    return min((steps + 0.25) / 255.0, vec3<f32>(1.0));
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= ray.width || id.y >= ray.height {
         return;
     }
     let c = cast_pixel(vec2<f32>(id.xy) + 0.5);
-    textureStore(color_out, vec2<i32>(id.xy), vec4<f32>(c.rgb, 1.0));
+    textureStore(color_out, vec2<i32>(id.xy), vec4<f32>(unorm8_exact(c.rgb), 1.0));
     textureStore(distance_out, vec2<i32>(id.xy), vec4<f32>(c.w, 0.0, 0.0, 0.0));
 }
 
@@ -29,7 +40,7 @@ struct FragmentOut {
 fn raymarch_fs(@builtin(position) position: vec4<f32>) -> FragmentOut {
     let c = cast_pixel(position.xy);
     var out: FragmentOut;
-    out.color = vec4<f32>(c.rgb, 1.0);
+    out.color = vec4<f32>(unorm8_exact(c.rgb), 1.0);
     out.distance = vec4<f32>(c.w, 0.0, 0.0, 0.0);
     return out;
 }

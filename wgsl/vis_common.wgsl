@@ -29,7 +29,7 @@ struct VisUniforms {
 @group(0) @binding(7) var depth_ms: texture_depth_multisampled_2d;
 @group(0) @binding(8) var surface_ms: texture_multisampled_2d<f32>;
 @group(0) @binding(9) var valley_ms: texture_multisampled_2d<f32>;
-@group(0) @binding(10) var shaded: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(10) var shaded: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(11) var shaded_depth: texture_storage_2d<r32float, write>;
 @group(0) @binding(12) var<uniform> vis: VisUniforms;
 // The same targets single-sampled (the method at one sample a pixel).

@@ -118,6 +118,11 @@ const HIZ_TILE: u32 = 8;
 /// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
 /// draws its triangle alone, as before the list (slow, not wrong).
 const BIG_TRIANGLES: u64 = 16_384;
+/// The tiles of `HIZ_TILE` pixels square over a frame of `size`.
+fn hiz_tiles(size: (u32, u32)) -> u64 {
+    u64::from(size.0.div_ceil(HIZ_TILE)) * u64::from(size.1.div_ceil(HIZ_TILE))
+}
+
 /// Bytes of one entry of the list: three vertices of three `vec4`s, and the id, padded to 16.
 const BIG_TRIANGLE_BYTES: u64 = 3 * 3 * 16 + 16;
 /// Tiles of 16x16 pixels the big triangles' tile list holds (8 bytes each): over 30 times a
@@ -335,7 +340,6 @@ impl ComputeRaster {
     pub(crate) fn depth(&mut self, device: &wgpu::Device, size: (u32, u32)) -> &wgpu::Buffer {
         if !matches!(&self.depth, Some((w, h, _, _)) if (*w, *h) == size) {
             let pixels = u64::from(size.0) * u64::from(size.1);
-            let tiles = u64::from(size.0.div_ceil(HIZ_TILE)) * u64::from(size.1.div_ceil(HIZ_TILE));
             let buffer = |label, size| storage_buffer(device, label, size);
             self.depth = Some((
                 size.0,
@@ -344,11 +348,21 @@ impl ComputeRaster {
                     "relief:raster:depth",
                     pixels * 4 * u64::from(self.depth_stride()),
                 ),
-                buffer("relief:raster:hiz", tiles * 4),
+                buffer("relief:raster:hiz", hiz_tiles(size) * 4),
             ));
             self.groups = None;
         }
         &self.depth.as_ref().expect("made above").2
+    }
+
+    /// GPU memory of the raster's buffers for a frame of `size`, bytes: the depth buffer, the
+    /// tiles' farthest depth, the big triangles' lists and the uniforms.
+    pub(crate) fn bytes(&self, size: (u32, u32)) -> u64 {
+        let pixels = u64::from(size.0) * u64::from(size.1);
+        let lists = BIG_TRIANGLES * BIG_TRIANGLE_BYTES + BIG_TILES * 8 + BIG_COUNT_BYTES;
+        let args = 2 * std::mem::size_of_val(&BIG_ARGS_CLEAR) as u64;
+        let uniforms = u64::from(self.uniform_stride) * DISPATCHES as u64;
+        pixels * 4 * u64::from(self.depth_stride()) + hiz_tiles(size) * 4 + lists + args + uniforms
     }
 
     /// 32-bit words a pixel of the depth buffer: 2 with ids (the depth's the second), else 1.

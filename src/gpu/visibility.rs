@@ -39,7 +39,7 @@ const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Per sample: valley depth in metres (the endless world).
 const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 /// The shaded image: premultiplied linear colour and coverage.
-const SHADED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+const SHADED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The nearest covered sample's depth per pixel (1: none).
 const SHADED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
@@ -435,11 +435,12 @@ impl Visibility {
         let pixels = u64::from(size.0) * u64::from(size.1);
         let bytes = super::texel_bytes;
         let samples = u64::from(self.samples);
-        // Depth32Float, or the compute raster's u32 (8 bytes with each pixel's triangle): 4
-        // bytes a sample. The presented frame: 4 bytes a pixel (its rows' padding left out).
-        let depth = match &self.compute_raster {
-            Some(raster) => 4 * u64::from(raster.depth_stride()),
-            None => samples * 4,
+        // Depth32Float, 4 bytes a sample, or the compute raster's buffers (its depth, 8 bytes a
+        // pixel with each pixel's triangle, its tiles' farthest depth and its big triangles'
+        // lists). The presented frame: 4 bytes a pixel (its rows' padding left out).
+        let (depth, raster_bytes) = match &self.compute_raster {
+            Some(raster) => (0, raster.bytes(size)),
+            None => (samples * 4, 0),
         };
         let mut per_pixel =
             depth + bytes(SHADED_FORMAT) + bytes(SHADED_DEPTH_FORMAT) + PRESENTED_BYTES;
@@ -451,7 +452,7 @@ impl Visibility {
             };
             per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(valley));
         }
-        pixels * per_pixel
+        pixels * per_pixel + raster_bytes
     }
 
     fn images(&mut self, device: &wgpu::Device, size: (u32, u32), world: &WorldBindings<'_>) {
