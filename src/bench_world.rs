@@ -704,6 +704,7 @@ where
             .axis_desc_style(("sans-serif", 14))
             .draw()
             .map_err(|e| e.to_string())?;
+        let mut placed = Labels::new(chart.plotting_area().get_pixel_range().0.end);
         for (i, view) in views.iter().enumerate() {
             let color = colors[i % colors.len()];
             let pts: Vec<(f64, f64, f64)> = rows
@@ -721,11 +722,14 @@ where
                 .map_err(|e| e.to_string())?
                 .label(*view)
                 .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
+            // Knobs that draw the same mesh land on one point: one label names them all.
+            let labels = knob_labels(&pts, |p| chart.backend_coord(&(p.0, p.1)), &mut placed);
             chart
-                .draw_series(pts.iter().map(|p| {
+                .draw_series(pts.iter().zip(labels).map(|(p, label)| {
+                    let (text, offset) = label.unwrap_or_default();
                     EmptyElement::at((p.0, p.1))
                         + Circle::new((0, 0), 4, color.filled())
-                        + Text::new(format!("{} px", p.2), (6, -14), ("sans-serif", 12))
+                        + Text::new(text, offset, ("sans-serif", 12))
                 }))
                 .map_err(|e| e.to_string())?;
         }
@@ -781,31 +785,274 @@ where
         .axis_desc_style(("sans-serif", 14))
         .draw()
         .map_err(|e| e.to_string())?;
+    let mut placed = Labels::new(chart.plotting_area().get_pixel_range().0.end);
+    // The speed issue's goal for a landscape frame, shaded where it lies on the chart, named at
+    // its foot (where no point's label may go).
+    if x0 < FRAME_GOAL_MS && y0 < FLIP_GOAL {
+        let goal = RGBColor(160, 220, 160);
+        chart
+            .draw_series([Rectangle::new(
+                [(x0, y0), (FRAME_GOAL_MS, FLIP_GOAL)],
+                goal.mix(0.35).filled(),
+            )])
+            .map_err(|e| e.to_string())?;
+        let name = format!("goal: ≤ {FRAME_GOAL_MS} ms, FLIP ≤ {FLIP_GOAL}");
+        let foot = chart.backend_coord(&(x0, y0));
+        if let Some((_, offset)) = placed.place((foot.0 - 2, foot.1), &name) {
+            chart
+                .draw_series([
+                    EmptyElement::at((x0, y0)) + Text::new(name, offset, ("sans-serif", 12))
+                ])
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    // Labels by priority, each kept where it overlaps none kept before it: the methods at the
+    // default knob first, then the other methods, then the mesh's knobs.
+    let mut order: Vec<usize> = (0..pts.len()).collect();
+    order.sort_by_key(|&i| {
+        let r = pts[i].2;
+        match (
+            r.method.is_mesh(),
+            r.method == Method::Mesh,
+            r.pixel_error == 1.0,
+        ) {
+            (true, false, true) => 0,
+            (false, _, _) => 1,
+            (true, false, false) => 2,
+            _ => 3,
+        }
+    });
+    let mut labels = vec![None; pts.len()];
+    for i in order {
+        let (x, y, r) = pts[i];
+        labels[i] = placed.place(chart.backend_coord(&(x, y)), &accuracy_label(r));
+    }
     for (i, view) in views.iter().enumerate() {
         let color = colors[i % colors.len()];
-        let mine: Vec<&(f64, f64, &WorldRow)> = pts.iter().filter(|p| p.2.view == *view).collect();
+        let mine: Vec<(&(f64, f64, &WorldRow), Placed)> = pts
+            .iter()
+            .zip(&labels)
+            .filter(|(p, _)| p.2.view == *view)
+            .map(|(p, l)| (p, l.clone().unwrap_or_default()))
+            .collect();
         chart
-            .draw_series(mine.iter().map(|p| {
-                let label = if p.2.method == Method::Mesh {
-                    format!("{} px", p.2.pixel_error)
-                } else if p.2.method.is_mesh() {
-                    let n = p.2.samples.unwrap_or(4);
-                    let compute = if p.2.raster == Some(crate::Raster::Compute) {
-                        " compute"
-                    } else {
-                        ""
-                    };
-                    format!("{} {n}x{compute} {} px", p.2.method, p.2.pixel_error)
-                } else {
-                    p.2.method.to_string()
-                };
+            .draw_series(mine.into_iter().map(|(p, (text, offset))| {
                 EmptyElement::at((p.0, p.1))
                     + Circle::new((0, 0), 4, color.filled())
-                    + Text::new(label, (6, -14), ("sans-serif", 12))
+                    + Text::new(text, offset, ("sans-serif", 12))
             }))
             .map_err(|e| e.to_string())?
             .label(*view)
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::LowerMiddle)
+    // Bottom right: no method is slow and accurate at once.
+    crate::bench::legend(&mut chart, SeriesLabelPosition::LowerRight)
+}
+
+/// The speed issue's goal for a 1080p landscape frame: this long at most, at this FLIP mean at
+/// most (the accuracy panel shades it).
+const FRAME_GOAL_MS: f64 = 1.0;
+const FLIP_GOAL: f64 = 0.02;
+
+/// What the accuracy panel writes beside a row's point: the mesh's knob, or the method (with
+/// its samples, raster and knob where it draws the mesh).
+fn accuracy_label(r: &WorldRow) -> String {
+    if r.method == Method::Mesh {
+        format!("{} px", r.pixel_error)
+    } else if r.method.is_mesh() {
+        let n = r.samples.unwrap_or(4);
+        let compute = if r.raster == Some(crate::Raster::Compute) {
+            " compute"
+        } else {
+            ""
+        };
+        format!("{} {n}x{compute} {} px", r.method, r.pixel_error)
+    } else {
+        r.method.to_string()
+    }
+}
+
+/// A label kept beside a point: its text, and its offset from the point in pixels.
+type Placed = (String, (i32, i32));
+
+/// Labels beside a chart's points that overlap no label placed before them, in the pixels of
+/// the chart's drawing area: above a point and to its right, or to its left where the right
+/// runs past the plotting area's right edge.
+struct Labels {
+    /// Boxes kept: left, top, right, bottom.
+    placed: Vec<[i32; 4]>,
+    /// The plotting area's right edge.
+    right: i32,
+}
+
+impl Labels {
+    fn new(right: i32) -> Self {
+        Self {
+            placed: Vec::new(),
+            right,
+        }
+    }
+
+    /// Where `text` goes beside the point at pixel `at`: the text and its offset from the point,
+    /// its box (about 6.5 pixels a character of the charts' 12-pixel type) kept; `None` where
+    /// the box would overlap one kept before.
+    fn place(&mut self, at: (i32, i32), text: &str) -> Option<Placed> {
+        let width = (text.chars().count() as f64 * 6.5).ceil() as i32;
+        let dx = if at.0 + 6 + width > self.right {
+            -6 - width
+        } else {
+            6
+        };
+        let (x, y) = (at.0 + dx, at.1 - 14);
+        let b = [x, y, x + width, y + 13];
+        let overlaps = |o: &[i32; 4]| b[0] < o[2] && o[0] < b[2] && b[1] < o[3] && o[1] < b[3];
+        if self.placed.iter().any(overlaps) {
+            return None;
+        }
+        self.placed.push(b);
+        Some((text.to_string(), (dx, -14)))
+    }
+}
+
+/// The knob labels of one view's points `(triangles, value, knob)`: the knobs of points that
+/// land on one pixel joined in one label on the first of them, the others none; each kept
+/// only where it overlaps no label `placed` before it.
+fn knob_labels(
+    pts: &[(f64, f64, f64)],
+    at: impl Fn(&(f64, f64, f64)) -> (i32, i32),
+    placed: &mut Labels,
+) -> Vec<Option<Placed>> {
+    let mut labels = vec![None; pts.len()];
+    let mut done = vec![false; pts.len()];
+    for i in 0..pts.len() {
+        if done[i] {
+            continue;
+        }
+        let here = at(&pts[i]);
+        let same: Vec<usize> = (i..pts.len())
+            .filter(|&j| !done[j] && at(&pts[j]) == here)
+            .collect();
+        let knobs: Vec<String> = same.iter().map(|&j| pts[j].2.to_string()).collect();
+        for j in same {
+            done[j] = true;
+        }
+        labels[i] = placed.place(here, &format!("{} px", knobs.join(", ")));
+    }
+    labels
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_label_is_kept_only_where_it_overlaps_none_kept_before() {
+        let mut labels = Labels::new(600);
+        let first = labels.place((100, 100), "visibility 1x compute 1 px");
+        assert_eq!(first.map(|l| l.1), Some((6, -14)));
+        // Beside it on the same line, and just under it: both overlap.
+        assert!(labels.place((150, 102), "hybrid").is_none());
+        assert!(labels.place((100, 110), "8 px").is_none());
+        // Far enough below, and far to the right: kept.
+        assert!(labels.place((100, 114), "8 px").is_some());
+        assert!(labels.place((400, 100), "8 px").is_some());
+        // At the right edge it goes to the left of its point (4 characters: 26 pixels).
+        assert_eq!(
+            labels.place((590, 300), "8 px").map(|l| l.1),
+            Some((-32, -14))
+        );
+        assert_eq!(labels.placed.len(), 4);
+    }
+
+    /// The rows of a committed landscape benchmark (docs/bench/exact-bytes, H100): what the chart
+    /// needs of each.
+    fn committed_rows() -> Vec<WorldRow> {
+        let csv = include_str!("../docs/bench/exact-bytes/landscape.csv");
+        let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+        let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+        let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
+        let num = |cells: &[&str], name: &str| cells[col(name)].parse::<f64>().ok();
+        lines
+            .map(|line| {
+                let c: Vec<&str> = line.split(',').collect();
+                let measured = num(&c, "measured_max_px").map(|max| ScreenError {
+                    max,
+                    p99: num(&c, "measured_p99_px").unwrap_or(max),
+                    pixels: 1,
+                });
+                WorldRow {
+                    view: c[col("view")].to_string(),
+                    method: Method::from_name(c[col("method")]).expect("method"),
+                    pixel_error: num(&c, "pixel_error").expect("knob"),
+                    patch_cells: 0,
+                    levels: 0,
+                    triangles: num(&c, "triangles").unwrap_or(0.0) as u64,
+                    error_bound_px: 0.0,
+                    measured,
+                    texels_median: 0,
+                    texels_max: 0,
+                    render_ms: num(&c, "render_ms"),
+                    bake_ms: None,
+                    bake_max_ms: None,
+                    wall_ms: 0.0,
+                    texels_mean: 0.0,
+                    bake_ms_mean: None,
+                    flip: num(&c, "flip_mean").zip(num(&c, "flip_p99")),
+                    coverage: None,
+                    unresolved: None,
+                    converged: None,
+                    light_ms_mean: None,
+                    light_ms_max: None,
+                    samples: num(&c, "samples").map(|n| n as u32),
+                    raster: match c[col("raster")] {
+                        "compute" => Some(crate::Raster::Compute),
+                        "hardware" => Some(crate::Raster::Hardware),
+                        _ => None,
+                    },
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_committed_benchmark_charts() {
+        let rows = committed_rows();
+        assert!(rows.len() > 60, "{} rows", rows.len());
+        let dir = std::env::temp_dir().join(format!("relief-chart-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let stem = dir.join("landscape");
+        chart(&rows, "the committed benchmark", &stem).unwrap();
+        for ext in ["png", "svg"] {
+            let size = std::fs::metadata(stem.with_extension(ext)).unwrap().len();
+            assert!(size > 10_000, "{ext}: {size} bytes");
+        }
+        let svg = std::fs::read_to_string(stem.with_extension("svg")).unwrap();
+        assert!(
+            svg.contains("goal: ≤ 1 ms, FLIP ≤ 0.02"),
+            "the goal is drawn"
+        );
+        assert!(
+            svg.contains("0.5, 1, 2, 4 px"),
+            "the knobs on one point share a label"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn knobs_on_one_point_share_one_label() {
+        // Four knobs drawing the same mesh, then one elsewhere.
+        let pts = [
+            (5.9e6, 0.8, 0.5),
+            (5.9e6, 0.8, 1.0),
+            (5.9e6, 0.8, 2.0),
+            (5.9e6, 0.8, 4.0),
+            (1.6e6, 3.7, 8.0),
+        ];
+        let at = |p: &(f64, f64, f64)| ((p.0 / 1e4) as i32, (p.1 * 100.0) as i32);
+        let labels = knob_labels(&pts, at, &mut Labels::new(10_000));
+        let text = |i: usize| labels[i].as_ref().map(|l| l.0.as_str());
+        assert_eq!(text(0), Some("0.5, 1, 2, 4 px"));
+        assert!(labels[1..4].iter().all(Option::is_none));
+        assert_eq!(text(4), Some("8 px"));
+    }
 }
