@@ -792,13 +792,13 @@ where
         let goal = RGBColor(160, 220, 160);
         chart
             .draw_series([Rectangle::new(
-                [(x0, y0), (FRAME_GOAL_MS, FLIP_GOAL)],
+                [(x0, y0), (FRAME_GOAL_MS.min(x1), FLIP_GOAL.min(y1))],
                 goal.mix(0.35).filled(),
             )])
             .map_err(|e| e.to_string())?;
         let name = format!("goal: ≤ {FRAME_GOAL_MS} ms, FLIP ≤ {FLIP_GOAL}");
         let foot = chart.backend_coord(&(x0, y0));
-        if let Some((_, offset)) = placed.place((foot.0 - 2, foot.1), &name) {
+        if let Some((_, offset)) = placed.place(foot, &name) {
             chart
                 .draw_series([
                     EmptyElement::at((x0, y0)) + Text::new(name, offset, ("sans-serif", 12))
