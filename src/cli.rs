@@ -1595,6 +1595,9 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             if timings {
                 print_timings(&gpu, t);
             }
+            if let Some(line) = knob_warning(&world.stats(), params.pixel_error, (width, height)) {
+                eprintln!("{line}");
+            }
             if stats {
                 for line in world.stats().lines() {
                     println!("{line}");
@@ -2399,6 +2402,20 @@ fn stability(
 fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
     let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
+}
+
+/// The one stderr line `relief render --world endless` prints where the knob asks for less
+/// screen error than the levels can give this view: the bound of the layout (`error_bound_px`
+/// in `--stats`) is over `--pixel-error`, because the patches are at their largest side
+/// ([`crate::clipmap::PATCH_RANGE`]) or the finest level is coarse for the eye's height over
+/// the ground. None where the knob is honoured.
+fn knob_warning(s: &crate::gpu::world::WorldStats, knob: f64, size: (u32, u32)) -> Option<String> {
+    (s.error_bound_px > knob * (1.0 + 1e-9)).then(|| {
+        format!(
+            "relief: --pixel-error {knob} is finer than the levels can give this view at {}x{} ({}-cell patches, {} m finest spacing): its screen error is bounded by {:.2} px",
+            size.0, size.1, s.patch_cells, s.finest_spacing, s.error_bound_px
+        )
+    })
 }
 
 fn check_png_path(out: &Path) -> Result<()> {

@@ -1249,6 +1249,50 @@ fn render_draws_the_same_endless_frame_with_every_method() {
     assert!(stats.contains("unresolved_rays 0\n"), "{stats}");
 }
 
+#[test]
+fn a_knob_finer_than_the_levels_can_hold_says_so_on_stderr() {
+    let dir = scratch("knob-warning");
+    let out = dir.join("frame.png");
+    let run = |knob: &str| {
+        relief(&[
+            "render",
+            "--method",
+            "mesh",
+            "--world",
+            "endless",
+            "--width",
+            "320",
+            "--height",
+            "180",
+            "--stats",
+            "--pixel-error",
+            knob,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    // At 320x180 the densest levels hold about 0.42 px: 0.25 px is more than they can give.
+    let (code, stdout, err) = run("0.25");
+    assert_eq!(code, 0, "{err}");
+    let stats = stats_of(&stdout);
+    assert_eq!(stat(&stats, "patch_cells"), 128.0, "{stdout}");
+    let bound = stat(&stats, "error_bound_px");
+    assert!(bound > 0.25, "{stdout}");
+    assert_eq!(err.lines().count(), 1, "one short line: {err}");
+    assert!(
+        err.contains("--pixel-error 0.25") && err.contains(&format!("bounded by {bound:.2} px")),
+        "{err}"
+    );
+    // A knob they hold: the patches are smaller than the largest, nothing is said.
+    let (code, stdout, err) = run("1");
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stat(&stats_of(&stdout), "error_bound_px") <= 1.0,
+        "{stdout}"
+    );
+    assert_eq!(err, "", "a knob the levels hold keeps stderr clean");
+}
+
 /// Renders the endless world small and loose (fast on a software GPU); returns the pixels and
 /// the `--stats` lines.
 fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>) {
