@@ -668,13 +668,28 @@ where
             .map(|r| r.triangles as f64),
     );
     type Pick = fn(&WorldRow) -> Option<f64>;
-    let panels: [(&DrawingArea<DB, plotters::coord::Shift>, &str, Pick); 2] = [
-        (&left, "measured max screen error, px (log)", |r| {
-            r.measured.map(|m| m.max)
-        }),
-        (&right, "GPU render time, ms (log)", |r| r.render_ms),
+    // Each legend where its panel has no points: the error falls with the triangles (top
+    // right is empty), the time rises with them (bottom right is).
+    let panels: [(
+        &DrawingArea<DB, plotters::coord::Shift>,
+        &str,
+        Pick,
+        SeriesLabelPosition,
+    ); 2] = [
+        (
+            &left,
+            "measured max screen error, px (log)",
+            |r| r.measured.map(|m| m.max),
+            SeriesLabelPosition::UpperRight,
+        ),
+        (
+            &right,
+            "GPU render time, ms (log)",
+            |r| r.render_ms,
+            SeriesLabelPosition::LowerRight,
+        ),
     ];
-    for (area, desc, pick) in panels {
+    for (area, desc, pick, legend_at) in panels {
         let ys = span(
             &mut rows
                 .iter()
@@ -733,7 +748,7 @@ where
                 }))
                 .map_err(|e| e.to_string())?;
         }
-        crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        crate::bench::legend(&mut chart, legend_at)?;
     }
     accuracy_panel(&bottom, rows, &views, &colors)?;
     root.present().map_err(|e| e.to_string())
