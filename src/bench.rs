@@ -522,7 +522,7 @@ fn blog_row(
     let (truth, _) = crate::gpu::headless::render_blog(gpu, scene, view, size, exact, None)?;
     let target = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
     let blog = Blog::new(&gpu.device, Offscreen::targets(1))?;
-    let color_view = target.color.create_view(&Default::default());
+    let color_view = target.color_view();
     blog.prepare(&gpu.queue, &config.params, shading, view, 0.0);
     let clear = crate::gpu::clear_color(shading.sky_color, Offscreen::COLOR_FORMAT);
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
@@ -590,7 +590,7 @@ fn ray_row(
     // A frame is the cast and its image shown in a target (the full-screen draw the window
     // makes of it), as the mesh methods' frames end in theirs.
     let shown = Offscreen::new(&gpu.device, options.width, options.height, 1)?;
-    let shown_view = shown.color.create_view(&Default::default());
+    let shown_view = shown.color_view();
     let blit = crate::gpu::blit::Blit::new(&gpu.device, Offscreen::COLOR_FORMAT);
     let group = blit.bind(&gpu.device, &rm.color);
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {

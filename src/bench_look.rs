@@ -59,7 +59,7 @@ pub fn run(
     let size = (options.width, options.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let target = Offscreen::new(&gpu.device, size.0, size.1, RENDER_SAMPLES)?;
-    let color = target.color.create_view(&Default::default());
+    let color = target.color_view();
     let mut rows = Vec::new();
     // The quick run (lavapipe, CI) measures the first view only, at a loose knob.
     let quick = options.frames < 10;

@@ -1,6 +1,6 @@
 //! The frame written without a render pass (`World::present`, `Terrain::present`): where the
-//! visibility method or the hybrid shaded it in compute, `relief render`'s target takes it by a
-//! compute pass and a copy. It is the picture the composite draws into a render pass, within
+//! visibility method or the hybrid shaded it in compute, `relief render`'s target takes it by one
+//! compute pass storing it (a target without storage writes: a compute pass and a copy). It is the picture the composite draws into a render pass, within
 //! one level of 255 (the shader encodes sRGB where the render pass's store let the GPU encode),
 //! timed as `present` and not as `render`; whatever it cannot write is drawn in a render pass.
 
@@ -271,6 +271,33 @@ fn presenting_writes_each_formats_byte_order() {
             "{format:?}: not the frame relief render reads back"
         );
     }
+    // `relief render`'s own image takes storage writes: its frame was stored in one pass, and
+    // is the packed-and-copied frame above byte for byte. So is any RGBA8 target with
+    // STORAGE_BINDING, even without COPY_DST.
+    let stored = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("present-test-storage"),
+        size: wgpu::Extent3d {
+            width: W,
+            height: H,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: F::Rgba8Unorm,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    assert!(world.present(&mut encoder, &stored, None));
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = headless::read_texture(&gpu.device, &gpu.queue, &stored).unwrap();
+    assert!(bytes == rgba, "the stored frame is not the packed one");
+    assert_eq!(target.color.format(), F::Rgba8Unorm);
+    assert!(target
+        .color
+        .usage()
+        .contains(wgpu::TextureUsages::STORAGE_BINDING));
 }
 
 /// A frame presented drew no depth: reading it back is refused in words, and a target that

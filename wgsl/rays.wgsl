@@ -3,18 +3,7 @@
 // storage textures and a full-screen fragment shader writing two colour targets. The caster's
 // files declare `color_out`, `distance_out` and `cast_pixel(pixel) -> (colour, distance)`.
 
-// The colour `c` (0..1) rounded to the nearest of 255 steps, as `pack4x8unorm` and the
-// visibility method's presented frame round, then a quarter step up. A store into an 8-bit
-// target converts by a rounding the device chooses: the H100's put a smooth sky one step under
-// the nearest in about 3% of its values, where lavapipe's rounds to the nearest. A value a
-// quarter step over a step stays on that step whether the store rounds to the nearest, down or
-// toward zero, so the cast's 8 bits (and the reference made from them) are the same on such
-// devices. (A store that rounded up would still move them; packing the bytes in the shader, as
-// the presented frame does, would be exact everywhere.)
-fn unorm8_exact(c: vec3<f32>) -> vec3<f32> {
-    let steps = floor(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0 + 0.5);
-    return min((steps + 0.25) / 255.0, vec3<f32>(1.0));
-}
+// Each colour goes through `unorm8_exact` (shade.wgsl) before an 8-bit store.
 
 @compute @workgroup_size(8, 8, 1)
 fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -259,6 +259,33 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
     return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
 
+// The colour `c` (0..1) in 8-bit steps: the nearest of 255, a tie rounded up. Written out
+// rather than left to `pack4x8unorm`, whose SPIR-V lets the device round a tie either way (on
+// lavapipe 11 values of a 960x540 frame's 1.5 M came out a step under a tie rounded up), or to
+// an 8-bit store.
+fn unorm8_steps(c: vec3<f32>) -> vec3<f32> {
+    return floor(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0 + 0.5);
+}
+
+// The colour `c` (0..1) packed as the bytes of an RGBA8 texel, alpha 255 (`unorm8_steps`).
+fn pack_unorm8(c: vec3<f32>) -> u32 {
+    let s = vec3<u32>(unorm8_steps(c));
+    return s.x | (s.y << 8u) | (s.z << 16u) | (255u << 24u);
+}
+
+// The colour `c` (0..1) at its 8-bit step (`unorm8_steps`) and a quarter step up, for a store
+// into an 8-bit target (the ray casts', and the visibility method's frame stored straight into
+// a target that takes storage writes). Such a store converts by a rounding the device chooses:
+// the H100's put a smooth sky one step under the nearest in about 3% of its values, where
+// lavapipe's rounds to the nearest. A value a quarter step over a step stays on that step
+// whether the store rounds to the nearest, down or toward zero, so the bytes stored (the
+// reference's among them) are the same on such devices, and the same as `pack_unorm8`'s. (A
+// store that rounded up would still move them; packing the bytes, as the presented frame's
+// buffer does, is exact everywhere.)
+fn unorm8_exact(c: vec3<f32>) -> vec3<f32> {
+    return min((unorm8_steps(c) + 0.25) / 255.0, vec3<f32>(1.0));
+}
+
 // The seed template's materials (src/palette.rs): linear albedos of rock (dark to light with
 // the colour noise), grass (lush low, dry towards the snow line).
 const ROCK_DARK: vec3<f32> = vec3<f32>(0.10, 0.085, 0.07);

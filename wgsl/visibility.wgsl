@@ -140,7 +140,22 @@ fn present_pixel(id: vec2<u32>, bgra: bool) {
     let c = srgb_encode(clamp(textureLoad(shown, vec2<i32>(id), 0).rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
     let ordered = select(c, c.bgr, bgra);
     let pitch = (vis.size.x + 63u) & ~63u;
-    presented[id.y * pitch + id.x] = pack4x8unorm(vec4<f32>(ordered, 1.0));
+    presented[id.y * pitch + id.x] = pack_unorm8(ordered);
+}
+
+// Straight into a target that takes storage writes (an RGBA8 texture, not sRGB, with
+// STORAGE_BINDING: `relief render`'s offscreen image), with no buffer and no copy: the
+// encoded colour a quarter step over its byte (`unorm8_exact`), so the store writes the bytes
+// the packed frame holds (docs/bench/store-present).
+@group(0) @binding(21) var presented_image: texture_storage_2d<rgba8unorm, write>;
+
+@compute @workgroup_size(8, 8)
+fn present_store(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
+    }
+    let c = srgb_encode(clamp(textureLoad(shown, vec2<i32>(id.xy), 0).rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
+    textureStore(presented_image, vec2<i32>(id.xy), vec4<f32>(unorm8_exact(c), 1.0));
 }
 
 // Into an RGBA8 target (sRGB or not: the bytes are the encoded values either way).

@@ -721,8 +721,13 @@ impl Drawn for Blog {
 }
 
 impl Offscreen {
-    /// Colour format of offscreen images.
+    /// Colour format of offscreen images as their render passes draw them (a view of the
+    /// image, which is [`Offscreen::IMAGE_FORMAT`]).
     pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+    /// Format of the offscreen colour image itself: the same bytes as [`Offscreen::COLOR_FORMAT`]
+    /// without the sRGB view, so that a frame shaded in compute can be stored straight in
+    /// ([`World::present`]); render passes draw through an sRGB view of it.
+    pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
     /// Depth format of offscreen images.
     pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -777,12 +782,19 @@ impl Offscreen {
         };
         super::scoped(device, || {
             let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
-            let color = make(
-                "relief:offscreen:color",
-                Self::COLOR_FORMAT,
-                1,
-                attach | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
-            );
+            let color = device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("relief:offscreen:color"),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: Self::IMAGE_FORMAT,
+                usage: attach
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST
+                    | wgpu::TextureUsages::STORAGE_BINDING,
+                view_formats: &[Self::COLOR_FORMAT],
+            });
             let msaa = (sample_count > 1).then(|| {
                 make(
                     "relief:offscreen:msaa",
@@ -835,10 +847,20 @@ impl Offscreen {
         if presented {
             return;
         }
-        let color = self.color.create_view(&Default::default());
+        let color = self.color_view();
         let writes = timer.map(|t| t.render_writes(Slot::Render));
         let mut pass = self.begin_pass(encoder, &color, clear, writes);
         drawn.render(&mut pass);
+    }
+
+    /// The colour image as render passes draw into it ([`Offscreen::COLOR_FORMAT`]).
+    pub fn color_view(&self) -> wgpu::TextureView {
+        self.color.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(Self::COLOR_FORMAT),
+            // An sRGB view cannot be bound for storage, as the image itself is.
+            usage: Some(wgpu::TextureUsages::RENDER_ATTACHMENT),
+            ..Default::default()
+        })
     }
 
     /// This target with every frame drawn in a render pass, so that its depth holds what was

@@ -121,6 +121,8 @@ struct Images {
     /// The frame as the target's bytes, rows padded for the copy, and its bind group
     /// ([`Visibility::present`]); `None` where the buffer would pass the device's limits.
     presented: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+    /// The shaded image, for a present stored straight into a target.
+    shown: wgpu::TextureView,
 }
 
 /// The visibility method's pipelines and targets for one world (see the module docs).
@@ -143,6 +145,11 @@ pub struct Visibility {
     /// The frame packed for an RGBA8 and a BGRA8 target ([`Visibility::present`]).
     present: [wgpu::ComputePipeline; 2],
     present_layout: wgpu::BindGroupLayout,
+    /// The frame stored straight into a target that takes storage writes, and its layout;
+    /// the device makes that target's bind group when it is presented to.
+    store: wgpu::ComputePipeline,
+    store_layout: wgpu::BindGroupLayout,
+    device: wgpu::Device,
     /// Whether the last encoded frame had the sky (every pixel opaque).
     opaque: bool,
     uniforms: wgpu::Buffer,
@@ -368,6 +375,21 @@ impl Visibility {
                 entry,
             )
         });
+        let store_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:visibility:store-layout"),
+            entries: &[
+                super::uniform_entry::<VisUniforms>(12, c),
+                super::texture_entry(13, c, false),
+                super::storage_entry(21, STORE_FORMAT),
+            ],
+        });
+        let store = super::compute_pipeline(
+            device,
+            "relief:visibility:store",
+            &store_layout,
+            &vis_module,
+            "present_store",
+        );
         Self {
             world,
             samples,
@@ -383,6 +405,9 @@ impl Visibility {
             composite_layout,
             present,
             present_layout,
+            store,
+            store_layout,
+            device: device.clone(),
             opaque: false,
             uniforms: super::uniform_buffer::<VisUniforms>(device, "relief:visibility:uniforms"),
             images: None,
@@ -584,6 +609,7 @@ impl Visibility {
             compute_group,
             composite_group,
             presented,
+            shown: shaded,
         });
     }
 
@@ -681,12 +707,13 @@ impl Visibility {
         );
     }
 
-    /// Writes the last shaded image straight into `target`, with no render pass: a compute
-    /// pass packs it as the target's bytes and a copy puts them there (timed together as
-    /// [`Slot::Present`]). Only where the image is opaque (the sky on) and `target` is a
-    /// single-sampled 2D RGBA8 or BGRA8 texture (sRGB or not) of its size with `COPY_DST`, and the frame's
-    /// bytes fit one storage buffer on the device; otherwise it records nothing and returns
-    /// false, and [`Visibility::composite`] draws it. No depth is written.
+    /// Writes the last shaded image straight into `target`, with no render pass (timed as
+    /// [`Slot::Present`]), where the image is opaque (the sky on) and `target` is a
+    /// single-sampled 2D texture of its size: stored in one compute pass where `target` is
+    /// RGBA8 (not sRGB) with `STORAGE_BINDING`; otherwise, where it is RGBA8 or BGRA8 (sRGB or
+    /// not) with `COPY_DST` and the frame's bytes fit one storage buffer on the device, packed
+    /// as the target's bytes by a compute pass and copied in. Else it records nothing and
+    /// returns false, and [`Visibility::composite`] draws it. No depth is written.
     pub(crate) fn present(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -696,17 +723,29 @@ impl Visibility {
         let Some(images) = &self.images else {
             return false;
         };
-        let Some((presented, present_group)) = &images.presented else {
-            return false;
-        };
         let (w, h) = images.size;
         let fits = target.width() == w
             && target.height() == h
             && target.depth_or_array_layers() == 1
             && target.dimension() == wgpu::TextureDimension::D2
             && target.sample_count() == 1
-            && target.usage().contains(wgpu::TextureUsages::COPY_DST);
-        let Some(bgra) = present_order(target.format()).filter(|_| fits && self.opaque) else {
+            && self.opaque;
+        if !fits {
+            return false;
+        }
+        if target.format() == STORE_FORMAT
+            && target
+                .usage()
+                .contains(wgpu::TextureUsages::STORAGE_BINDING)
+        {
+            self.store_into(encoder, target, images, timer);
+            return true;
+        }
+        let Some((presented, present_group)) = &images.presented else {
+            return false;
+        };
+        let copies = target.usage().contains(wgpu::TextureUsages::COPY_DST);
+        let Some(bgra) = present_order(target.format()).filter(|_| copies) else {
             return false;
         };
         {
@@ -744,6 +783,43 @@ impl Visibility {
         true
     }
 
+    /// The present's one compute pass storing the frame into `target` (RGBA8 with
+    /// `STORAGE_BINDING`, checked by the caller).
+    fn store_into(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+        images: &Images,
+        timer: Option<&GpuTimer>,
+    ) {
+        let view = target.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("relief:visibility:store-target"),
+            format: Some(STORE_FORMAT),
+            ..Default::default()
+        });
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:visibility:store-group"),
+            layout: &self.store_layout,
+            entries: &[
+                entry(12, self.uniforms.as_entire_binding()),
+                entry(13, wgpu::BindingResource::TextureView(&images.shown)),
+                entry(21, wgpu::BindingResource::TextureView(&view)),
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:visibility:store-pass"),
+            timestamp_writes: timer.map(|t| t.compute_writes(Slot::Present)),
+        });
+        pass.set_pipeline(&self.store);
+        pass.set_bind_group(0, &group, &[]);
+        let (w, h) = images.size;
+        pass.dispatch_workgroups(
+            w.div_ceil(super::WORKGROUP),
+            h.div_ceil(super::WORKGROUP),
+            1,
+        );
+    }
+
     /// Draws the last shaded image into the host's pass (nothing before the first
     /// [`Visibility::encode`]).
     pub(crate) fn composite(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -757,6 +833,9 @@ impl Visibility {
         pass.pop_debug_group();
     }
 }
+
+/// The format [`Visibility::present`] stores straight into (a target with `STORAGE_BINDING`).
+const STORE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Bytes a pixel of the presented frame.
 const PRESENTED_BYTES: u64 = 4;

@@ -1283,11 +1283,15 @@ impl World {
     /// frame needs (no depth is written). On a compute chip such as the H100 a full-screen draw
     /// in a render pass costs more than the shading itself (docs/bench/present).
     ///
-    /// Records a compute pass (timed as [`Slot::Present`]) and
-    /// a copy, and returns true, where the method shades in compute (the visibility method and
-    /// the hybrid), the sky is on (every pixel opaque) and `target` is a single-sampled 2D
-    /// RGBA8 or BGRA8 texture (sRGB or not) of the frame's size with `COPY_DST`. Otherwise it
-    /// records nothing and returns false: draw with [`World::render`] in a render pass.
+    /// Returns true, having recorded the frame's present (timed as [`Slot::Present`]), where
+    /// the method shades in compute (the visibility method and the hybrid), the sky is on
+    /// (every pixel opaque) and `target` is a single-sampled 2D texture of the frame's size
+    /// that is either RGBA8 (not sRGB) with `STORAGE_BINDING`, which one compute pass stores
+    /// the frame into (the fastest: `relief render`'s image is such a texture, drawn by render
+    /// passes through an sRGB view of it), or RGBA8 or BGRA8 (sRGB or not) with `COPY_DST`,
+    /// which a compute pass packs the frame for and a copy fills. Both write the same bytes.
+    /// Otherwise it records nothing and returns false: draw with [`World::render`] in a render
+    /// pass.
     pub fn present(
         &self,
         encoder: &mut wgpu::CommandEncoder,
