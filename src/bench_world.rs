@@ -979,10 +979,10 @@ mod tests {
         assert_eq!(labels.placed.len(), 4);
     }
 
-    /// The rows of a committed landscape benchmark (docs/bench/exact-bytes, H100): what the chart
+    /// The rows of a committed landscape benchmark (docs/bench/store-present, H100): what the chart
     /// needs of each.
     fn committed_rows() -> Vec<WorldRow> {
-        let csv = include_str!("../docs/bench/exact-bytes/landscape.csv");
+        let csv = include_str!("../docs/bench/store-present/landscape.csv");
         let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
         let header: Vec<&str> = lines.next().expect("header").split(',').collect();
         let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
