@@ -1,7 +1,7 @@
 //! The frame written without a render pass (`World::present`, `Terrain::present`): where the
 //! visibility method or the hybrid shaded it in compute, `relief render`'s target takes it by one
-//! compute pass storing it (a target without storage writes: a compute pass and a copy). It is the picture the composite draws into a render pass, within
-//! one level of 255 (the shader encodes sRGB where the render pass's store let the GPU encode),
+//! compute pass storing it (a target without storage writes: a compute pass and a copy). It is
+//! the picture the composite draws into a render pass, within one level of 255 (the shader encodes sRGB where the render pass's store let the GPU encode),
 //! timed as `present` and not as `render`; whatever it cannot write is drawn in a render pass.
 
 mod common;
@@ -257,7 +257,12 @@ fn presenting_writes_each_formats_byte_order() {
     let target = Offscreen::new(&gpu.device, W, H, 1).unwrap();
     let (world, (rgba, _)) = world_frame(&gpu, Method::Visibility, &target, None);
     use wgpu::TextureFormat as F;
-    for format in [F::Rgba8Unorm, F::Bgra8UnormSrgb, F::Bgra8Unorm] {
+    for format in [
+        F::Rgba8UnormSrgb,
+        F::Rgba8Unorm,
+        F::Bgra8UnormSrgb,
+        F::Bgra8Unorm,
+    ] {
         let t = texture(&gpu, (W, H), format, true);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         assert!(world.present(&mut encoder, &t, None), "{format:?}");
@@ -293,6 +298,27 @@ fn presenting_writes_each_formats_byte_order() {
     gpu.queue.submit([encoder.finish()]);
     let bytes = headless::read_texture(&gpu.device, &gpu.queue, &stored).unwrap();
     assert!(bytes == rgba, "the stored frame is not the packed one");
+    // A target with mip levels takes the frame in its first.
+    let mipped = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("present-test-mipped"),
+        size: wgpu::Extent3d {
+            width: W,
+            height: H,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 3,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: F::Rgba8Unorm,
+        usage: wgpu::TextureUsages::STORAGE_BINDING,
+        view_formats: &[],
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    assert!(world.present(&mut encoder, &mipped, None));
+    gpu.queue.submit([encoder.finish()]);
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .unwrap();
     assert_eq!(target.color.format(), F::Rgba8Unorm);
     assert!(target
         .color

@@ -261,7 +261,7 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
 
 // The colour `c` (0..1) in 8-bit steps: the nearest of 255, a tie rounded up. Written out
 // rather than left to `pack4x8unorm`, whose SPIR-V lets the device round a tie either way (on
-// lavapipe 11 values of a 960x540 frame's 1.5 M came out a step under a tie rounded up), or to
+// lavapipe 11 values of a 960x540 frame's 2.1 M came out a step under a tie rounded up), or to
 // an 8-bit store.
 fn unorm8_steps(c: vec3<f32>) -> vec3<f32> {
     return floor(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0 + 0.5);

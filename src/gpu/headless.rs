@@ -663,7 +663,8 @@ pub struct Offscreen {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// The resolved colour texture (`Rgba8UnormSrgb`).
+    /// The resolved colour texture ([`Offscreen::IMAGE_FORMAT`], `Rgba8Unorm`: a frame shaded
+    /// in compute is stored straight in; render passes draw through [`Offscreen::color_view`]).
     pub color: wgpu::Texture,
     msaa: Option<wgpu::TextureView>,
     depth: wgpu::TextureView,

@@ -20,8 +20,8 @@ pub enum Slot {
     Shade = 5,
     /// A ray-cast image shown in the target (the window's, the benchmark's): a full-screen draw.
     Show = 6,
-    /// The visibility method's image written into the target without a render pass: a compute
-    /// pass and a copy.
+    /// The visibility method's image written into the target without a render pass: one
+    /// compute pass storing it, or a compute pass packing it and a copy.
     Present = 7,
 }
 

@@ -792,9 +792,11 @@ impl Visibility {
         images: &Images,
         timer: Option<&GpuTimer>,
     ) {
+        // The first mip level alone: a storage binding takes one.
         let view = target.create_view(&wgpu::TextureViewDescriptor {
             label: Some("relief:visibility:store-target"),
             format: Some(STORE_FORMAT),
+            mip_level_count: Some(1),
             ..Default::default()
         });
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -1289,7 +1289,9 @@ impl World {
     /// that is either RGBA8 (not sRGB) with `STORAGE_BINDING`, which one compute pass stores
     /// the frame into (the fastest: `relief render`'s image is such a texture, drawn by render
     /// passes through an sRGB view of it), or RGBA8 or BGRA8 (sRGB or not) with `COPY_DST`,
-    /// which a compute pass packs the frame for and a copy fills. Both write the same bytes.
+    /// which a compute pass packs the frame for and a copy fills. Both round each value in the
+    /// shader; the stored one is the packed one wherever the device's 8-bit store rounds to
+    /// the nearest, down or toward zero (lavapipe's and the H100's do).
     /// Otherwise it records nothing and returns false: draw with [`World::render`] in a render
     /// pass.
     pub fn present(

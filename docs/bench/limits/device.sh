@@ -29,3 +29,18 @@ for b in 128 256; do
     ( time env XONLY=1 "${x[@]}" timeout 250 .devbin/relief-hack bench --world endless --out-dir /tmp/b$b ) >"$OUT/bench-b$b-stdout.txt" 2>&1
     cp /tmp/b$b/landscape.csv "$OUT/landscape-b$b.csv"
 done
+
+# The other runs on this page:
+# - bake-terms-*.txt (H100): .devbin/relief-old (committed) and .devbin/relief-new (the noise
+#   from per-cell terms), each twice: `relief-$b bake --world endless --region 0,0,4096,4096
+#   --size 4096 --timings` and the same with `--feature-size 256`; then the oblique view with
+#   `--method hybrid --samples 1 --raster compute --timings` and `--method reference --timings`.
+# - oblique-lavapipe.txt (lavapipe, 960x540): `relief render --width 960 --height 540 --world
+#   endless --eye -5000,4195.8573366294322,2000 --look-at -4999.2,4195.3573366294322,2000.33`
+#   with `--method reference`, `--method visibility --samples 1 --raster compute` and `--method
+#   hybrid --samples 1 --raster compute`, the last also from a build whose hybrid neither raises
+#   its levels nor refines (`t = length(point_at(dir, d))` in wgsl/hybrid.wgsl); FLIP by the
+#   flip-evaluator Python package.
+# - ridge-worst-pixels.txt (lavapipe, 1920x1080): a temporary example that renders
+#   `bench_world::views`' ridge with the default World into an Offscreen keeping its depth and
+#   repeats `world_depth_metrics` at every pixel, printing the largest.
