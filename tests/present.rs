@@ -1,7 +1,8 @@
 //! The frame written without a render pass (`World::present`, `Terrain::present`): where the
 //! visibility method or the hybrid shaded it in compute, `relief render`'s target takes it by one
 //! compute pass storing it (a target without storage writes: a compute pass and a copy). It is
-//! the picture the composite draws into a render pass, within one level of 255 (the shader encodes sRGB where the render pass's store let the GPU encode),
+//! the picture the composite draws into a render pass, within one level of 255 (the shader
+//! encodes sRGB where the render pass's store let the GPU encode),
 //! timed as `present` and not as `render`; whatever it cannot write is drawn in a render pass.
 
 mod common;
@@ -143,6 +144,17 @@ fn texture(
         } else {
             wgpu::TextureUsages::empty()
         };
+    texture_with(gpu, (w, h), format, usage, 1)
+}
+
+/// A texture of any `usage` and `mips` mip levels.
+fn texture_with(
+    gpu: &Gpu,
+    (w, h): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    mips: u32,
+) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("present-test"),
         size: wgpu::Extent3d {
@@ -150,7 +162,7 @@ fn texture(
             height: h,
             depth_or_array_layers: 1,
         },
-        mip_level_count: 1,
+        mip_level_count: mips,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
@@ -279,40 +291,16 @@ fn presenting_writes_each_formats_byte_order() {
     // `relief render`'s own image takes storage writes: its frame was stored in one pass, and
     // is the packed-and-copied frame above byte for byte. So is any RGBA8 target with
     // STORAGE_BINDING, even without COPY_DST.
-    let stored = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("present-test-storage"),
-        size: wgpu::Extent3d {
-            width: W,
-            height: H,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: F::Rgba8Unorm,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let storage = wgpu::TextureUsages::STORAGE_BINDING;
+    let copied = storage | wgpu::TextureUsages::COPY_SRC;
+    let stored = texture_with(&gpu, (W, H), F::Rgba8Unorm, copied, 1);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     assert!(world.present(&mut encoder, &stored, None));
     gpu.queue.submit([encoder.finish()]);
     let bytes = headless::read_texture(&gpu.device, &gpu.queue, &stored).unwrap();
     assert!(bytes == rgba, "the stored frame is not the packed one");
     // A target with mip levels takes the frame in its first.
-    let mipped = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("present-test-mipped"),
-        size: wgpu::Extent3d {
-            width: W,
-            height: H,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 3,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: F::Rgba8Unorm,
-        usage: wgpu::TextureUsages::STORAGE_BINDING,
-        view_formats: &[],
-    });
+    let mipped = texture_with(&gpu, (W, H), F::Rgba8Unorm, storage, 3);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     assert!(world.present(&mut encoder, &mipped, None));
     gpu.queue.submit([encoder.finish()]);

@@ -755,7 +755,7 @@ impl Offscreen {
             height,
             depth_or_array_layers: 1,
         };
-        let make = |label, format, samples, usage| {
+        let make = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size,
@@ -764,7 +764,7 @@ impl Offscreen {
                 dimension: wgpu::TextureDimension::D2,
                 format,
                 usage,
-                view_formats: &[],
+                view_formats,
             })
         };
         // Resolved colour, MSAA colour (when multisampled) and depth, 4 bytes a sample.
@@ -783,25 +783,23 @@ impl Offscreen {
         };
         super::scoped(device, || {
             let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
-            let color = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("relief:offscreen:color"),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: Self::IMAGE_FORMAT,
-                usage: attach
+            let color = make(
+                "relief:offscreen:color",
+                Self::IMAGE_FORMAT,
+                1,
+                attach
                     | wgpu::TextureUsages::COPY_SRC
                     | wgpu::TextureUsages::COPY_DST
                     | wgpu::TextureUsages::STORAGE_BINDING,
-                view_formats: &[Self::COLOR_FORMAT],
-            });
+                &[Self::COLOR_FORMAT],
+            );
             let msaa = (sample_count > 1).then(|| {
                 make(
                     "relief:offscreen:msaa",
                     Self::COLOR_FORMAT,
                     sample_count,
                     attach,
+                    &[],
                 )
                 .create_view(&Default::default())
             });
@@ -816,6 +814,7 @@ impl Offscreen {
                 Self::DEPTH_FORMAT,
                 sample_count,
                 depth_usage,
+                &[],
             );
             Self {
                 width,
