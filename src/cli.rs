@@ -248,7 +248,8 @@ pub fn command() -> Command {
             .help(
                 "bake --world endless: the square of the world to bake, in metres; its side \
                  over --size must be a power of two (metres per sample) and its corner a \
-                 multiple of it [default: 0,0,4096,4096]",
+                 multiple of it [default: --size samples every 4 m from 0,0: \
+                 0,0,4096,4096 at the default --size 1024]",
             ),
     )
     .arg(
@@ -401,7 +402,7 @@ pub const TILE_ONLY: [&str; 6] = [
 ];
 
 /// Flags of `relief render`'s camera and statistics.
-const CAMERA_FLAGS: [&str; 6] = ["eye", "look-at", "fov", "camera", "time", "stats"];
+const CAMERA_FLAGS: [&str; 5] = ["eye", "look-at", "fov", "camera", "time"];
 
 /// `--exit-after`'s range.
 const EXIT_AFTER: Kind = Kind::Float {
@@ -536,6 +537,14 @@ fn clap_error(e: clap::Error) -> i32 {
             "unknown command {} (commands: window, render, bake, bench, stability, height)",
             table::shorten(&names(ContextKind::InvalidSubcommand))
         ),
+        ErrorKind::TooManyValues => {
+            let arg = table::shorten(&names(ContextKind::InvalidArg));
+            format!(
+                "{arg} takes no value: give {arg} alone, not {arg}={} (in scene files and \
+                 URLs: true/false or 1/0)",
+                table::shorten(&names(ContextKind::InvalidValue))
+            )
+        }
         ErrorKind::ArgumentConflict => format!(
             "{} given more than once",
             table::shorten(&names(ContextKind::InvalidArg))
@@ -767,6 +776,23 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
         Some(Value::Choice(name)) => Some(name),
         _ => None,
     };
+    // Where a part came from, for errors: the flag, else the scene file's [camera] key; an
+    // error about a part from the file is the file's error.
+    let from_file = |flag: &str| scene_path.is_some() && !given(m, flag);
+    let source = |flag: &str, key: &str| {
+        if from_file(flag) {
+            format!("[camera] {key}")
+        } else {
+            format!("--{flag}")
+        }
+    };
+    let usage = |flag: &str, message: String| match &scene_path {
+        Some(path) if from_file(flag) => Error::SceneFile {
+            path: path.clone(),
+            message,
+        },
+        _ => Error::Usage(message),
+    };
     let time = match part("time", "time", number(scene.time), TIME, " seconds")? {
         Some(Value::Float(t)) => Some(f64::from(t)),
         _ => None,
@@ -774,12 +800,16 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
     let endless = world_kind(m)? == WorldKind::Endless;
     match (kind, endless) {
         (Some("orbit"), true) | (Some("fly" | "path"), false) => {
-            return Err(Error::Usage(format!(
-                "--camera {} does not apply to --world {}: the tile has orbit, the endless \
-                 world fly and path",
-                kind.unwrap_or_default(),
-                if endless { "endless" } else { "tile" }
-            )))
+            return Err(usage(
+                "camera",
+                format!(
+                    "{} {} does not apply to the {} world: the tile has orbit, the endless \
+                     world fly and path",
+                    source("camera", "camera"),
+                    kind.unwrap_or_default(),
+                    if endless { "endless" } else { "tile" }
+                ),
+            ))
         }
         _ => {}
     }
@@ -832,10 +862,15 @@ fn camera(m: &ArgMatches) -> Result<Camera> {
         let d = [t[0] - e[0], t[1] - e[1], t[2] - e[2]];
         let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if len <= 1e-6 * (1.0 + e.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
-            return Err(Error::Usage(format!(
-                "--look-at {} is the --eye position: the camera must look somewhere else",
-                table::shorten(&string(m, "look-at").unwrap_or_else(|| format!("{t:?}")))
-            )));
+            return Err(usage(
+                "look-at",
+                format!(
+                    "{} {} is the {} position: the camera must look somewhere else",
+                    source("look-at", "look_at"),
+                    table::shorten(&string(m, "look-at").unwrap_or_else(|| format!("{t:?}"))),
+                    source("eye", "eye"),
+                ),
+            ));
         }
     }
     Ok(camera)
@@ -1111,10 +1146,11 @@ fn run(top: &ArgMatches) -> Result<()> {
     if let Some(method) = pinned {
         drawn_in(method, world_kind(m)?)?;
     }
-    let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
-    if endless_window {
+    if !matches!(run, Run::Render { .. }) {
         refuse_flags(m, name, &["stats"], "it applies to relief render only")?;
-    } else if !matches!(run, Run::Render { .. }) {
+    }
+    let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
+    if !endless_window && !matches!(run, Run::Render { .. }) {
         refuse_flags(
             m,
             name,
@@ -1196,12 +1232,7 @@ fn run(top: &ArgMatches) -> Result<()> {
         .collect();
     match world {
         WorldKind::Tile => {
-            refuse_flags(
-                m,
-                name,
-                &world_only,
-                "it applies to --world endless only (the tile is 2 units wide)",
-            )?;
+            refuse_flags(m, name, &world_only, "it applies to --world endless only")?;
             refuse_flags(
                 m,
                 name,
@@ -1216,6 +1247,12 @@ fn run(top: &ArgMatches) -> Result<()> {
                     &format!("{name} --world endless"),
                     &["speed", "paused"],
                     "they scroll the tile; the fly camera moves with the keys",
+                )?;
+                refuse_flags(
+                    m,
+                    &format!("{name} --world endless"),
+                    &["region"],
+                    "it applies to bake --world endless only",
                 )?;
                 let params = resolve_world(m)?;
                 let view = world_view(&camera(m)?, &params, (1280, 720));
@@ -1393,15 +1430,15 @@ fn region(m: &ArgMatches) -> Result<Region> {
             }
         },
     };
-    let text = string(m, "region").unwrap_or_else(|| "0,0,4096,4096".into());
+    // Without --region: --size samples every 4 m from the origin (a power of two, so any
+    // --size has a region).
+    let side = 4 * u64::from(size);
+    let text = string(m, "region").unwrap_or_else(|| format!("0,0,{side},{side}"));
     let bad = |why: &str| {
         Error::invalid(
             "--region",
             table::shorten(&text),
-            format!(
-                "X0,Z0,X1,Z1 in metres: {why} (e.g. 0,0,4096,4096 with --size 1024 samples \
-                 every 4 m)"
-            ),
+            format!("X0,Z0,X1,Z1 in metres: {why} (e.g. 0,0,4096,4096 with --size 1024)"),
         )
     };
     let v: Vec<f64> = text
@@ -1551,9 +1588,20 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             method,
         } => {
             check_png_path(&out)?;
+            let view = world_view(&camera, &params, (width, height));
+            let ground = params.land.height_at(view.eye.x, view.eye.z);
+            if view.eye.y <= ground {
+                return Err(Error::Usage(format!(
+                    "the eye {},{},{} is under the ground, which is at {} m there: give an \
+                     --eye (or [camera] eye) above it",
+                    table::number(view.eye.x),
+                    table::number(view.eye.y),
+                    table::number(view.eye.z),
+                    format!("{ground:.1}")
+                )));
+            }
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
-            let view = world_view(&camera, &params, (width, height));
             if let Some(method) = method.own_path() {
                 let image = headless::render_world_rays(
                     &gpu,
@@ -1599,7 +1647,11 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
                 eprintln!("{line}");
             }
             if stats {
-                for line in world.stats().lines() {
+                // The still frame's whole bake, whatever the method (or auto's trial) baked
+                // in which frame.
+                let mut s = world.stats();
+                s.texels_baked = world.held_texels();
+                for line in s.lines() {
                     println!("{line}");
                 }
                 println!(
@@ -1704,11 +1756,10 @@ fn render(
             TILE,
             timer.as_ref(),
         )?;
-        drawn = Some((
-            terrain.world().stats(),
-            params.size,
-            terrain.world().method_bytes(),
-        ));
+        // The still frame's whole bake: the levels' texels and the tile's own textures.
+        let mut s = terrain.world().stats();
+        s.texels_baked = terrain.world().held_texels() + u64::from(params.size).pow(2);
+        drawn = Some((s, params.size, terrain.world().method_bytes()));
         frame
     } else if own_path == Some(crate::Method::Blog) {
         let scene = (params, &Shading::default());
@@ -1996,7 +2047,7 @@ fn check_out_dir(dir: &Path) -> Result<()> {
         }
         if d.exists() {
             if d.is_dir() {
-                return Ok(());
+                return probe_writable(d);
             }
             let what = if d == dir {
                 "a folder, or a path to create one; this is a file".to_owned()
@@ -2014,6 +2065,15 @@ fn check_out_dir(dir: &Path) -> Result<()> {
         }
         p = d.parent();
     }
+    Ok(())
+}
+
+/// Checks that files can be made in the folder `dir` (a read-only folder, `/proc`, another
+/// user's) by making and removing an empty probe folder in it, before any work is done.
+fn probe_writable(dir: &Path) -> Result<()> {
+    let probe = dir.join(format!(".relief-probe-{}", std::process::id()));
+    std::fs::create_dir(&probe).map_err(|e| Error::io(dir, e))?;
+    let _ = std::fs::remove_dir(&probe);
     Ok(())
 }
 
@@ -2439,7 +2499,16 @@ fn check_png_path(out: &Path) -> Result<()> {
             std::io::Error::new(std::io::ErrorKind::NotFound, "output folder does not exist"),
         ));
     }
-    Ok(())
+    if out.is_dir() {
+        return Err(Error::invalid(
+            "--out",
+            crate::error::short_path(out),
+            "a PNG file's path; this is a folder",
+        ));
+    }
+    // The image is written at the end: a folder that takes no files fails now, not after the
+    // work.
+    probe_writable(parent)
 }
 
 fn temp_name(path: &Path) -> PathBuf {

@@ -75,17 +75,24 @@ impl Error {
     }
 }
 
-/// A path as an error line shows it: whole when short, else its last 40 characters (the file
-/// name survives), so a long path cannot push the reason off a one-line message.
+/// A path as an error line shows it: whole up to [`MAX_PATH_CHARS`] characters (an error line
+/// holds 200), else its start and its end around "...", so the file name and where the path
+/// starts both survive and a long path cannot push the reason off a one-line message.
 pub fn short_path(path: &std::path::Path) -> String {
     let text = path.display().to_string();
     let n = text.chars().count();
-    if n <= 40 {
-        text
-    } else {
-        format!("...{}", text.chars().skip(n - 40).collect::<String>())
+    if n <= MAX_PATH_CHARS {
+        return text;
     }
+    let head = MAX_PATH_CHARS / 3;
+    let tail = MAX_PATH_CHARS - head - 3;
+    let start: String = text.chars().take(head).collect();
+    let end: String = text.chars().skip(n - tail).collect();
+    format!("{start}...{end}")
 }
+
+/// Longest path an error shows whole ([`short_path`]).
+pub const MAX_PATH_CHARS: usize = 120;
 
 /// relief's result type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

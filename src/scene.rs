@@ -49,7 +49,7 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
     };
     let mut table: toml::Table = text
         .parse()
-        .map_err(|e: toml::de::Error| fail(table::shorten_to(&one_line(&e.to_string()), 160)))?;
+        .map_err(|e: toml::de::Error| fail(syntax_error(text, &e)))?;
     if let Some(bake) = table.remove("bake") {
         // Only checked for shape: a scene's bake record does not change what is baked.
         BakeInfo::from_toml(&bake)?;
@@ -59,7 +59,7 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
         Some(toml::Value::String(w)) if w == "tile" => {}
         Some(other) => {
             return Err(fail(format!(
-                "world = {} here, but the tile's keys are being read (give --world to match)",
+                "world = {} here, but --world tile was given (drop --world, or make it match)",
                 toml_shown(&other)
             )))
         }
@@ -75,7 +75,7 @@ pub fn parse_entries(text: &str) -> Result<Entries> {
                 TerrainParams::keys().collect::<Vec<_>>().join(", "),
             )
         })?;
-        let text = toml_text(row.kind, value).ok_or_else(|| row.invalid(&toml_shown(value)))?;
+        let text = toml_text(row.kind, value).ok_or_else(|| wrong_type(row, value))?;
         out.push((row, text));
     }
     Ok(out)
@@ -87,25 +87,48 @@ fn read_text(path: &Path) -> Result<String> {
         path: path.to_owned(),
         message,
     };
-    let len = std::fs::metadata(path)
-        .map_err(|e| fail(e.to_string()))?
-        .len();
-    if len > MAX_SCENE_BYTES {
+    use std::io::Read;
+    // Read at most one byte past the limit: a pipe or a device (`/dev/zero`, `<(yes)`) reports
+    // no size, so the size is what is read, never what the file claims.
+    let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(e.to_string()))?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
         return Err(fail(format!(
-            "{len} bytes; a scene file is at most {MAX_SCENE_BYTES}"
+            "more than {MAX_SCENE_BYTES} bytes; a scene file is at most {MAX_SCENE_BYTES}"
         )));
     }
-    std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))
+    String::from_utf8(bytes).map_err(|_| fail("not UTF-8 text (a scene file is TOML)".into()))
 }
 
 /// A scene file's TOML, checked for size and syntax; errors name the file.
 fn load(path: &Path) -> Result<toml::Table> {
-    read_text(path)?
-        .parse()
-        .map_err(|e: toml::de::Error| Error::SceneFile {
-            path: path.to_owned(),
-            message: table::shorten_to(&one_line(&e.to_string()), 160),
-        })
+    let text = read_text(path)?;
+    text.parse().map_err(|e: toml::de::Error| Error::SceneFile {
+        path: path.to_owned(),
+        message: syntax_error(&text, &e),
+    })
+}
+
+/// A TOML syntax error as one short line: where (line and column, from 1) and what.
+fn syntax_error(text: &str, e: &toml::de::Error) -> String {
+    let what = one_line(e.message());
+    let Some(span) = e.span() else {
+        return table::shorten_to(&format!("TOML: {what}"), 160);
+    };
+    let before = &text.as_bytes()[..span.start.min(text.len())];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let line_start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let column = String::from_utf8_lossy(&before[line_start..])
+        .chars()
+        .count()
+        + 1;
+    table::shorten_to(&format!("TOML line {line}, column {column}: {what}"), 160)
 }
 
 /// The world a scene file describes: its `world` key (`"tile"` or `"endless"`), tile without one.
@@ -230,10 +253,16 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
     match table.remove("world") {
         Some(toml::Value::String(w)) if w == "endless" => {}
         other => {
-            return Err(fail(format!(
-                "world = {} here, but the endless world's keys are being read",
-                other.as_ref().map_or("(none)".to_owned(), toml_shown)
-            )))
+            return Err(fail(match other {
+                None => "a tile scene (no world key), but --world endless was given (drop \
+                         --world, or write world = \"endless\" in the file)"
+                    .to_owned(),
+                Some(v) => format!(
+                    "world = {} here, but --world endless was given (drop --world, or make \
+                     it match)",
+                    toml_shown(&v)
+                ),
+            }))
         }
     }
     // The record of a region bake; it does not change the world.
@@ -254,8 +283,8 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
                         .join(", ")
                 ))
             })?;
-        let text = toml_text(row.kind, value)
-            .ok_or_else(|| fail(row.invalid(&toml_shown(value)).to_string()))?;
+        let text =
+            toml_text(row.kind, value).ok_or_else(|| fail(wrong_type(row, value).to_string()))?;
         out.push((row, text));
     }
     Ok(out)
@@ -343,15 +372,40 @@ fn toml_text(kind: Kind, v: &toml::Value) -> Option<String> {
     })
 }
 
-/// A TOML value as an error shows it (short).
+/// A TOML value as an error shows it (short, in TOML's own spelling).
 fn toml_shown(v: &toml::Value) -> String {
     let s = match v {
         toml::Value::String(s) => format!("{s:?}"),
         toml::Value::Table(_) => "a table".to_owned(),
         toml::Value::Array(a) => format!("an array of {}", a.len()),
-        other => format!("{other:?}"),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(f) => format!("{f:?}"),
+        toml::Value::Boolean(b) => b.to_string(),
+        toml::Value::Datetime(d) => d.to_string(),
     };
     table::shorten(&s)
+}
+
+/// The error for a value of the wrong TOML type for `row`: the value as written, and the type
+/// and range the key takes (`octaves = 3.0` is not a whole number).
+fn wrong_type<T>(row: &table::Param<T>, value: &toml::Value) -> Error {
+    let what = match row.kind {
+        Kind::Int { .. } => "a whole number, ",
+        Kind::Float { .. } => "a number, ",
+        Kind::Choice(_) => "a string: ",
+        Kind::Bool => "true or false",
+        Kind::Pair { .. } => "[x, y], ",
+    };
+    let allowed = match row.kind {
+        Kind::Bool => String::new(),
+        Kind::Choice(names) => names
+            .iter()
+            .map(|n| format!("{n:?}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        _ => row.allowed(),
+    };
+    Error::invalid(row.key, toml_shown(value), format!("{what}{allowed}"))
 }
 
 /// A value as TOML text: floats always with a point or exponent, pairs as arrays.

@@ -224,10 +224,28 @@ fn m_steps_the_window_to_the_next_method() {
         "--exit-after",
         "30",
     ];
-    let (code, stdout, err) =
-        window_with_keys(&args, "xdotool key m; sleep 3; xdotool key m; sleep 3");
+    let (code, stdout, err) = window_with_keys(
+        &args,
+        "xdotool getwindowname \"$w\"; xdotool key m; sleep 3; xdotool getwindowname \"$w\"; \
+         xdotool key m; sleep 3; xdotool getwindowname \"$w\"",
+    );
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
+    // The title names the method drawing, before and after each M.
+    let titles: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("relief: "))
+        .collect();
+    assert_eq!(titles.len(), 3, "{stdout}");
+    for (title, method) in titles
+        .iter()
+        .zip(["mesh", "visibility at 4", "hybrid at 4"])
+    {
+        assert!(
+            title.starts_with(&format!("relief: {method}")) && title.contains(" · seed "),
+            "{method}: {title:?}"
+        );
+    }
     // The frames after each M are drawn by the next method in the list (the visibility
     // method, then the hybrid, at the window's 4 samples a pixel), and their timings say so.
     for next in &relief::Method::WORLD_NAMES[1..3] {
@@ -283,7 +301,7 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     assert_eq!(err, "", "a clean run prints nothing on stderr");
     let titles: Vec<_> = stdout
         .lines()
-        .filter(|l| l.starts_with("relief: sun"))
+        .filter(|l| l.starts_with("relief: "))
         .map(sky_in_title)
         .collect();
     assert_eq!(titles.len(), 3, "{stdout}");

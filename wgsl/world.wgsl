@@ -31,10 +31,15 @@ struct Level {
     // Metres the level's vertices are raised by: 0, or for the hybrid method a bound on how far
     // the continuous surface rises above the level's mesh, so the mesh lies on or above it.
     raise: f32,
-    _pad0: u32,
+    // The level whose light this one is drawn with: itself once its light is baked, before
+    // that a coarser level's, or NO_LIGHT (unshadowed) while none has light
+    // (src/gpu/light_queue.rs).
+    light_from: u32,
     _pad1: u32,
     _pad2: u32,
 }
+
+const NO_LIGHT: u32 = 0xffffffffu;
 
 struct WorldUniforms {
     // xz: eye position less the reference sample's, in metres; y: eye height; w: finest spacing.
@@ -113,6 +118,22 @@ fn sample_level(lv: Level, p: vec2<f32>, light: bool) -> vec4<f32> {
     return mix(mix(a, b, t.x), mix(c, d, t.x), t.y);
 }
 
+// The light bake's (horizon, valley) of level `index` at `p` (its samples from its first):
+// the level's own where it is baked, else that of the level it borrows light from (the same
+// world point in that level's samples), else unshadowed.
+fn level_light(index: u32, p: vec2<f32>) -> vec2<f32> {
+    let lv = w.levels[index];
+    if lv.light_from == index {
+        return sample_level(lv, p, true).xy;
+    }
+    if lv.light_from == NO_LIGHT {
+        return vec2<f32>(-2.0, 0.0);
+    }
+    let lender = w.levels[lv.light_from];
+    let finest = vec2<f32>(lv.origin_rel - lender.origin_rel) + p * f32(1u << lv.shift);
+    return sample_level(lender, finest / f32(1u << lender.shift), true).xy;
+}
+
 // Blend towards the coarser level, exact at both ends.
 fn morph_blend(fine: vec4<f32>, coarse: vec4<f32>, alpha: f32) -> vec4<f32> {
     if alpha <= 0.0 {
@@ -155,11 +176,11 @@ fn place(vi: u32, patch_instance: vec4<u32>) -> VertexOut {
     let clv = w.levels[lv.coarse];
     let q = (vec2<f32>(lv.delta) + p) * 0.5;
     var s = sample_level(lv, p, false);
-    var light = sample_level(lv, p, true).xy;
+    var light = level_light(level, p);
     var raise = lv.raise;
     if alpha > 0.0 {
         s = morph_blend(s, sample_level(clv, q, false), alpha);
-        light = morph_blend(vec4<f32>(light, 0.0, 0.0), sample_level(clv, q, true), alpha).xy;
+        light = morph_blend(vec4<f32>(light, 0.0, 0.0), vec4<f32>(level_light(lv.coarse, q), 0.0, 0.0), alpha).xy;
         // Both levels' raised surfaces lie on or above the continuous one: so does their blend.
         raise = mix(lv.raise, clv.raise, alpha);
     }

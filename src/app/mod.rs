@@ -544,6 +544,9 @@ impl App {
         self.options.method = candidate.method;
         self.options.samples = candidate.samples;
         self.options.raster = candidate.raster;
+        if let Some(w) = &self.window {
+            w.set_title(&self.title());
+        }
     }
 
     fn device_lost(&mut self, event_loop: &ActiveEventLoop, reason: String) {
@@ -807,17 +810,37 @@ impl App {
         }
     }
 
-    /// The window's title: the world and, in the endless one, the sun and the fog.
+    /// The window's title: the method drawing (M changes it) and the world's key values: in
+    /// the endless one the seed, the sun and the fog, on the tile the seed and octaves.
     fn title(&self) -> String {
-        match &self.options.world {
+        let o = &self.options;
+        let method = match o.method {
+            m @ (crate::Method::Visibility | crate::Method::Hybrid) => crate::choice::Candidate {
+                method: m,
+                samples: o.samples,
+                raster: o.raster,
+            }
+            .to_string(),
+            m => m.name().to_owned(),
+        };
+        let method = if o.auto && self.state.is_none() {
+            "auto".to_owned()
+        } else {
+            method
+        };
+        match &o.world {
             Some((w, _)) => format!(
-                "relief: sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
+                "relief: {method} (M) · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
+                w.land.seed,
                 w.sky.sun_azimuth,
                 w.sky.sun_elevation,
                 w.sky.fog,
                 if w.no_water { "off" } else { "on" }
             ),
-            None => "relief".to_owned(),
+            None => format!(
+                "relief: {method} (M) · seed {} · octaves {} · frequency {}",
+                o.params.seed, o.params.octaves, o.params.frequency
+            ),
         }
     }
 

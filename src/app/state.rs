@@ -130,11 +130,7 @@ impl State {
             .await
             .map_err(|e| Error::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
-        let describe = if info.name.is_empty() {
-            format!("{:?}", info.backend)
-        } else {
-            format!("{} ({:?})", info.name, info.backend)
-        };
+        let describe = crate::gpu::describe_adapter(&info);
         log::info!("window on {describe}");
         let (device, queue) = crate::gpu::request_device(&adapter).await?;
         // A window has no Result to return per frame: wgpu's errors are logged instead of the

@@ -53,8 +53,7 @@ impl Gpu {
 
     /// "name (backend)" of the adapter, for logs and reports.
     pub fn describe(&self) -> String {
-        let info = self.adapter.get_info();
-        format!("{} ({:?})", info.name, info.backend)
+        super::describe_adapter(&self.adapter.get_info())
     }
 }
 

@@ -7,6 +7,7 @@ pub mod blog;
 #[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
 pub mod landscape;
+mod light_queue;
 pub(crate) mod normals;
 pub mod raster;
 pub mod raymarch;
@@ -551,6 +552,22 @@ pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
     ];
     let (h, _) = fbm.sample(crate::noise::Channel::Height, u);
     (h * f64::from(params.height_scale)) as f32
+}
+
+/// The adapter as messages name it: its name and backend, and for a software device (Mesa's
+/// lavapipe, SwiftShader, WARP) a word that its timings are the CPU's, not a GPU's.
+pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
+    let backend = format!("{:?}", info.backend);
+    let software = if info.device_type == wgpu::DeviceType::Cpu {
+        "; a software device: its timings are the CPU's, not a GPU's"
+    } else {
+        ""
+    };
+    if info.name.is_empty() {
+        format!("{backend}{software}")
+    } else {
+        format!("{} ({backend}{software})", info.name)
+    }
 }
 
 /// Requests a device from `adapter` with timestamps and the compute raster's 64-bit atomics

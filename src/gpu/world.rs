@@ -6,6 +6,7 @@
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
+use super::light_queue::LightQueue;
 use super::raster::{Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
@@ -104,6 +105,11 @@ pub struct WorldStats {
     pub error_bound_px: f64,
     /// Texels uncovered but not baked yet (over the per-frame budget).
     pub texels_pending: u64,
+    /// Texels lit by the last `encode_bake` (the light bake's horizon and valley).
+    pub light_texels: u64,
+    /// Texels of the active levels still to be lit (over the per-frame light budget): until
+    /// they are, a level is drawn with a coarser level's light.
+    pub light_pending: u64,
     /// GPU memory of one level's textures (its samples and its light), bytes.
     pub level_bytes: u64,
 }
@@ -122,6 +128,8 @@ impl WorldStats {
             format!("patches {}", self.patches),
             format!("texels_baked {}", self.texels_baked),
             format!("texels_pending {}", self.texels_pending),
+            format!("light_texels {}", self.light_texels),
+            format!("light_pending {}", self.light_pending),
             format!("levels {}", self.levels),
             format!("levels_total {}", self.levels_total),
             format!("patch_cells {}", self.patch_cells),
@@ -171,8 +179,11 @@ pub struct LevelUniforms {
     /// Metres the vertices are raised by: 0, or for [`Method::Hybrid`] the level's raise
     /// ([`World::level_raise`]: the mesh then lies on or above the surface).
     pub raise: f32,
+    /// The level whose light this level is drawn with: its own index once its light is
+    /// baked, before that a coarser level's, or `u32::MAX` while none has light (unshadowed).
+    pub light_from: u32,
     /// Padding to 16 bytes.
-    pub _pad: [u32; 3],
+    pub _pad: [u32; 2],
 }
 
 /// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
@@ -245,6 +256,7 @@ pub struct World {
     matrix: Mat4,
     /// Most texels one `encode_bake` bakes.
     bake_budget: u64,
+    light_budget: u64,
     /// Seconds of animation (the water's ripples), from [`World::set_time`].
     time: f32,
     /// Set when this world draws the seed blog's tile ([`crate::Terrain`]'s mesh).
@@ -296,6 +308,12 @@ pub(crate) struct TileSetup {
 /// (every level whole, 13.6 M texels at the default) is spread over a few frames, coarse levels
 /// first, the next coarser level drawn where a finer one is not baked yet.
 pub const DEFAULT_BAKE_BUDGET: u64 = 1 << 21;
+
+/// Texels [`World::encode_bake`] lights at most per frame unless told otherwise (the light
+/// bake's time a texel is several of the height bake's: docs/results has the measured split).
+/// Arrival, a new layout or a turned sun (every level relit) is spread over frames, coarse
+/// levels first, each level drawn with a coarser level's light until its own is done.
+pub const DEFAULT_LIGHT_BUDGET: u64 = 1 << 19;
 
 /// Instances the patch buffer holds: every patch of every level.
 const MAX_PATCHES: usize = MAX_LEVELS * (PATCHES * PATCHES) as usize;
@@ -431,6 +449,7 @@ impl World {
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
                 bake_budget: DEFAULT_BAKE_BUDGET,
+                light_budget: DEFAULT_LIGHT_BUDGET,
                 time: 0.0,
                 tile,
                 tile_textures,
@@ -783,6 +802,18 @@ impl World {
         self.bake_budget = texels.max(1);
     }
 
+    /// Most texels one [`World::encode_bake`] lights ([`DEFAULT_LIGHT_BUDGET`] to start).
+    pub fn light_budget(&self) -> u64 {
+        self.light_budget
+    }
+
+    /// Sets the per-frame light budget in texels (at least one row of a level is lit a frame,
+    /// so the light always moves on); `u64::MAX` lights everything at once, as the headless
+    /// renderer does for a still frame.
+    pub fn set_light_budget(&mut self, texels: u64) {
+        self.light_budget = texels.max(1);
+    }
+
     /// The reference ray cast's slope bounds for this world's landscape, measured once
     /// ([`Landscape::slope_bounds`]): what a host casting rays every frame passes to
     /// [`super::world_rays::WorldRayUniforms::with_slopes`].
@@ -790,15 +821,62 @@ impl World {
         &self.slopes
     }
 
-    /// Texels uncovered but not baked yet: a level with some is not drawn (the next coarser
-    /// level covers it) until later frames bake them.
+    /// Texels still to bake: heights uncovered but not baked yet (a level with some is not
+    /// drawn: the next coarser level covers it) and light not baked yet ([`World::light_pending`]:
+    /// a level without is drawn with a coarser level's light). Later frames bake them, within
+    /// the per-frame budgets; a host keeps drawing frames while this is over 0.
     pub fn pending_texels(&self) -> u64 {
+        self.heights_pending() + self.light_pending()
+    }
+
+    /// Texels whose heights are uncovered but not baked yet.
+    fn heights_pending(&self) -> u64 {
         let region: u64 = self
             .region_pending
             .iter()
             .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
             .sum();
         self.map.pending_texels() + region
+    }
+
+    /// Texels of the active levels still to be lit (missing their light, or lit for an earlier
+    /// sun): 0 where nothing reads the light.
+    pub fn light_pending(&self) -> u64 {
+        if self.tile.is_some()
+            || (self.params.no_shadows && self.params.palette == crate::palette::Palette::Blog)
+        {
+            return 0;
+        }
+        self.light.queue.pending_texels(&self.map)
+    }
+
+    /// Texels the levels hold baked for their current layout: every active level's window (cut
+    /// to the tile's square) less what still waits. For a still frame baked whole this is its
+    /// whole bake, the same whatever the method or an earlier frame baked (`relief render
+    /// --stats` prints it as `texels_baked`).
+    pub fn held_texels(&self) -> u64 {
+        let side = self.map.side();
+        let bounds = self.tile.map(|t| t.region);
+        let held: u64 = self
+            .map
+            .levels
+            .iter()
+            .filter(|l| l.active)
+            .filter_map(|level| {
+                let window = Rect {
+                    layer: level.layer,
+                    level_log2: level.spacing_log2,
+                    origin: level.origin,
+                    extent: [side; 2],
+                };
+                match bounds {
+                    Some(b) => crop(window, b),
+                    None => Some(window),
+                }
+            })
+            .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
+            .sum();
+        held.saturating_sub(self.heights_pending())
     }
 
     /// Moves the levels to `view` and records the bake of whatever they uncovered (nothing if
@@ -1035,9 +1113,10 @@ impl World {
         rects
     }
 
-    /// Records the light bake after the levels' bake: the strips just baked, and every level
-    /// whole where the sun has turned or a level's earlier strips were lit while it was still
-    /// being baked (from coarser levels only). Levels are lit coarsest first.
+    /// Records the light bake after the levels' bake, within the per-frame light budget
+    /// ([`World::set_light_budget`]): the strips just baked join what the levels still need
+    /// lit (every level whole where the sun has turned or nothing was lit), and the frame
+    /// lights what the budget allows, coarsest level first ([`LightQueue`]).
     fn encode_light(
         &mut self,
         queue: &wgpu::Queue,
@@ -1051,55 +1130,50 @@ impl World {
         {
             // Nothing reads the light: no shadows, and the blog palette's occlusion is by
             // height. Lit whole once something does.
-            self.light.azimuth = None;
+            self.light.queue.forget();
             return;
         }
         let n = self.map.levels.len();
         let usable: Vec<bool> = (0..n)
             .map(|l| self.map.levels[l].active && self.map.pending_texels_of(l) == 0)
             .collect();
-        let turned = self.light.azimuth != Some(azimuth);
-        let cells = self.map.side();
-        let mut rects = Vec::new();
-        for l in (0..n).rev() {
-            if !self.map.levels[l].active {
-                continue;
-            }
-            if turned || (usable[l] && self.light.partial[l]) {
-                rects.push(LightRect {
-                    origin: self.map.levels[l].origin,
-                    extent: [cells; 2],
-                    level: l as u32,
-                    _pad: [0; 3],
-                });
-                self.light.partial[l] = !usable[l];
-            } else {
-                for s in strips.iter().filter(|s| s.level == l) {
-                    rects.push(LightRect {
-                        origin: s.origin,
-                        extent: s.extent,
-                        level: l as u32,
-                        _pad: [0; 3],
-                    });
-                    self.light.partial[l] |= !usable[l];
-                }
-            }
-        }
+        self.light.queue.set_sun(azimuth);
+        self.light.queue.heights_baked(strips);
+        let rects: Vec<LightRect> = self
+            .light
+            .queue
+            .take(
+                &self.map,
+                self.light_budget,
+                super::world_light::MAX_LIGHT_RECTS,
+                |l| usable[l],
+            )
+            .into_iter()
+            .map(|s| LightRect {
+                origin: s.origin,
+                extent: s.extent,
+                level: s.level as u32,
+                _pad: [0; 3],
+            })
+            .collect();
+        self.stats.light_texels = rects
+            .iter()
+            .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
+            .sum();
         if rects.is_empty() {
             return;
         }
+        // One pass: its uniforms are written once for the submission (`take` keeps to the
+        // pass's rectangle slots).
         let uniforms = LightUniforms::new(&self.map, azimuth, &self.params.land, |l| usable[l]);
-        for chunk in rects.chunks(super::world_light::MAX_LIGHT_RECTS) {
-            self.light_bake.encode(
-                queue,
-                encoder,
-                &self.light.bind_group,
-                &uniforms,
-                chunk,
-                timer.map(|t| t.compute_writes(Slot::Light)),
-            );
-        }
-        self.light.azimuth = Some(azimuth);
+        self.light_bake.encode(
+            queue,
+            encoder,
+            &self.light.bind_group,
+            &uniforms,
+            &rects,
+            timer.map(|t| t.compute_writes(Slot::Light)),
+        );
     }
 
     /// Selects the patches inside `view`'s frustum and writes the frame's uniforms.
@@ -1206,7 +1280,12 @@ impl World {
                     ]
                 },
                 raise: self.level_raise(level.spacing_log2) as f32,
-                _pad: [0; 3],
+                light_from: if self.tile.is_some() {
+                    l as u32
+                } else {
+                    self.light.queue.light_from(&self.map, l)
+                },
+                _pad: [0; 2],
             };
         }
         let world = WorldUniforms {
@@ -1268,6 +1347,8 @@ impl World {
             finest_spacing: active.first().map_or(0.0, |l| l.spacing()),
             error_bound_px: self.map.error_bound(view.pixels_per_radian()),
             texels_pending: self.map.pending_texels(),
+            light_texels: self.stats.light_texels,
+            light_pending: self.light_pending(),
             level_bytes: level_bytes(&self.map),
         };
     }
@@ -1608,10 +1689,8 @@ fn level_array(
 struct LevelLight {
     texture: wgpu::Texture,
     bind_group: wgpu::BindGroup,
-    /// The sun's azimuth the texels were lit for (None: not lit yet).
-    azimuth: Option<f32>,
-    /// Per level: some texels were lit while the level was still being baked.
-    partial: Vec<bool>,
+    /// What the levels still need lit, and what each is drawn with until then.
+    queue: LightQueue,
 }
 
 impl LevelLight {
@@ -1626,8 +1705,7 @@ impl LevelLight {
         Self {
             texture,
             bind_group,
-            azimuth: None,
-            partial: vec![false; map.levels.len()],
+            queue: LightQueue::new(map.levels.len()),
         }
     }
 }

@@ -1,0 +1,237 @@
+//! What light the endless world's levels still need, and which of it one frame bakes.
+//!
+//! The light bake (`wgpu/world_light.wgsl`) costs several times the height bake a texel, so it
+//! keeps to a per-frame budget as the height bake does: coarse levels first, a level's light
+//! only once its heights and every coarser level's are baked (its march reads them, so what it
+//! bakes is final), and never more than the budget's texels a frame (a level is split into
+//! bands of rows). Until a level holds light everywhere in its square it is drawn with the
+//! finest coarser level's light that does ([`LightQueue::light_from`]), or unshadowed where
+//! none does; a turned sun leaves the old light in place, drawn until each level is relit.
+//!
+//! CPU only: the [`super::world::World`] asks it what to bake and what each level reads.
+
+use crate::clipmap::{Clipmap, Strip};
+
+/// [`LightQueue::light_from`] for a level drawn with no light yet (unshadowed).
+pub const NO_LIGHT: u32 = u32::MAX;
+
+/// One level's light still to bake.
+#[derive(Clone, Debug, Default)]
+struct LevelQueue {
+    /// The level's whole square lacks light (new textures, or a level that was inactive).
+    all_missing: bool,
+    /// Rectangles with no light (what the level's moving uncovered).
+    missing: Vec<Strip>,
+    /// The whole square holds light for another sun.
+    all_stale: bool,
+    /// Rectangles holding light for another sun.
+    stale: Vec<Strip>,
+}
+
+impl LevelQueue {
+    fn has_light(&self) -> bool {
+        !self.all_missing && self.missing.is_empty()
+    }
+
+    fn clear_missing(&mut self) {
+        *self = Self {
+            all_missing: true,
+            ..Default::default()
+        };
+    }
+}
+
+/// The levels' light still to bake: see the module docs.
+#[derive(Clone, Debug)]
+pub struct LightQueue {
+    levels: Vec<LevelQueue>,
+    /// The sun's azimuth the baked light is for (None: nothing lit yet).
+    azimuth: Option<f32>,
+}
+
+fn area(s: &Strip) -> u64 {
+    u64::from(s.extent[0]) * u64::from(s.extent[1])
+}
+
+/// Level `l`'s square in `map` (its samples).
+fn window(map: &Clipmap, l: usize) -> Strip {
+    Strip {
+        level: l,
+        origin: map.levels[l].origin,
+        extent: [map.side(); 2],
+    }
+}
+
+/// `s` less what lies outside `w` (both of one level), if anything is left.
+fn intersect(s: Strip, w: Strip) -> Option<Strip> {
+    let mut out = s;
+    for a in 0..2 {
+        let start = i64::from(s.origin[a]).max(i64::from(w.origin[a]));
+        let end = (i64::from(s.origin[a]) + i64::from(s.extent[a]))
+            .min(i64::from(w.origin[a]) + i64::from(w.extent[a]));
+        if end <= start {
+            return None;
+        }
+        out.origin[a] = start as i32;
+        out.extent[a] = (end - start) as u32;
+    }
+    Some(out)
+}
+
+impl LightQueue {
+    /// A queue for `levels` levels with nothing lit.
+    pub fn new(levels: usize) -> Self {
+        let mut q = Self {
+            levels: vec![LevelQueue::default(); levels],
+            azimuth: None,
+        };
+        q.forget();
+        q
+    }
+
+    /// Nothing holds light any more (nothing read it for a while, or the textures are new).
+    pub fn forget(&mut self) {
+        self.levels.iter_mut().for_each(LevelQueue::clear_missing);
+        self.azimuth = None;
+    }
+
+    /// The sun's azimuth is now `azimuth`: a turn leaves every level's light in place, stale,
+    /// to be relit.
+    pub fn set_sun(&mut self, azimuth: f32) {
+        match self.azimuth {
+            Some(a) if a == azimuth => {}
+            Some(_) => {
+                for q in &mut self.levels {
+                    q.all_stale = true;
+                    q.stale.clear();
+                }
+            }
+            None => {
+                self.levels.iter_mut().for_each(LevelQueue::clear_missing);
+            }
+        }
+        self.azimuth = Some(azimuth);
+    }
+
+    /// Strips whose heights were just baked: their light is missing.
+    pub fn heights_baked(&mut self, strips: &[Strip]) {
+        for s in strips {
+            let q = &mut self.levels[s.level];
+            if !q.all_missing {
+                q.missing.push(*s);
+            }
+        }
+    }
+
+    /// Drops what left each level's square and forgets inactive levels (relit whole when they
+    /// are active again).
+    fn prune(&mut self, map: &Clipmap) {
+        for (l, q) in self.levels.iter_mut().enumerate() {
+            if !map.levels[l].active {
+                q.clear_missing();
+                continue;
+            }
+            let w = window(map, l);
+            for list in [&mut q.missing, &mut q.stale] {
+                *list = list.iter().filter_map(|s| intersect(*s, w)).collect();
+            }
+        }
+    }
+
+    /// Takes the rectangles one frame lights: at most `budget` texels (at least one row, so
+    /// the queue always moves) in at most `max_rects` rectangles, coarsest level first, each
+    /// level's missing light before its stale light. `usable(l)` says whether level `l`'s
+    /// heights are all baked; a level is lit only when it and every coarser active level are.
+    pub fn take(
+        &mut self,
+        map: &Clipmap,
+        budget: u64,
+        max_rects: usize,
+        usable: impl Fn(usize) -> bool,
+    ) -> Vec<Strip> {
+        self.prune(map);
+        let mut out = Vec::new();
+        let mut left = budget.max(1);
+        for l in (0..self.levels.len()).rev() {
+            if !map.levels[l].active {
+                continue;
+            }
+            if !usable(l) {
+                break;
+            }
+            let w = window(map, l);
+            let q = &mut self.levels[l];
+            if q.all_missing {
+                q.all_missing = false;
+                q.missing = vec![w];
+                q.all_stale = false;
+                q.stale.clear();
+            }
+            if q.all_stale {
+                q.all_stale = false;
+                q.stale = vec![w];
+            }
+            for list in [&mut q.missing, &mut q.stale] {
+                while left > 0 && out.len() < max_rects {
+                    let Some(s) = list.pop() else {
+                        break;
+                    };
+                    if area(&s) <= left {
+                        left -= area(&s);
+                        out.push(s);
+                        continue;
+                    }
+                    // A band of whole rows within what is left (one row at least), the rest
+                    // back on the list.
+                    let rows = (left / u64::from(s.extent[0])).clamp(1, u64::from(s.extent[1]));
+                    let rows = rows as u32;
+                    let mut band = s;
+                    band.extent[1] = rows;
+                    out.push(band);
+                    left = left.saturating_sub(area(&band));
+                    if rows < s.extent[1] {
+                        let mut rest = s;
+                        rest.origin[1] += rows as i32;
+                        rest.extent[1] -= rows;
+                        list.push(rest);
+                    }
+                }
+            }
+            if left == 0 || out.len() >= max_rects {
+                break;
+            }
+        }
+        out
+    }
+
+    /// The level whose light level `l` is drawn with: `l` where its square holds light
+    /// everywhere, else the finest coarser active level that does, else [`NO_LIGHT`].
+    pub fn light_from(&self, map: &Clipmap, l: usize) -> u32 {
+        (l..self.levels.len())
+            .find(|&j| map.levels[j].active && self.levels[j].has_light())
+            .map_or(NO_LIGHT, |j| j as u32)
+    }
+
+    /// Texels still to light (missing or stale) over the active levels.
+    pub fn pending_texels(&self, map: &Clipmap) -> u64 {
+        let whole = u64::from(map.side()).pow(2);
+        self.levels
+            .iter()
+            .enumerate()
+            .filter(|(l, _)| map.levels[*l].active)
+            .map(|(_, q)| {
+                let missing = if q.all_missing {
+                    whole
+                } else {
+                    q.missing.iter().map(area).sum()
+                };
+                let stale = if q.all_stale {
+                    whole
+                } else {
+                    q.stale.iter().map(area).sum()
+                };
+                missing + stale
+            })
+            .sum()
+    }
+}
