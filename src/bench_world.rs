@@ -711,7 +711,7 @@ where
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
-            .x_label_formatter(&|v| tick_label(*v / 1e6) + "M")
+            .x_label_formatter(&|v| count_label(*v))
             .y_label_formatter(&|v| tick_label(*v))
             .x_desc("triangles drawn (log)")
             .y_desc(desc)
@@ -956,6 +956,17 @@ fn knob_labels(
     labels
 }
 
+/// A count as a tick reads it: 500, 2k, 1.5M.
+fn count_label(v: f64) -> String {
+    let (scaled, unit) = match v.abs() {
+        a if a >= 1e6 => (v / 1e6, "M"),
+        a if a >= 1e3 => (v / 1e3, "k"),
+        _ => (v, ""),
+    };
+    let text = format!("{scaled:.1}");
+    format!("{}{unit}", text.trim_end_matches('0').trim_end_matches('.'))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1069,5 +1080,13 @@ mod tests {
         assert_eq!(text(0), Some("0.5, 1, 2, 4 px"));
         assert!(labels[1..4].iter().all(Option::is_none));
         assert_eq!(text(4), Some("8 px"));
+    }
+
+    #[test]
+    fn counts_read_as_counts() {
+        assert_eq!(super::count_label(2000.0), "2k");
+        assert_eq!(super::count_label(1_500_000.0), "1.5M");
+        assert_eq!(super::count_label(500.0), "500");
+        assert_eq!(super::count_label(0.0), "0");
     }
 }

@@ -63,7 +63,14 @@ impl OrbitCamera {
         };
         let view = Mat4::look_at_rh(eye, self.target, Vec3::Y);
         let near = (self.distance * 0.01).max(0.001);
-        let proj = Mat4::perspective_rh(self.fov_y, aspect, near, self.distance + 10.0);
+        // A viewport taller than wide keeps the horizontal field of a square one, so the tile
+        // is not cut at its sides (a phone held upright); a wide one keeps the vertical field.
+        let fov_y = if aspect < 1.0 {
+            2.0 * ((self.fov_y * 0.5).tan() / aspect).atan()
+        } else {
+            self.fov_y
+        };
+        let proj = Mat4::perspective_rh(fov_y, aspect, near, self.distance + 10.0);
         View {
             view_proj: proj * view,
             eye,
@@ -306,6 +313,40 @@ mod tests {
         let v = cam.view(16.0 / 9.0);
         let c = v.view_proj.project_point3(cam.target);
         assert!(c.x.abs() < 1e-5 && c.y.abs() < 1e-5 && (0.0..1.0).contains(&c.z));
+    }
+
+    #[test]
+    fn a_tall_viewport_keeps_the_tile_within_its_sides() {
+        // The tile's corners, seen from the default orbit: wherever they land on a square
+        // viewport, they land within the same horizontal extent on an upright one.
+        let cam = OrbitCamera::default();
+        let corners =
+            [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)].map(|(x, z)| Vec3::new(x, 0.0, z));
+        let widest = |aspect: f32| {
+            let v = cam.view(aspect);
+            corners
+                .iter()
+                .map(|&p| v.view_proj.project_point3(p).x.abs())
+                .fold(0.0f32, f32::max)
+        };
+        for aspect in [0.5f32, 0.75, 0.9] {
+            assert!(
+                (widest(aspect) - widest(1.0)).abs() < 1e-4,
+                "aspect {aspect}"
+            );
+        }
+        // A wide viewport is as it was: the vertical field fixed.
+        let wide = cam.view(16.0 / 9.0).view_proj;
+        let proj = Mat4::perspective_rh(
+            cam.fov_y,
+            16.0 / 9.0,
+            (cam.distance * 0.01).max(0.001),
+            cam.distance + 10.0,
+        );
+        assert_eq!(
+            wide,
+            proj * Mat4::look_at_rh(cam.eye(), cam.target, Vec3::Y)
+        );
     }
 
     #[test]

@@ -192,7 +192,16 @@ impl Choice {
                 c.flags()
             ),
             Why::Measured { ms, frames, size } => {
-                let times: Vec<String> = ms.iter().map(|(c, t)| format!("{c} {t:.3} ms")).collect();
+                let times: Vec<String> = ms
+                    .iter()
+                    .map(|(c, t)| {
+                        if t.is_finite() {
+                            format!("{c} {t:.3} ms")
+                        } else {
+                            format!("{c} not measured (the trial stops after 10 s)")
+                        }
+                    })
+                    .collect();
                 format!(
                     "method {c} ({}), the fastest draw measured on {device} at {}x{} (median of \
                      {frames} frames each, a method {:.0}% faster to replace one listed before \

@@ -1592,12 +1592,11 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             let ground = params.land.height_at(view.eye.x, view.eye.z);
             if view.eye.y <= ground {
                 return Err(Error::Usage(format!(
-                    "the eye {},{},{} is under the ground, which is at {} m there: give an \
-                     --eye (or [camera] eye) above it",
+                    "the eye {},{},{} is under the ground, which is at {ground:.1} m there: \
+                     give an --eye (or [camera] eye) above it",
                     table::number(view.eye.x),
                     table::number(view.eye.y),
                     table::number(view.eye.z),
-                    format!("{ground:.1}")
                 )));
             }
             let gpu = Gpu::new()?;
@@ -1688,31 +1687,51 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
         options.height
     );
     let created = create_dirs(dir)?;
-    // The look's cost first (it is short), then the LOD sweep.
-    let look = || -> Result<()> {
-        let rows = crate::bench_look::run(&gpu, params, &options, |what| {
+    // Progress on stderr where a person watches it, never into a file.
+    let progress = |what: &str| {
+        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
             eprint!("\r\x1b[K{what}");
-        })?;
-        eprint!("\r\x1b[K");
+        }
+    };
+    let done = || progress("");
+    let wrote = |name: &str, rows: usize| {
+        println!("{} rows in {}", rows, dir.join(name).display());
+    };
+    // The look's cost first (it is short), then the LOD sweep, then the arrival.
+    let look = || -> Result<()> {
+        let rows = crate::bench_look::run(&gpu, params, &options, progress)?;
+        done();
         let csv = crate::bench_look::csv(&rows, &gpu.describe(), &options);
-        print!("{csv}");
-        write_whole(&dir.join("look.csv"), &csv)
+        write_whole(&dir.join("look.csv"), &csv)?;
+        wrote("look.csv", rows.len());
+        Ok(())
     };
     let sweep = || -> Result<()> {
-        let rows = crate::bench_world::run(&gpu, params, knobs, &options, |what| {
-            eprint!("\r\x1b[K{what}");
-        })?;
-        eprint!("\r\x1b[K");
+        let rows = crate::bench_world::run(&gpu, params, knobs, &options, progress)?;
+        done();
         let csv = crate::bench_world::csv(&rows, &gpu.describe(), &options);
-        print!("{csv}");
         let title = format!(
             "relief: the endless world's LOD on {} (knob in px beside each point)",
             gpu.describe()
         );
         write_whole(&dir.join("landscape.csv"), &csv)?;
+        wrote("landscape.csv", rows.len());
         crate::bench_world::chart(&rows, &title, &dir.join("landscape"))
     };
-    let result = look().and_then(|()| sweep());
+    let arrival = || -> Result<()> {
+        progress("arrival");
+        let size = (options.width, options.height);
+        let frames = crate::bench_arrival::run(&gpu, params, size, if quick { 12 } else { 600 })?;
+        done();
+        let csv = crate::bench_arrival::csv(&frames, &gpu.describe(), size);
+        write_whole(&dir.join("arrival.csv"), &csv)?;
+        wrote("arrival.csv", frames.len());
+        for line in crate::bench_arrival::summary(&frames) {
+            println!("{line}");
+        }
+        Ok(())
+    };
+    let result = look().and_then(|()| sweep()).and_then(|()| arrival());
     if result.is_err() {
         if let Some(c) = created {
             let _ = std::fs::remove_dir_all(c);
@@ -2369,10 +2388,13 @@ fn stability(
             stability::motion::MotionOptions::full()
         };
         println!(
-            "motion over the default endless world: {:?} m a frame, knobs {} and {:?} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
+            "motion over the default endless world: {:?} m a frame, knobs {} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
             options.speeds,
-            world.pixel_error,
-            options.knobs,
+            std::iter::once(world.pixel_error)
+                .chain(options.knobs.iter().copied())
+                .map(|k| k.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
             options.frames,
             options.size.0,
             options.size.1,

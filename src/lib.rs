@@ -80,6 +80,8 @@ pub mod app;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod bench_arrival;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench_look;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench_world;

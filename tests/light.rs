@@ -209,3 +209,68 @@ fn turning_the_sun_moves_the_shadows_and_the_truth_of_another_sun_disagrees() {
         100.0 * share
     );
 }
+
+#[test]
+fn a_light_budget_lights_coarse_levels_first_and_ends_as_a_whole_bake() {
+    // The light keeps to its per-frame budget (the window's arrival on a slow device): every
+    // frame draws, a level without its light borrows a coarser level's, and once nothing
+    // waits the frame is the still frame's, byte for byte. Then a turned sun: the old light
+    // is drawn until the new is baked, which again ends as a whole bake.
+    let gpu = common::gpu();
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let frames_until_done = |w: &mut World, v: &WorldView, budget: u64| {
+        let side = u64::from(w.clipmap().side());
+        let (mut frames, mut partial) = (0, 0);
+        let last = loop {
+            let (pixels, _) = target.render_world_budgeted(&gpu, w, v).unwrap();
+            let s = w.stats();
+            assert!(s.light_texels <= budget.max(side), "{s:?}");
+            assert!(pixels.iter().any(|&b| b != 0));
+            if s.light_pending > 0 {
+                partial += 1;
+            }
+            frames += 1;
+            if w.pending_texels() == 0 || frames > 400 {
+                break pixels;
+            }
+        };
+        assert_eq!(w.pending_texels(), 0, "still waiting after {frames} frames");
+        (partial, last)
+    };
+    for azimuth in [200.0, 290.0] {
+        let p = params(azimuth, 8.0);
+        let v = view(&p.land);
+        let whole = {
+            let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+            target.render_world(&gpu, &mut w, &v, None).unwrap().0
+        };
+        let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+        // The first frame lays the levels out for the view, lighting a row.
+        w.set_light_budget(1);
+        target.render_world_budgeted(&gpu, &mut w, &v).unwrap();
+        assert_eq!(w.stats().light_texels, u64::from(w.clipmap().side()));
+        // Then a quarter of a level a frame: a few frames for each level.
+        let budget = u64::from(w.clipmap().side()).pow(2) / 4;
+        w.set_light_budget(budget);
+        if azimuth == 290.0 {
+            // Lit for another sun first: the turn relights every level.
+            let before = params(200.0, 8.0);
+            w.set_params(&gpu.device, before).unwrap();
+            w.set_light_budget(u64::MAX);
+            target.render_world_budgeted(&gpu, &mut w, &v).unwrap();
+            assert_eq!(w.pending_texels(), 0);
+            w.set_light_budget(budget);
+            w.set_params(&gpu.device, p).unwrap();
+        }
+        let (partial, last) = frames_until_done(&mut w, &v, budget);
+        assert!(
+            partial >= 3,
+            "azimuth {azimuth}: {partial} frames with light waiting"
+        );
+        let differ = last.iter().zip(&whole).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            differ, 0,
+            "azimuth {azimuth}: {differ} bytes differ from the whole bake"
+        );
+    }
+}

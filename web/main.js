@@ -45,11 +45,38 @@ function buildControls(rows) {
   }
 }
 
+// A slider spans the comfortable part of a parameter's range (relief's table); the URL may
+// set any value of the whole range. A value in force outside the slider, or between its steps,
+// widens it or refines its step, so the slider shows what is drawn (a slider left at its end
+// would change the terrain at the first nudge).
+function showOnSlider(input, v) {
+  const x = Number(v);
+  if (!Number.isFinite(x)) return;
+  if (x < Number(input.min)) input.min = v;
+  if (x > Number(input.max)) input.max = v;
+  input.value = v;
+  if (Number(input.value) === x) return;
+  // Whole numbers keep whole steps (an integer parameter refuses fractions).
+  input.step = Number.isInteger(x) && Number.isInteger(Number(input.step)) ? "1" : "any";
+  input.value = v;
+  if (Number(input.value) !== x) { input.step = "any"; input.value = v; }
+}
+
 function showValues(values) {
   for (const input of document.querySelectorAll("#params [data-key]")) {
-    const v = values[input.dataset.key];
+    const key = input.dataset.key;
+    const v = values[key];
+    // relief leaves out of its query the keys the method does not read (the blog's pipeline
+    // has its own seed; the ray casters no texture size or grid): their controls rest. The
+    // method itself is left out where it is the mesh.
+    if (key !== "method") {
+      input.disabled = v === undefined;
+      input.parentElement.classList.toggle("unread", v === undefined);
+      input.title = v === undefined ? "the method drawn does not read this" : "";
+    }
     if (v === undefined) continue;
     if (input.type === "checkbox") input.checked = v === "1" || v === "true";
+    else if (input.type === "range") showOnSlider(input, v);
     else input.value = v;
     const out = input.parentElement.querySelector("output");
     if (out) out.textContent = v;
@@ -99,7 +126,9 @@ async function main() {
   // value puts the control back to the value in force).
   window.addEventListener("relief-options", () => {
     const query = document.body.dataset.query || "";
-    showValues(parseQuery(query));
+    const values = parseQuery(query);
+    showValues(values);
+    if (!$("#controls").classList.contains("stopped")) $("#reseed").disabled = values.seed === undefined;
     history.replaceState(null, "", `${location.pathname}?${query}`);
   });
   window.addEventListener("relief-stopped", () => {
@@ -109,12 +138,23 @@ async function main() {
   });
   relief.start("relief", location.search);
 
+  // The panel is a form for its layout and keyboard behaviour only: it never submits (Enter in
+  // a field of a form submits it, which reloaded the page at a bare "/?" with every setting lost).
+  $("#controls").addEventListener("submit", (e) => e.preventDefault());
   for (const input of document.querySelectorAll("#params [data-key]")) {
     const send = () => {
       const value = input.type === "checkbox" ? (input.checked ? "1" : "0") : input.value;
       relief.set_param(input.dataset.key, value);
     };
     input.addEventListener(input.type === "range" ? "input" : "change", send);
+    // Enter in a field commits its value, as leaving it does.
+    if (input.tagName === "INPUT" && input.type !== "checkbox") {
+      input.addEventListener("keydown", (e) => {
+        if (e.key !== "Enter") return;
+        e.preventDefault();
+        send();
+      });
+    }
   }
   $("#switch-world").addEventListener("click", () => {
     location.search = endless ? "" : "?world=endless";
@@ -123,13 +163,24 @@ async function main() {
     const seed = (Math.random() * 4294967295) >>> 0;
     relief.set_param("seed", String(seed));
   });
+  let copied = 0;
   $("#copy-link").addEventListener("click", async () => {
     try {
       await navigator.clipboard.writeText(location.href);
       $("#copy-link").textContent = "link copied";
+      // Back to its name, so a second copy (of a changed URL) says so again.
+      clearTimeout(copied);
+      copied = setTimeout(() => { $("#copy-link").textContent = "copy link"; }, 2000);
     } catch {
       prompt("Copy this link:", location.href);
     }
+  });
+  // The panel folds to its toggle, so a small screen sees the terrain.
+  $("#toggle-panel").addEventListener("click", () => {
+    const folded = $("#controls").classList.toggle("folded");
+    $("#toggle-panel").textContent = folded ? "controls" : "hide";
+    $("#toggle-panel").setAttribute("aria-expanded", String(!folded));
+    $("#toggle-panel").title = folded ? "show the controls" : "hide the controls";
   });
 }
 

@@ -13,6 +13,7 @@
 //! asynchronously (`web.rs`), and each reports to its user its own way ([`Report`]).
 
 mod options;
+mod pacer;
 mod state;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
@@ -122,6 +123,9 @@ pub struct Stats {
     /// GPU work; not the GPU's time, nor the wait for the surface's next texture and its
     /// present), mean over the frames of the last half second, ms.
     pub cpu_ms: Option<f64>,
+    /// While the endless world's levels or their light are still being baked (over the
+    /// per-frame budgets, coarse levels first), how far along, in percent.
+    pub baking: Option<u32>,
 }
 
 /// What the app tells its user, one way per platform: native prints lines, the page writes
@@ -141,6 +145,8 @@ pub trait Report {
     fn chosen(&mut self, _choice: &crate::choice::Choice, _line: &str) {}
     /// A frame was presented.
     fn frame(&mut self, _stats: &Stats) {}
+    /// A bake that took several frames is done: `ms` and `frames` since it began.
+    fn baked(&mut self, _ms: f64, _frames: u64) {}
     /// The app stopped on an error.
     fn fatal(&mut self, message: &str);
 }
@@ -205,6 +211,11 @@ impl Report for Terminal {
     }
     fn warn(&mut self, message: &str) {
         eprintln!("{}", one_line(&format!("warning: {message}")));
+    }
+    fn baked(&mut self, ms: f64, frames: u64) {
+        if self.timings {
+            println!("baked: every level and its light in {ms:.0} ms over {frames} frames");
+        }
     }
     fn chosen(&mut self, choice: &crate::choice::Choice, line: &str) {
         // With --timings the whole line, as `relief render` prints it; else which, in short.
@@ -282,6 +293,15 @@ pub struct App {
     proxy: EventLoopProxy<UserEvent>,
     /// The fog the F key turns back on.
     fog_off: f32,
+    /// The endless world's per-frame bake budgets, scaled to the device's pace.
+    pacer: pacer::Pacer,
+    /// How far the bake in progress has come.
+    progress: pacer::Progress,
+    /// When the bake in progress began, and the frames drawn then.
+    baking_since: Option<(Instant, u64)>,
+    /// The last frame drawn: its interval from the one before (ms), whether it baked, and the
+    /// texels still waiting after it.
+    last_bake: Option<(f64, bool, u64)>,
 }
 
 impl App {
@@ -323,6 +343,10 @@ impl App {
             report,
             proxy,
             fog_off: crate::sky::Sky::default().fog,
+            pacer: pacer::Pacer::default(),
+            progress: pacer::Progress::default(),
+            baking_since: None,
+            last_bake: None,
         }
     }
 
@@ -634,6 +658,9 @@ impl App {
         if let Some(world) = &mut s.world {
             // The water's ripples move on while frames come (an idle window draws none).
             world.set_time(self.started.elapsed().as_secs_f32());
+            let (heights, light) = self.pacer.budgets();
+            world.set_bake_budget(heights);
+            world.set_light_budget(light);
         }
         let drawn = s.draw(&view, self.fly.as_ref(), timed, self.options.method);
         if drawn == Drawn::SurfaceLost {
@@ -661,6 +688,15 @@ impl App {
             self.cpu_window.1 += 1;
             self.surface_losses = 0;
             self.stats.frames += 1;
+            let interval_ms = now.duration_since(self.last_frame).as_secs_f64() * 1e3;
+            self.last_bake = Some(match &s.world {
+                Some(w) => {
+                    let st = w.stats();
+                    let baked = st.texels_baked + st.light_texels > 0;
+                    (interval_ms, baked, w.pending_texels())
+                }
+                None => (interval_ms, false, s.terrain.pending_texels()),
+            });
             self.last_frame = now;
             if timed {
                 self.timing_in_flight = true;
@@ -719,7 +755,41 @@ impl App {
                 self.report.options(&self.options);
             }
         }
+        self.bake_progress(now);
         self.report.frame(&self.stats);
+    }
+
+    /// After a frame: paces the next frame's bake, and says how far the bake has come (in the
+    /// title, the page's readout, and once done with `--timings`).
+    fn bake_progress(&mut self, now: Instant) {
+        let Some((interval_ms, baked, pending)) = self.last_bake.take() else {
+            return;
+        };
+        if self.stats.frames > 1 {
+            self.pacer.frame(interval_ms, baked);
+        }
+        let before = self.stats.baking;
+        self.stats.baking = self.progress.update(pending);
+        match (before, self.stats.baking) {
+            // The first bake counts from the app's start (the device, pipelines and the first
+            // frame included): the wait a user sees on arrival.
+            (None, Some(_)) if self.stats.frames <= 1 => {
+                self.baking_since = Some((self.started, 0))
+            }
+            (None, Some(_)) => self.baking_since = Some((now, self.stats.frames)),
+            (Some(_), None) => {
+                if let Some((t0, f0)) = self.baking_since.take() {
+                    let ms = now.duration_since(t0).as_secs_f64() * 1e3;
+                    self.report.baked(ms, self.stats.frames - f0);
+                }
+            }
+            _ => {}
+        }
+        if before != self.stats.baking {
+            if let Some(w) = &self.window {
+                w.set_title(&self.title());
+            }
+        }
     }
 
     fn touch(&mut self, id: u64, phase: TouchPhase, x: f64, y: f64) {
@@ -828,9 +898,13 @@ impl App {
         } else {
             method
         };
+        let baking = self
+            .stats
+            .baking
+            .map_or(String::new(), |p| format!(" · baking {p}%"));
         match &o.world {
             Some((w, _)) => format!(
-                "relief: {method} (M) · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
+                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
                 w.land.seed,
                 w.sky.sun_azimuth,
                 w.sky.sun_elevation,
@@ -838,7 +912,7 @@ impl App {
                 if w.no_water { "off" } else { "on" }
             ),
             None => format!(
-                "relief: {method} (M) · seed {} · octaves {} · frequency {}",
+                "relief: {method} (M){baking} · seed {} · octaves {} · frequency {}",
                 o.params.seed, o.params.octaves, o.params.frequency
             ),
         }

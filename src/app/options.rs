@@ -261,6 +261,26 @@ impl AppOptions {
                 });
             }
         }
+        // Keys the method does not read are refused with it, as `relief render --method`
+        // refuses them (the method may come after them in the URL): the value in force stays.
+        let method = self.method;
+        for (k, _) in &pairs {
+            let Some(row) = crate::params::param(k) else {
+                continue;
+            };
+            let key = crate::table::shorten(k);
+            if method.unread_keys().contains(&row.key) && !ignored.iter().any(|i| i.key == key) {
+                (row.set)(&mut scene, (row.get)(&self.params));
+                ignored.push(Ignored {
+                    reason: format!(
+                        "{} does not apply to method {method}: {}",
+                        row.key,
+                        unread_why(method)
+                    ),
+                    key,
+                });
+            }
+        }
         match scene.validate() {
             Ok(()) => self.params = scene,
             Err(e) => {
@@ -268,19 +288,23 @@ impl AppOptions {
                 // gave (octaves if it gave both), keep the rest, and say why.
                 let gave = |key: &str| pairs.iter().any(|(k, _)| k.trim().replace('-', "_") == key);
                 let mut fixed = scene;
-                let key = if gave("octaves") || !gave("frequency") {
+                let (key, reason) = if gave("octaves") || !gave("frequency") {
                     fixed.octaves = self
                         .params
                         .octaves
                         .min(crate::params::max_octaves_for(fixed.frequency));
-                    "octaves"
+                    ("octaves", e.to_string())
                 } else {
                     fixed.frequency = self.params.frequency;
-                    "frequency"
+                    // The error names the octaves: say which key was undone.
+                    (
+                        "frequency",
+                        format!("frequency kept at {}: {e}", fixed.frequency),
+                    )
                 };
                 ignored.push(Ignored {
                     key: key.into(),
-                    reason: e.to_string(),
+                    reason,
                 });
                 if fixed.validate().is_ok() {
                     self.params = fixed;
@@ -428,7 +452,11 @@ impl AppOptions {
                 .collect::<Vec<_>>()
                 .join("&");
         }
-        let scene = params().map(|p| (p.key, (p.get)(&self.params)));
+        // Keys the method does not read are left out: its URL reads back without a refusal.
+        let unread = self.method.unread_keys();
+        let scene = params()
+            .filter(|p| !unread.contains(&p.key))
+            .map(|p| (p.key, (p.get)(&self.params)));
         let window = OPTIONS.iter().map(|p| (p.key, (p.get)(self)));
         // The mesh, the default, is not written: URLs from before the key stay the same.
         let method = (self.method != crate::Method::Mesh).then(|| (METHOD.key, (METHOD.get)(self)));
@@ -452,6 +480,16 @@ impl AppOptions {
     /// Whether the picture changes by itself (the scroll runs).
     pub fn animating(&self) -> bool {
         !self.paused && self.speed != 0.0
+    }
+}
+
+/// Why a method's [`crate::Method::unread_keys`] do not apply to it, in the words of
+/// `relief render --method`'s refusal (src/cli.rs).
+fn unread_why(method: crate::Method) -> &'static str {
+    if method == crate::Method::Blog {
+        "the blog's pipeline bakes its own noise into its own texture and grid"
+    } else {
+        "the ray casters draw the continuous surface, not a baked mesh"
     }
 }
 
@@ -580,6 +618,31 @@ mod tests {
             ignored[3].reason
         );
         assert!(ignored[0].reason.contains("abc") && ignored[0].reason.contains("0..=4294967295"));
+    }
+
+    #[test]
+    fn keys_the_method_does_not_read_are_refused_with_it() {
+        let mut o = AppOptions::default();
+        let ignored = o.apply_query("seed=3&method=blog&height_scale=0.8");
+        assert_eq!(ignored.len(), 1, "{ignored:?}");
+        assert_eq!(ignored[0].key, "seed");
+        let reason = &ignored[0].reason;
+        assert!(
+            reason.starts_with("seed does not apply to method blog: "),
+            "{reason}"
+        );
+        assert_eq!(o.method, crate::Method::Blog);
+        assert_eq!(o.params.seed, TerrainParams::default().seed);
+        assert_eq!(o.params.height_scale, 0.8);
+        // Its own URL leaves those keys out, so it reads back without a refusal.
+        let q = o.to_query();
+        assert!(!q.contains("seed="), "{q}");
+        let mut again = AppOptions::default();
+        assert_eq!(again.apply_query(&q), [], "{q}");
+        assert_eq!(again, o);
+        let ignored = AppOptions::default().apply_query("method=raymarch&size=64&grid=64");
+        let keys: Vec<&str> = ignored.iter().map(|i| i.key.as_str()).collect();
+        assert_eq!(keys, ["size", "grid"], "{ignored:?}");
     }
 
     #[test]

@@ -40,9 +40,17 @@ pub fn start(canvas_id: &str, query: &str) -> Result<(), JsValue> {
     };
     let ignored = options.apply_query(query);
     if !ignored.is_empty() {
+        // A reason names its key ("invalid seed: abc (allowed: ...)"): the key goes before
+        // it only where it does not.
         let list: Vec<String> = ignored
             .iter()
-            .map(|i| format!("{}: {}", i.key, i.reason))
+            .map(|i| {
+                if i.reason.contains(i.key.as_str()) {
+                    i.reason.clone()
+                } else {
+                    format!("{}: {}", i.key, i.reason)
+                }
+            })
             .collect();
         set_text(
             "notice",
@@ -210,10 +218,13 @@ impl Report for Page {
         if let Some(ms) = stats.cpu_ms {
             set_body_data("cpu_ms", &format!("{ms:.3}"));
         }
+        let baking = stats
+            .baking
+            .map_or(String::new(), |p| format!("baking… {p}% · "));
         let text = if stats.idle {
             format!("{method}idle: drawn only on change · last frame {gpu}{cpu}")
         } else {
-            format!("{method}{:.0} fps · {gpu}{cpu}", stats.fps)
+            format!("{baking}{method}{:.0} fps · {gpu}{cpu}", stats.fps)
         };
         set_text("readout", &text);
         set_body_data("idle", if stats.idle { "1" } else { "0" });
@@ -251,6 +262,19 @@ impl Report for Page {
 
     fn frame(&mut self, stats: &Stats) {
         set_body_data("frames", &stats.frames.to_string());
+        let baking = stats.baking.map_or(String::new(), |p| p.to_string());
+        if document()
+            .and_then(|d| d.body())
+            .and_then(|b| b.dataset().get("baking"))
+            != Some(baking.clone())
+        {
+            set_body_data("baking", &baking);
+            if let Some(p) = stats.baking {
+                // Shown at once, not at the next half-second readout: the first frames of an
+                // endless world on a slow device are the ones a user waits through.
+                set_text("readout", &format!("baking… {p}%"));
+            }
+        }
         if stats.frames == 1 {
             // From the page's navigation to its first frame submitted: download, compile,
             // adapter and device, pipelines, the first bake and draw.
@@ -258,6 +282,11 @@ impl Report for Page {
                 set_body_data("first_frame_ms", &format!("{:.0}", p.now()));
             }
         }
+    }
+
+    fn baked(&mut self, ms: f64, frames: u64) {
+        set_body_data("baked_ms", &format!("{ms:.0}"));
+        set_body_data("baked_frames", &frames.to_string());
     }
 
     fn fatal(&mut self, message: &str) {

@@ -381,6 +381,10 @@ impl TrialScene<'_> {
 pub const TRIAL_WARM_UP_MS: f64 = 300.0;
 /// ... and at least this many frames.
 pub const TRIAL_WARM_UP: u32 = 2;
+/// The trial measures no further candidate once this long has passed (the first is always
+/// measured): on a software device a candidate can take tens of seconds.
+pub const TRIAL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// Timed frames of each candidate; their median decides.
 pub const TRIAL_FRAMES: u32 = 5;
 
@@ -418,7 +422,14 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
         TrialScene::Endless(world, _) => (None, world.target_size()),
     };
     let mut ms = Vec::new();
+    let started = std::time::Instant::now();
     for &c in Candidate::all(world) {
+        if started.elapsed() > TRIAL_LIMIT && !ms.is_empty() {
+            // A slow device (a software one) would spend minutes on the rest: they stay
+            // unmeasured, and the choice is among those measured.
+            ms.push((c, f64::NAN));
+            continue;
+        }
         scene.set(&gpu.device, c)?;
         let samples = render_samples(c.method);
         let target = Offscreen::new(&gpu.device, size.0, size.1, samples)?;
@@ -446,14 +457,19 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                     ..**view
                 };
                 world.set_target_size(None);
-                let budget = world.bake_budget();
+                let budgets = (world.bake_budget(), world.light_budget());
+                let restore = |world: &mut World| {
+                    world.set_bake_budget(budgets.0);
+                    world.set_light_budget(budgets.1);
+                };
                 world.set_bake_budget(u64::MAX);
+                world.set_light_budget(u64::MAX);
                 let baked = bake_in_passes(gpu, None, |encoder, timer| {
                     world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, &view, timer)?;
                     Ok(world.pending_texels())
                 });
                 if let Err(e) = baked {
-                    world.set_bake_budget(budget);
+                    restore(world);
                     return Err(e);
                 }
                 let sky = world.shading().sky_color;
@@ -468,7 +484,7 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                         world.prepare(&gpu.queue, &view);
                         target.draw(encoder, &**world, clear, timer);
                     });
-                world.set_bake_budget(budget);
+                restore(world);
                 measured?
             }
         };
@@ -521,7 +537,9 @@ fn bake_in_passes(
     timer: Option<&GpuTimer>,
     mut step: impl FnMut(&mut wgpu::CommandEncoder, Option<&GpuTimer>) -> Result<u64>,
 ) -> Result<()> {
-    for pass in 0..crate::clipmap::MAX_LEVELS {
+    // Each pass bakes at most as many rectangles as one pass's slots hold: a few passes for
+    // the heights, then the light, level by level, coarsest first.
+    for pass in 0..4 * crate::clipmap::MAX_LEVELS {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let waiting = step(&mut encoder, timer.filter(|_| pass == 0));
         gpu.queue.submit([encoder.finish()]);
@@ -976,14 +994,17 @@ impl Offscreen {
         // A tile of a larger image is drawn through the view's crop into this target.
         world.set_target_size(Some((self.width, self.height)));
         if whole {
-            // A still frame is drawn whole: everything the view uncovered is baked first.
-            let budget = world.bake_budget();
+            // A still frame is drawn whole: everything the view uncovered is baked and lit
+            // first.
+            let budgets = (world.bake_budget(), world.light_budget());
             world.set_bake_budget(u64::MAX);
+            world.set_light_budget(u64::MAX);
             let baked = bake_in_passes(gpu, timer, |encoder, timer| {
                 world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
                 Ok(world.pending_texels())
             });
-            world.set_bake_budget(budget);
+            world.set_bake_budget(budgets.0);
+            world.set_light_budget(budgets.1);
             baked?;
         }
         let world = std::cell::RefCell::new(world);

@@ -181,9 +181,17 @@ impl LightQueue {
                         out.push(s);
                         continue;
                     }
-                    // A band of whole rows within what is left (one row at least), the rest
-                    // back on the list.
-                    let rows = (left / u64::from(s.extent[0])).clamp(1, u64::from(s.extent[1]));
+                    // A band of whole rows within what is left (one row where the frame has
+                    // lit nothing yet), the rest back on the list.
+                    let mut rows = (left / u64::from(s.extent[0])).min(u64::from(s.extent[1]));
+                    if rows == 0 {
+                        if !out.is_empty() {
+                            list.push(s);
+                            left = 0;
+                            break;
+                        }
+                        rows = 1;
+                    }
                     let rows = rows as u32;
                     let mut band = s;
                     band.extent[1] = rows;
@@ -233,5 +241,156 @@ impl LightQueue {
                 missing + stale
             })
             .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clipmap::Eye;
+    use crate::landscape::{Landscape, TerrainFn};
+
+    fn map_at(x: f64) -> (Clipmap, Eye) {
+        let land = Landscape {
+            seed: 7,
+            octaves: 10,
+            gain: 0.47,
+            feature_log2: 10,
+            peak_height: 600.0,
+            terrain: TerrainFn::Fbm,
+            period: 0,
+        };
+        let map = Clipmap::new(&land, 8.0, 300.0);
+        let eye = Eye {
+            position: [x, 300.0, 0.0],
+            ground: 0.0,
+            pixels_per_radian: 300.0,
+        };
+        (map, eye)
+    }
+
+    /// Texels of each level covered by `rects` (counted with repeats).
+    fn covered(map: &Clipmap, rects: &[Strip]) -> Vec<u64> {
+        let mut out = vec![0; map.levels.len()];
+        for r in rects {
+            out[r.level] += area(r);
+        }
+        out
+    }
+
+    #[test]
+    fn arrival_lights_coarse_levels_first_within_the_budget_then_everything_once() {
+        let (mut map, eye) = map_at(0.0);
+        let strips = map.update(&eye, 8.0);
+        map.take(u64::MAX, usize::MAX);
+        let mut q = LightQueue::new(map.levels.len());
+        q.set_sun(90.0);
+        q.heights_baked(&strips);
+        let n = map.levels.len();
+        let active: Vec<usize> = (0..n).filter(|&l| map.levels[l].active).collect();
+        let whole = u64::from(map.side()).pow(2);
+        assert_eq!(q.pending_texels(&map), whole * active.len() as u64);
+        // Nothing lit: every level is drawn unshadowed.
+        assert!(active.iter().all(|&l| q.light_from(&map, l) == NO_LIGHT));
+        let budget = whole / 3;
+        let mut all = Vec::new();
+        let mut frames = 0;
+        while q.pending_texels(&map) > 0 {
+            let rects = q.take(&map, budget, 96, |_| true);
+            let texels: u64 = rects.iter().map(area).sum();
+            assert!(texels <= budget, "{texels} over {budget}");
+            // The coarsest level with light lends it to every finer level still without.
+            let lit: Vec<usize> = active
+                .iter()
+                .copied()
+                .filter(|&l| q.light_from(&map, l) == l as u32)
+                .collect();
+            if let Some(&finest) = lit.first() {
+                assert!(lit.iter().all(|&l| l >= finest), "{lit:?}");
+                for &l in active.iter().filter(|&&l| l < finest) {
+                    assert_eq!(q.light_from(&map, l), finest as u32);
+                }
+            }
+            all.extend(rects);
+            frames += 1;
+            assert!(frames < 1000);
+        }
+        // Coarsest first: the first rectangle lit is of the coarsest active level.
+        assert_eq!(all[0].level, *active.last().unwrap());
+        // Every texel of every active level lit exactly once (rectangles never overlap).
+        let c = covered(&map, &all);
+        for &l in &active {
+            assert_eq!(c[l], whole, "level {l}");
+        }
+        assert!(active.iter().all(|&l| q.light_from(&map, l) == l as u32));
+    }
+
+    #[test]
+    fn a_level_waits_for_the_heights_it_reads() {
+        let (mut map, eye) = map_at(0.0);
+        map.update(&eye, 8.0);
+        map.take(u64::MAX, usize::MAX);
+        let mut q = LightQueue::new(map.levels.len());
+        q.set_sun(90.0);
+        let coarsest = (0..map.levels.len())
+            .rev()
+            .find(|&l| map.levels[l].active)
+            .unwrap();
+        // Only the coarsest level's heights are in: it alone is lit.
+        let rects = q.take(&map, u64::MAX, 96, |l| l == coarsest);
+        assert!(rects.iter().all(|r| r.level == coarsest), "{rects:?}");
+        assert!(!rects.is_empty());
+        // Nothing at all while the coarsest waits.
+        let mut q = LightQueue::new(map.levels.len());
+        q.set_sun(90.0);
+        assert!(q.take(&map, u64::MAX, 96, |_| false).is_empty());
+    }
+
+    #[test]
+    fn flying_lights_what_the_levels_uncover_and_a_turn_keeps_the_old_light_drawn() {
+        let (mut map, eye) = map_at(0.0);
+        map.update(&eye, 8.0);
+        map.take(u64::MAX, usize::MAX);
+        let mut q = LightQueue::new(map.levels.len());
+        q.set_sun(90.0);
+        while !q.take(&map, u64::MAX, 96, |_| true).is_empty() {}
+        assert_eq!(q.pending_texels(&map), 0);
+        // Moving: what the levels uncover is all that is lit, and until then the level
+        // borrows the coarser level's light.
+        let (_, far) = map_at(5000.0);
+        let strips = map.update(&far, 8.0);
+        map.take(u64::MAX, usize::MAX);
+        assert!(!strips.is_empty());
+        q.heights_baked(&strips);
+        let moved = strips[0].level;
+        if map.levels[moved].active {
+            assert_ne!(q.light_from(&map, moved), moved as u32);
+        }
+        let mut lit = Vec::new();
+        loop {
+            let r = q.take(&map, u64::MAX, 96, |_| true);
+            if r.is_empty() {
+                break;
+            }
+            lit.extend(r);
+        }
+        let uncovered: u64 = strips
+            .iter()
+            .filter(|s| map.levels[s.level].active)
+            .map(area)
+            .sum();
+        assert!(lit.iter().map(area).sum::<u64>() <= uncovered);
+        // A turned sun: every level relit, each drawn with its own (old) light meanwhile.
+        q.set_sun(120.0);
+        let whole = u64::from(map.side()).pow(2);
+        let active = (0..map.levels.len()).filter(|&l| map.levels[l].active);
+        assert_eq!(
+            q.pending_texels(&map),
+            whole * active.clone().count() as u64
+        );
+        assert!(active.clone().all(|l| q.light_from(&map, l) == l as u32));
+        // Forgetting the light (nothing read it) makes every level unshadowed again.
+        q.forget();
+        assert!(active.clone().all(|l| q.light_from(&map, l) == NO_LIGHT));
     }
 }

@@ -313,7 +313,7 @@ pub const DEFAULT_BAKE_BUDGET: u64 = 1 << 21;
 /// bake's time a texel is several of the height bake's: docs/results has the measured split).
 /// Arrival, a new layout or a turned sun (every level relit) is spread over frames, coarse
 /// levels first, each level drawn with a coarser level's light until its own is done.
-pub const DEFAULT_LIGHT_BUDGET: u64 = 1 << 19;
+pub const DEFAULT_LIGHT_BUDGET: u64 = 1 << 18;
 
 /// Instances the patch buffer holds: every patch of every level.
 const MAX_PATCHES: usize = MAX_LEVELS * (PATCHES * PATCHES) as usize;

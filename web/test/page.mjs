@@ -3,11 +3,13 @@
 //      web/test-output/page.png for run.sh to compare with `relief render` (FLIP);
 //   2. no console errors;
 //   3. changing a control (the seed) re-bakes and changes the picture, and the URL it leaves
-//      reproduces that picture in a fresh page;
+//      reproduces that picture in a fresh page; Enter in a field applies it, never reloads;
 //   4. a URL with bad entries keeps the good ones and lists the bad ones on the page, a refused
 //      control value snaps back, a paused page stops drawing and says it is idle, animated
 //      offsets stay short in the URL, the buttons fit the panel, and every row of relief's
-//      parameter table reaches the page through its URL;
+//      parameter table reaches the page through its URL; a slider shows a value in force beyond
+//      its span; a key the method does not read is refused with a notice; "copy link" comes
+//      back; the panel folds;
 //   5. without --enable-unsafe-webgpu the page shows the no-WebGPU message, panel hidden;
 //   6. with WebGPU that cannot present (no SwiftShader flags), the device is lost on the first
 //      frame: the page says so, tries a new device once, then says it stopped;
@@ -72,6 +74,20 @@ async function openPage(browser, url, errors) {
   const page = await browser.newPage({ viewport: { width: W, height: H }, deviceScaleFactor: 1 });
   page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
   page.on("pageerror", (e) => errors.push(String(e)));
+  // The page's thread, watched from inside: the longest gap between 20 ms ticks is the longest
+  // time it was held (by relief's frames, or anything else), and whether "baking" was shown.
+  await page.addInitScript(() => {
+    window.__longestHeldMs = 0;
+    window.__sawBaking = false;
+    let last = performance.now();
+    setInterval(() => {
+      const now = performance.now();
+      window.__longestHeldMs = Math.max(window.__longestHeldMs, now - last - 20);
+      last = now;
+      const r = document.querySelector("#readout");
+      if (r && /baking/.test(r.textContent)) window.__sawBaking = true;
+    }, 20);
+  });
   await page.goto(url);
   return page;
 }
@@ -116,6 +132,20 @@ await withBrowser(webgpu, async (browser) => {
   check(!first.equals(second), "changing the seed changes the picture");
   const url = page.url();
   check(url.includes("seed=8"), `the URL records the change (${url})`);
+
+  // Enter in a field applies its value and never submits the panel's form (that reloaded the
+  // page at a bare "/?", every setting lost): the page lives on and the URL keeps the scene.
+  await page.evaluate(() => { window.__marker = "kept"; });
+  await page.fill('input[data-key="seed"]', "9");
+  await page.press('input[data-key="seed"]', "Enter");
+  const entered = await page.waitForFunction(() => (document.body.dataset.query || "").includes("seed=9"),
+    null, { timeout: 60000 }).then(() => true, () => false);
+  // Long enough for a submission's navigation to have replaced the page.
+  await page.waitForTimeout(1000);
+  const marker = await page.evaluate(() => window.__marker).catch((e) => `gone (${e})`);
+  const enterUrl = page.url();
+  check(entered && marker === "kept" && ["seed=9", "size=256", "grid=128", "paused=1"].every((k) => enterUrl.includes(k)),
+    `Enter in the seed field applies it without a reload (marker: ${marker}, URL ${enterUrl.slice(enterUrl.indexOf("?"), enterUrl.indexOf("?") + 60)}...)`);
 
   const errors2 = [];
   const again = await openPage(browser, url, errors2);
@@ -184,6 +214,22 @@ await withBrowser(webgpu, async (browser) => {
     null, { timeout: 120000 });
   const early = await page.evaluate(() => document.body.dataset.error || "");
   check(early === "", `the endless world started (error: ${early || "none"})`);
+  // Arrival: the first frame comes at once, coarse, and refines frame by frame while the page
+  // says "baking…"; the page's thread is never held for a whole bake (SwiftShader's times: a
+  // CPU device, labelled so; they are not a GPU's).
+  await page.waitForFunction(() => document.body.dataset.baked_ms, null, { timeout: 300000 });
+  const arrival = await page.evaluate(() => ({
+    first: Number(document.body.dataset.first_frame_ms),
+    baked: Number(document.body.dataset.baked_ms),
+    frames: Number(document.body.dataset.baked_frames),
+    held: Math.round(window.__longestHeldMs),
+    saw: window.__sawBaking,
+    baking: document.body.dataset.baking,
+  }));
+  check(arrival.saw && arrival.frames > 2 && arrival.baking === "" && arrival.first < arrival.baked,
+    `arrival on SwiftShader: first frame at ${arrival.first} ms, baked and lit at ${arrival.baked} ms over ${arrival.frames} frames, "baking…" shown meanwhile`);
+  check(arrival.held < Math.max(5000, arrival.baked / 4),
+    `the page's thread held at most ${arrival.held} ms at a time while baking (${arrival.baked} ms in all)`);
   await waitFrames(page, 2);
   const before = await shot(page, "page-endless.png");
   const q0 = await page.evaluate(() => document.body.dataset.query || "");
@@ -193,6 +239,11 @@ await withBrowser(webgpu, async (browser) => {
     .map((k) => !!document.querySelector(`[data-key="${k}"]`)));
   check(controls.join() === "true,true,true,false,false",
     `the endless world's controls, not the tile's (${controls.join()})`);
+  // pixel_error=16 lies beyond its slider's span (to 8): the slider and its output show 16.
+  const pe = await page.inputValue('input[data-key="pixel_error"]');
+  const peOut = await page.evaluate(() =>
+    document.querySelector('input[data-key="pixel_error"]').parentElement.querySelector("output").textContent);
+  check(pe === "16" && peOut === "16", `the pixel_error slider shows the 16 in force (slider ${pe}, output ${peOut})`);
   const f0 = Number(await page.evaluate(() => document.body.dataset.frames));
   await page.locator("#relief").focus();
   await page.keyboard.down("w");
@@ -278,14 +329,18 @@ await withBrowser(webgpu, async (browser) => {
   // Bad URL entries: the rest applies, the bad ones are listed with their reasons.
   const errors = [];
   const page = await openPage(browser,
-    `${base}/index.html?seed=abc&octaves=999&grid=64&colour=red&paused=maybe&size=64`, errors);
+    `${base}/index.html?seed=abc&octaves=999&grid=64&colour=red&paused=maybe&size=64&normals=analytic`, errors);
   await waitFrames(page, 1);
   const query = await page.evaluate(() => document.body.dataset.query || "");
-  check(query.includes("grid=64") && query.includes("size=64"), `valid URL keys kept (${query.slice(0, 80)})`);
+  check(["grid=64", "size=64", "normals=analytic"].every((k) => query.includes(k)),
+    `valid URL keys kept (${query.slice(0, 80)})`);
   const notice = await page.locator("#notice").innerText();
   check(["seed", "octaves", "colour", "paused"].every((k) => notice.includes(k))
     && notice.includes("speed") && notice.includes("abc") && await page.locator("#notice").isVisible(),
     `bad URL entries listed on the page: "${notice.slice(0, 160)}..."`);
+  // Each entry names its key once.
+  check(notice.includes("invalid seed: abc (allowed: ") && !/seed: invalid seed/.test(notice),
+    `a refused entry reads once ("${notice.slice(notice.indexOf("invalid seed"), notice.indexOf("invalid seed") + 50)}")`);
 
   // A refused value snaps the control back to the value in force, and says why.
   await page.fill('input[data-key="seed"]', "99999999999");
@@ -307,6 +362,31 @@ await withBrowser(webgpu, async (browser) => {
     fits &&= r.x >= panel.x && r.x + r.width <= panel.x + panel.width + 0.5;
   }
   check(fits, "the buttons fit inside the panel");
+
+  // "copy link" says "link copied", then comes back (a second copy says so again). Headless
+  // Chromium copies once granted the clipboard; where it still refuses, the page prompts.
+  await page.context().grantPermissions(["clipboard-read", "clipboard-write"], { origin: base });
+  let prompted = false;
+  page.on("dialog", (d) => { prompted = true; d.dismiss().catch(() => {}); });
+  await page.bringToFront();
+  await page.click("#copy-link");
+  const copiedSaid = await page.waitForFunction(() => document.querySelector("#copy-link").textContent === "link copied",
+    null, { timeout: 5000 }).then(() => true, () => false);
+  await page.waitForTimeout(3000);
+  const copyText = await page.locator("#copy-link").innerText();
+  check(copiedSaid && copyText === "copy link",
+    `"copy link" says "link copied" (${copiedSaid}${prompted ? ", but the page prompted" : ""}), then "${copyText}" 3 s later`);
+
+  // The panel folds to its toggle (a small screen sees the terrain) and unfolds as it was.
+  const open = await page.locator("#controls").boundingBox();
+  await page.click("#toggle-panel");
+  const folded = await page.locator("#controls").boundingBox();
+  const paramsHidden = !(await page.locator("#params").isVisible()) && !(await page.locator("#copy-link").isVisible());
+  await page.click("#toggle-panel");
+  const unfolded = await page.locator("#controls").boundingBox();
+  check(folded.height < 60 && folded.width < open.width && paramsHidden
+    && Math.abs(unfolded.height - open.height) < 1 && await page.locator("#params").isVisible(),
+    `the panel folds (${open.width.toFixed(0)}x${open.height.toFixed(0)} -> ${folded.width.toFixed(0)}x${folded.height.toFixed(0)}) and unfolds (${unfolded.width.toFixed(0)}x${unfolded.height.toFixed(0)})`);
 
   // Animated: offsets in the URL stay short decimals; paused: drawing stops and the readout says so.
   await waitFrames(page, 3);
@@ -331,7 +411,10 @@ await withBrowser(webgpu, async (browser) => {
 
   // Every row of the table reaches the page through its URL.
   const rows = await page.evaluate(async () => JSON.parse((await import("./web/pkg/relief.js")).params_table()));
-  // The method row: the cheap ray caster (the reference takes minutes a frame on a CPU).
+  // The method row: the cheap ray caster (the reference takes minutes a frame on a CPU). It
+  // does not read these keys (Method::unread_keys): they are refused with it, and said so
+  // (the URL above sets them with the mesh).
+  const unread = ["size", "grid", "normals"];
   const alt = (r) => r.key === "method" ? "raymarch" : r.control === "checkbox" ? "1"
     : r.control === "select" ? r.choices[r.choices.length - 1]
     : r.control === "none" ? "0.5%2C0.25" : String(r.min + r.step);
@@ -339,12 +422,42 @@ await withBrowser(webgpu, async (browser) => {
   const all = await openPage(browser, `${base}/index.html?${url}`, errors);
   await waitFrames(all, 1);
   const q = await all.evaluate(() => document.body.dataset.query || "");
-  const missing = rows.filter((r) => !q.split("&").includes(`${r.key}=${alt(r)}`)).map((r) => r.key);
+  const missing = rows.filter((r) => !unread.includes(r.key) && !q.split("&").includes(`${r.key}=${alt(r)}`))
+    .map((r) => r.key);
   const controls = rows.filter((r) => r.control !== "none");
   const present = await all.evaluate((keys) => keys.filter((k) => document.querySelector(`[data-key="${k}"]`)).length,
     controls.map((r) => r.key));
   check(missing.length === 0 && present === controls.length,
-    `all ${rows.length} table rows set through the URL (missing: ${missing.join(",") || "none"}), ${present} controls`);
+    `all ${rows.length - unread.length} table rows the ray caster reads set through the URL (missing: ${missing.join(",") || "none"}), ${present} controls`);
+  const allNotice = await all.locator("#notice").innerText();
+  const unsaid = unread.filter((k) => !allNotice.includes(`${k} does not apply to method raymarch`)
+    || q.split("&").some((e) => e.startsWith(`${k}=`)));
+  check(unsaid.length === 0, `the keys the ray caster does not read are refused and said so (not: ${unsaid.join(",") || "none"})`);
+
+  // A key the method does not read (the blog's pipeline bakes its own noise, seed and all) is
+  // refused with a notice that says why, as `relief render --method blog --seed 3` refuses it;
+  // the rest of the URL applies, and the seed's control rests.
+  const blog = await openPage(browser, `${base}/index.html?method=blog&seed=3&height_scale=0.8&paused=1`, errors);
+  await waitFrames(blog, 1);
+  const bq = await blog.evaluate(() => document.body.dataset.query || "");
+  const bnotice = await blog.locator("#notice").innerText();
+  const seedRests = await blog.locator('input[data-key="seed"]').isDisabled();
+  check(/seed does not apply to method blog: the blog's pipeline bakes its own noise/.test(bnotice)
+    && await blog.locator("#notice").isVisible()
+    && bq.includes("method=blog") && bq.includes("height_scale=0.8") && !/(^|&)seed=/.test(bq) && seedRests,
+    `method=blog&seed=3: "${bnotice.slice(0, 120)}", URL ${bq.slice(0, 60)}, seed control disabled: ${seedRests}`);
+
+  // A value in force beyond its slider's span (frequency to 16): the slider and its output
+  // show it, so a nudge moves from the terrain drawn.
+  const wide = await openPage(browser, `${base}/index.html?frequency=64&octaves=10&paused=1`, errors);
+  await waitFrames(wide, 1);
+  const wq = await wide.evaluate(() => document.body.dataset.query || "");
+  const freq = await wide.inputValue('input[data-key="frequency"]');
+  const freqOut = await wide.evaluate(() =>
+    document.querySelector('input[data-key="frequency"]').parentElement.querySelector("output").textContent);
+  const oct = await wide.inputValue('input[data-key="octaves"]');
+  check(wq.includes("frequency=64") && freq === "64" && freqOut === "64" && oct === "10",
+    `frequency=64&octaves=10: the slider shows ${freq}, its output ${freqOut}, octaves ${oct}`);
   check(errors.length === 0, `no console errors (${errors.join(" | ") || "none"})`);
 });
 
