@@ -215,10 +215,19 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);
         let spot = glam::DVec3::new(900.0, w.height_at(900.0, 0.0), 0.0);
         let view = WorldView::look_at(eye, spot + glam::DVec3::Y * 60.0, 0.8, (width, height));
-        let mut encoder = device.create_command_encoder(&Default::default());
-        w.encode_bake(device, queue, &mut encoder, &view)
-            .map_err(|e| e.to_string())?;
-        queue.submit([encoder.finish()]);
+        // One still frame: everything baked and lit first (a window would leave the budgets
+        // as they are, and draw while the levels come in over a few frames).
+        w.set_bake_budget(u64::MAX);
+        w.set_light_budget(u64::MAX);
+        for _ in 0..64 {
+            let mut encoder = device.create_command_encoder(&Default::default());
+            w.encode_bake(device, queue, &mut encoder, &view)
+                .map_err(|e| e.to_string())?;
+            queue.submit([encoder.finish()]);
+            if w.pending_texels() == 0 {
+                break;
+            }
+        }
         w.prepare(queue, &view);
         // Camera-relative, as relief draws: the pillar's place less the eye.
         let rel = spot - eye;

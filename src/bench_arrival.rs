@@ -2,7 +2,8 @@
 //! world and flying on. A fresh world (nothing baked, nothing lit) seen from a camera flying at
 //! [`SPEED`] 40 m over the ground, frame by frame at 60 frames a second from the first, with
 //! no warm-up: each frame's GPU time (the height bake, the light bake and the draw, from
-//! timestamps), the texels it baked and lit, and what still waits. The core's default per-frame
+//! timestamps), the texels it baked and lit, and what still waits; halfway, the sun turns by
+//! [`TURN`] degrees (a slider or a key: every level relit). The core's default per-frame
 //! budgets ([`crate::gpu::world::DEFAULT_BAKE_BUDGET`],
 //! [`crate::gpu::world::DEFAULT_LIGHT_BUDGET`]) are what a GPU's window reaches.
 
@@ -15,6 +16,9 @@ use glam::DVec3;
 
 /// The camera's speed, metres a second.
 pub const SPEED: f64 = 200.0;
+
+/// How far the sun turns halfway through, degrees.
+pub const TURN: f32 = 10.0;
 
 /// One frame of the arrival.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,6 +42,8 @@ pub struct ArrivalFrame {
     pub pending: u64,
     /// Wall time from the world's creation to this frame's end, ms.
     pub since_start_ms: f64,
+    /// Whether the sun turned just before this frame.
+    pub turned: bool,
 }
 
 /// The arrival of each method measured: `frames` frames at `size`.
@@ -84,6 +90,12 @@ pub fn run(
         world.set_visibility_raster(raster);
         world.set_method(&gpu.device, method)?;
         for frame in 0..frames {
+            let turned = frame > 0 && frame == frames / 2;
+            if turned {
+                let mut p = *world.params();
+                p.sky.sun_azimuth = (p.sky.sun_azimuth + TURN) % 360.0;
+                world.set_params(&gpu.device, p)?;
+            }
             let view = camera(f64::from(frame) / 60.0);
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             let t = timer.as_ref();
@@ -111,6 +123,7 @@ pub fn run(
                 light_texels: stats.light_texels,
                 pending: world.pending_texels(),
                 since_start_ms: start.elapsed().as_secs_f64() * 1e3,
+                turned,
             });
         }
     }
@@ -129,11 +142,11 @@ pub fn csv(frames: &[ArrivalFrame], device: &str, size: (u32, u32)) -> String {
         size.0, size.1
     );
     out.push_str(
-        "method,frame,gpu_ms,bake_ms,light_ms,texels_baked,light_texels,pending,since_start_ms\n",
+        "method,frame,gpu_ms,bake_ms,light_ms,texels_baked,light_texels,pending,since_start_ms,sun_turned\n",
     );
     for f in frames {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{:.1}\n",
+            "{},{},{},{},{},{},{},{},{:.1},{}\n",
             f.method,
             f.frame,
             opt(f.gpu_ms),
@@ -142,7 +155,8 @@ pub fn csv(frames: &[ArrivalFrame], device: &str, size: (u32, u32)) -> String {
             f.texels_baked,
             f.light_texels,
             f.pending,
-            f.since_start_ms
+            f.since_start_ms,
+            u8::from(f.turned)
         ));
     }
     out
@@ -167,9 +181,20 @@ pub fn summary(frames: &[ArrivalFrame]) -> Vec<String> {
                 format!("not within {} frames", own.len()),
                 |f| format!("frame {} ({:.0} ms of wall time)", f.frame, f.since_start_ms),
             );
+            // After the turn: the frames until the sun's light is whole again.
+            let turn = own.iter().position(|f| f.turned);
+            let relit = turn.map(|t| {
+                own[t..]
+                    .iter()
+                    .position(|f| f.pending == 0)
+                    .map_or("not relit within the run".to_owned(), |n| {
+                        format!("the sun turned {TURN}°: relit over {} frames", n + 1)
+                    })
+            });
             format!(
                 "arrival ({m}): first frame {first} of GPU time, everything baked and lit by {done}, \
-                 worst frame {worst}"
+                 worst frame {worst}{}",
+                relit.map_or(String::new(), |r| format!("; {r}"))
             )
         })
         .collect()

@@ -80,7 +80,10 @@ pub fn run(
                 p,
             )?;
             world.set_shading(shading);
+            // Whole bakes: the cost of relighting every level at once (the window spreads it
+            // over frames).
             world.set_bake_budget(u64::MAX);
+            world.set_light_budget(u64::MAX);
             let everything = variant == VARIANTS[0].0;
             let mut turn = 0.0;
             let mut draw = |world: &mut World,

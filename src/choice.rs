@@ -253,6 +253,25 @@ mod tests {
     }
 
     #[test]
+    fn a_trial_cut_short_chooses_among_those_measured_and_says_which_were_not() {
+        // A slow device: the trial stopped after the first two candidates.
+        let c = Choice::decide(
+            vec![(Candidate::MESH, 900.0), (V4, 800.0), (V1, f64::NAN)],
+            5,
+            (480, 270),
+        );
+        assert_eq!(c.candidate, V4);
+        let line = c.describe("llvmpipe");
+        assert!(
+            line.contains(
+                "visibility at 1 sample a pixel not measured (the trial stops after 10 s)"
+            ),
+            "{line}"
+        );
+        assert!(!line.contains("NaN"), "{line}");
+    }
+
+    #[test]
     fn the_fastest_wins_by_the_margin_and_the_mesh_keeps_a_tie() {
         // The H100's tile: visibility at 1 sample.
         let c = Choice::decide(

@@ -143,7 +143,7 @@ pub fn command() -> Command {
                         .num_args(1..)
                         .allow_hyphen_values(true)
                         .value_name("X,Z")
-                        .help("world points [allowed: X,Z, each within ±1e12; negative ones too: -5,3]"),
+                        .help("world points [allowed: X,Z, each within ±1e12, e.g. 0.3,0.7 -0.45,0.2]"),
                 ),
         )
         .subcommand(
@@ -474,10 +474,99 @@ pub fn options_markdown() -> String {
     out
 }
 
+/// The commands' names: `window` (the default) and the subcommands.
+pub const COMMANDS: [&str; 6] = ["window", "render", "bake", "bench", "stability", "height"];
+
+/// The flags `command` refuses in either world (so its `--help` leaves them out); the refusals
+/// themselves are `run`'s, with their reasons.
+pub fn refused_by(command: &str) -> Vec<&'static str> {
+    let window_only: Vec<&'static str> = OPTIONS
+        .iter()
+        .map(|p| p.key)
+        .chain(["exit-after", "test-lose-device"])
+        .collect();
+    let drawing = ["method", "samples", "raster"];
+    let world_only: Vec<&'static str> = WORLD_PARAMS
+        .iter()
+        .map(|p| p.key)
+        .filter(|k| crate::params::param(k).is_none())
+        .collect();
+    let mut out: Vec<&'static str> = match command {
+        "window" => vec!["stats", "region"],
+        "render" => [&window_only[..], &["region"]].concat(),
+        "bake" => [&window_only[..], &drawing, &CAMERA_FLAGS, &["stats"]].concat(),
+        "bench" => [
+            &window_only[..],
+            &drawing,
+            &CAMERA_FLAGS,
+            &["stats", "region", "timings"],
+            &BENCH_SWEEPS,
+        ]
+        .concat(),
+        "stability" => [
+            &window_only[..],
+            &drawing,
+            &CAMERA_FLAGS,
+            &[
+                "stats",
+                "region",
+                "timings",
+                "world",
+                "size",
+                "grid",
+                "normals",
+                "height_scale",
+            ],
+            &world_only,
+        ]
+        .concat(),
+        "height" => [
+            &window_only[..],
+            &drawing,
+            &CAMERA_FLAGS,
+            &["stats", "region", "pixel_error"],
+            &HEIGHT_REFUSES,
+        ]
+        .concat(),
+        _ => Vec::new(),
+    };
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// [`command`] as `command`'s `--help` shows it: without the flags it refuses.
+fn command_for_help(name: &str) -> Command {
+    let hidden = refused_by(name);
+    command().mut_args(|a| {
+        if hidden.contains(&a.get_id().as_str()) {
+            a.hide(true)
+        } else {
+            a
+        }
+    })
+}
+
 /// Runs the CLI on `args` and returns the process exit status.
 pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {
-    let matches = match command().try_get_matches_from(args) {
+    let args: Vec<std::ffi::OsString> = args.into_iter().collect();
+    let matches = match command().try_get_matches_from(&args) {
         Ok(m) => m,
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
+            // Each command's help lists the flags it takes, not every global one.
+            let name = args
+                .iter()
+                .skip(1)
+                .filter_map(|a| a.to_str())
+                .find(|a| COMMANDS.contains(a))
+                .unwrap_or("window");
+            return clap_error(
+                command_for_help(name)
+                    .try_get_matches_from(&args)
+                    .err()
+                    .unwrap_or(e),
+            );
+        }
         Err(e) => return clap_error(e),
     };
     match run(&matches) {
@@ -2235,10 +2324,11 @@ fn stability(
     let device = info.name.clone();
     let on = |axis| axes.contains(&axis);
     println!(
-        "relief stability{} on {}: {} axes ({}), scene: seed {}, octaves {}, frequency {}, gain {}",
+        "relief stability{} on {}: {} {} ({}), scene: seed {}, octaves {}, frequency {}, gain {}",
         if quick { " --quick" } else { "" },
         gpu.describe(),
         axes.len(),
+        if axes.len() == 1 { "axis" } else { "axes" },
         axes.iter().map(|a| a.name()).collect::<Vec<_>>().join(", "),
         base.seed,
         base.octaves,

@@ -56,6 +56,7 @@ fn view(land: &Landscape) -> WorldView {
 fn baked(gpu: &Gpu, p: WorldParams) -> World {
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
     world.set_bake_budget(u64::MAX);
+    world.set_light_budget(u64::MAX);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     world
         .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view(&p.land))

@@ -361,3 +361,63 @@ fn timings_on_a_software_device_say_so() {
         "{stdout}"
     );
 }
+
+#[test]
+fn each_commands_help_lists_the_flags_it_takes_and_refuses_those_it_leaves_out() {
+    // 16: `render --help` once listed --speed, --paused, --region and --exit-after.
+    let (code, help, _) = relief(&["render", "--help"]);
+    assert_eq!(code, 0);
+    // A flag's own line in a help text (its mention in another's doc does not count).
+    let lists = |help: &str, flag: &str| {
+        help.lines()
+            .any(|l| l.trim_start().starts_with(&format!("{flag} ")))
+    };
+    for shown in ["--out", "--seed", "--method", "--eye", "--stats"] {
+        assert!(lists(&help, shown), "render --help lacks {shown}:\n{help}");
+    }
+    for hidden in ["--speed", "--paused", "--region", "--exit-after"] {
+        assert!(
+            !lists(&help, hidden),
+            "render --help lists {hidden}:\n{help}"
+        );
+    }
+    let (_, bake, _) = relief(&["bake", "--help"]);
+    assert!(
+        lists(&bake, "--region") && !lists(&bake, "--method"),
+        "{bake}"
+    );
+    // What a command's help leaves out, the command refuses (in words, exit 2), so the help
+    // and the refusals cannot drift apart.
+    let cmd = relief::cli::command();
+    let mut failed = Vec::new();
+    for name in relief::cli::COMMANDS {
+        let required: &[&str] = match name {
+            "render" => &["--out", "x.png"],
+            "bake" | "bench" | "stability" => &["--out-dir", "/proc/relief-never"],
+            "height" => &["0,0"],
+            _ => &[],
+        };
+        for id in relief::cli::refused_by(name) {
+            let Some(arg) = cmd.get_arguments().find(|a| a.get_id() == id) else {
+                failed.push(format!("{name}: no flag {id}"));
+                continue;
+            };
+            let flag = format!("--{}", arg.get_long().unwrap_or(id));
+            let mut args = vec![name, flag.as_str()];
+            if arg.get_action().takes_values() {
+                args.push(if id == "world" { "endless" } else { "1" });
+            }
+            args.extend_from_slice(required);
+            if name == "window" {
+                // A window refusal comes before any window opens; anything else must not
+                // get that far here (no display).
+                args.remove(0);
+            }
+            let (code, _, err) = relief(&args);
+            if code != 2 || err.lines().count() != 1 || !err.contains(&flag) {
+                failed.push(format!("{args:?}: exit {code}, {err:?}"));
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{}", failed.join("\n"));
+}

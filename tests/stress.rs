@@ -491,7 +491,11 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
                 }
                 // A new per-frame bake budget, from nothing to everything (the lens and target
                 // below are strange on every step anyway).
-                _ => world.set_bake_budget([0, 1, 500, 1 << 21, u64::MAX][rng.below(5) as usize]),
+                _ => {
+                    let budgets = [0, 1, 500, 1 << 21, u64::MAX];
+                    world.set_bake_budget(budgets[rng.below(5) as usize]);
+                    world.set_light_budget(budgets[rng.below(5) as usize]);
+                }
             }
             let ground = world.height_at(eye.x, eye.z);
             let eye_now = if ground.is_finite() && eye.y < ground {
@@ -524,6 +528,7 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     run(40, &mut world, &mut rng);
     world.set_params(&device, start).unwrap();
     world.set_bake_budget(u64::MAX);
+    world.set_light_budget(u64::MAX);
     assert!(frame(&mut world, &sane));
     settle();
     let counts0 = counts(&device);
@@ -532,6 +537,7 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     assert!(drawn > 50 && refused > 10 && changes > 20);
     world.set_params(&device, start).unwrap();
     world.set_bake_budget(u64::MAX);
+    world.set_light_budget(u64::MAX);
     assert!(frame(&mut world, &sane));
     settle();
     let counts1 = counts(&device);

@@ -118,20 +118,19 @@ fn sample_level(lv: Level, p: vec2<f32>, light: bool) -> vec4<f32> {
     return mix(mix(a, b, t.x), mix(c, d, t.x), t.y);
 }
 
-// The light bake's (horizon, valley) of level `index` at `p` (its samples from its first):
-// the level's own where it is baked, else that of the level it borrows light from (the same
-// world point in that level's samples), else unshadowed.
-fn level_light(index: u32, p: vec2<f32>) -> vec2<f32> {
-    let lv = w.levels[index];
-    if lv.light_from == index {
-        return sample_level(lv, p, true).xy;
-    }
+// The light level `lv` borrows at `p` (its samples from its first) while its own is not baked
+// (`lv.light_from` is not its index): that of a coarser level's texel nearest the same world
+// point, or unshadowed while no level has light.
+fn borrowed_light(lv: Level, p: vec2<f32>) -> vec2<f32> {
     if lv.light_from == NO_LIGHT {
         return vec2<f32>(-2.0, 0.0);
     }
+    // The nearest texel: a stand-in for a frame or a few, kept small so that the frame's
+    // shader barely grows for it.
     let lender = w.levels[lv.light_from];
     let finest = vec2<f32>(lv.origin_rel - lender.origin_rel) + p * f32(1u << lv.shift);
-    return sample_level(lender, finest / f32(1u << lender.shift), true).xy;
+    let q = vec2<i32>(round(finest / f32(1u << lender.shift)));
+    return texel(lender, q, true).xy;
 }
 
 // Blend towards the coarser level, exact at both ends.
@@ -176,11 +175,21 @@ fn place(vi: u32, patch_instance: vec4<u32>) -> VertexOut {
     let clv = w.levels[lv.coarse];
     let q = (vec2<f32>(lv.delta) + p) * 0.5;
     var s = sample_level(lv, p, false);
-    var light = level_light(level, p);
+    // The level's own light, read beside its heights (the same texels); a level still
+    // without it borrows a coarser level's (src/gpu/light_queue.rs), a branch the whole
+    // patch takes alike.
+    var light = sample_level(lv, p, true).xy;
+    if lv.light_from != level {
+        light = borrowed_light(lv, p);
+    }
     var raise = lv.raise;
     if alpha > 0.0 {
         s = morph_blend(s, sample_level(clv, q, false), alpha);
-        light = morph_blend(vec4<f32>(light, 0.0, 0.0), vec4<f32>(level_light(lv.coarse, q), 0.0, 0.0), alpha).xy;
+        var coarse_light = sample_level(clv, q, true);
+        if clv.light_from != lv.coarse {
+            coarse_light = vec4<f32>(borrowed_light(clv, q), 0.0, 0.0);
+        }
+        light = morph_blend(vec4<f32>(light, 0.0, 0.0), coarse_light, alpha).xy;
         // Both levels' raised surfaces lie on or above the continuous one: so does their blend.
         raise = mix(lv.raise, clv.raise, alpha);
     }

@@ -145,8 +145,9 @@ pub trait Report {
     fn chosen(&mut self, _choice: &crate::choice::Choice, _line: &str) {}
     /// A frame was presented.
     fn frame(&mut self, _stats: &Stats) {}
-    /// A bake that took several frames is done: `ms` and `frames` since it began.
-    fn baked(&mut self, _ms: f64, _frames: u64) {}
+    /// A bake that took several frames is done: `ms` and `frames` since it began, and the
+    /// longest time between two of its frames (ms).
+    fn baked(&mut self, _ms: f64, _frames: u64, _longest_ms: f64) {}
     /// The app stopped on an error.
     fn fatal(&mut self, message: &str);
 }
@@ -212,9 +213,12 @@ impl Report for Terminal {
     fn warn(&mut self, message: &str) {
         eprintln!("{}", one_line(&format!("warning: {message}")));
     }
-    fn baked(&mut self, ms: f64, frames: u64) {
+    fn baked(&mut self, ms: f64, frames: u64, longest_ms: f64) {
         if self.timings {
-            println!("baked: every level and its light in {ms:.0} ms over {frames} frames");
+            println!(
+                "baked: every level and its light in {ms:.0} ms over {frames} frames, the \
+                 longest {longest_ms:.0} ms apart (from the start: the first frame's wait)"
+            );
         }
     }
     fn chosen(&mut self, choice: &crate::choice::Choice, line: &str) {
@@ -297,8 +301,9 @@ pub struct App {
     pacer: pacer::Pacer,
     /// How far the bake in progress has come.
     progress: pacer::Progress,
-    /// When the bake in progress began, and the frames drawn then.
-    baking_since: Option<(Instant, u64)>,
+    /// When the bake in progress began, the frames drawn then, and the longest time between
+    /// two of its frames so far (ms).
+    baking_since: Option<(Instant, u64, f64)>,
     /// The last frame drawn: its interval from the one before (ms), whether it baked, and the
     /// texels still waiting after it.
     last_bake: Option<(f64, bool, u64)>,
@@ -774,13 +779,19 @@ impl App {
             // The first bake counts from the app's start (the device, pipelines and the first
             // frame included): the wait a user sees on arrival.
             (None, Some(_)) if self.stats.frames <= 1 => {
-                self.baking_since = Some((self.started, 0))
+                let first_ms = now.duration_since(self.started).as_secs_f64() * 1e3;
+                self.baking_since = Some((self.started, 0, first_ms));
             }
-            (None, Some(_)) => self.baking_since = Some((now, self.stats.frames)),
-            (Some(_), None) => {
-                if let Some((t0, f0)) = self.baking_since.take() {
-                    let ms = now.duration_since(t0).as_secs_f64() * 1e3;
-                    self.report.baked(ms, self.stats.frames - f0);
+            (None, Some(_)) => self.baking_since = Some((now, self.stats.frames, 0.0)),
+            (Some(_), _) => {
+                if let Some((_, _, longest)) = &mut self.baking_since {
+                    *longest = longest.max(interval_ms);
+                }
+                if self.stats.baking.is_none() {
+                    if let Some((t0, f0, longest)) = self.baking_since.take() {
+                        let ms = now.duration_since(t0).as_secs_f64() * 1e3;
+                        self.report.baked(ms, self.stats.frames - f0, longest);
+                    }
                 }
             }
             _ => {}

@@ -5,18 +5,23 @@
 //! ([`crate::World::set_bake_budget`], [`crate::World::set_light_budget`]). Their defaults
 //! suit a real GPU; a software device (lavapipe, the browser's SwiftShader) is hundreds of
 //! times slower, so a budget in texels would make each of its frames wait seconds. The pacer
-//! scales both budgets by the frames it sees. It starts from a sliver of them, so the first
-//! frame costs about what drawing costs, and learns from it the quickest frame; while baking,
-//! a frame over its target (twice the quickest frame, and never under [`MIN_TARGET_MS`])
-//! halves the budgets, one under three quarters of it doubles them, up to the defaults. On a
-//! GPU the budgets reach the defaults within a few frames; on a software device a frame while
-//! baking costs one and a half to two frames of drawing, so keys and the page's thread are
-//! never held for a whole bake.
+//! scales both budgets by the frames it sees. It starts from a sliver of them; while baking, a
+//! frame over its target halves the budgets, one under three quarters of it doubles them, up to
+//! the defaults. The target is twice the time a frame takes without baking (a running mean of
+//! such frames, and of those at the smallest budgets; never under [`MIN_TARGET_MS`]), so a
+//! frame while baking costs one to two frames of drawing; before any such frame was seen it is
+//! [`FIRST_TARGET_MS`].
+//! On a GPU the budgets reach the defaults within a few frames; on a software device keys and
+//! the page's thread are never held for a whole bake.
 
 use crate::gpu::world::{DEFAULT_BAKE_BUDGET, DEFAULT_LIGHT_BUDGET};
 
 /// A frame while baking may take this long, whatever the device (ms).
 pub const MIN_TARGET_MS: f64 = 50.0;
+
+/// A frame's target while no frame without baking has been seen (ms): the first arrival,
+/// before the device's drawing time is known.
+pub const FIRST_TARGET_MS: f64 = 500.0;
 
 /// Smallest share of the default budgets a frame is given, and the first.
 const MIN_SCALE: f64 = 1.0 / 256.0;
@@ -25,15 +30,15 @@ const MIN_SCALE: f64 = 1.0 / 256.0;
 #[derive(Clone, Copy, Debug)]
 pub struct Pacer {
     scale: f64,
-    /// The quickest frame seen, ms.
-    quickest_ms: Option<f64>,
+    /// A running mean of the frames that baked nothing, ms.
+    draw_ms: Option<f64>,
 }
 
 impl Default for Pacer {
     fn default() -> Self {
         Self {
             scale: MIN_SCALE,
-            quickest_ms: None,
+            draw_ms: None,
         }
     }
 }
@@ -50,12 +55,20 @@ impl Pacer {
         if !(interval_ms.is_finite() && interval_ms > 0.0) {
             return;
         }
-        let quickest = self.quickest_ms.map_or(interval_ms, |q| q.min(interval_ms));
-        self.quickest_ms = Some(quickest);
+        // A frame that baked nothing, or only the sliver of the smallest budgets, shows what
+        // drawing alone takes.
+        if !baked || self.scale <= MIN_SCALE {
+            self.draw_ms = Some(
+                self.draw_ms
+                    .map_or(interval_ms, |d| 0.8 * d + 0.2 * interval_ms),
+            );
+        }
         if !baked {
             return;
         }
-        let target = (2.0 * quickest).max(MIN_TARGET_MS);
+        let target = self
+            .draw_ms
+            .map_or(FIRST_TARGET_MS, |d| (2.0 * d).max(MIN_TARGET_MS));
         if interval_ms > target {
             self.scale = (self.scale / 2.0).max(MIN_SCALE);
         } else if interval_ms < 0.75 * target {
@@ -96,7 +109,8 @@ mod tests {
             fast.frame(2.0, true);
         }
         assert_eq!(fast.budgets(), (DEFAULT_BAKE_BUDGET, DEFAULT_LIGHT_BUDGET));
-        // Drawing takes 300 ms: the budgets grow while frames stay under 450 ms...
+        // A software device on arrival: drawing alone takes 300 ms. Frames at the smallest
+        // budgets show it (the target becomes 600 ms), and quick ones double the budgets...
         let mut slow = Pacer::default();
         slow.frame(300.0, true);
         slow.frame(320.0, true);
@@ -105,14 +119,21 @@ mod tests {
             (h, l),
             (4 * fast.budgets().0 / 256, 4 * fast.budgets().1 / 256)
         );
-        // ... stay between 450 and 600 ms, and halve over 600 ms.
+        // ... which then stay between 450 and 600 ms, and halve over 600 ms.
         slow.frame(500.0, true);
         assert_eq!(slow.budgets(), (h, l));
         slow.frame(3000.0, true);
         assert_eq!(slow.budgets(), (h / 2, l / 2));
-        // A frame that baked nothing moves nothing.
-        slow.frame(5000.0, false);
-        assert_eq!(slow.budgets(), (h / 2, l / 2));
+        // A device whose drawing alone is over the first target (900 ms a frame) keeps baking
+        // at the smallest budgets rather than stopping: those frames raise its target.
+        let mut slower = Pacer::default();
+        for _ in 0..12 {
+            slower.frame(900.0, true);
+        }
+        assert!(
+            slower.budgets().1 >= DEFAULT_LIGHT_BUDGET / 128,
+            "{slower:?}"
+        );
     }
 
     #[test]

@@ -284,9 +284,10 @@ impl Report for Page {
         }
     }
 
-    fn baked(&mut self, ms: f64, frames: u64) {
+    fn baked(&mut self, ms: f64, frames: u64, longest_ms: f64) {
         set_body_data("baked_ms", &format!("{ms:.0}"));
         set_body_data("baked_frames", &frames.to_string());
+        set_body_data("baked_longest_frame_ms", &format!("{longest_ms:.0}"));
     }
 
     fn fatal(&mut self, message: &str) {

@@ -144,10 +144,12 @@ pub fn distances(
     params.validate()?;
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
     world.set_bake_budget(u64::MAX);
+    world.set_light_budget(u64::MAX);
     let mut others = Vec::new();
     for method in OTHER_METHODS {
         let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
         w.set_bake_budget(u64::MAX);
+        w.set_light_budget(u64::MAX);
         w.set_visibility_samples(1)?;
         w.set_method(&gpu.device, method)?;
         others.push(w);

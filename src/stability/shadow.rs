@@ -125,6 +125,7 @@ pub fn shadows(
         } else {
             let mut w = World::new(&gpu.device, &gpu.queue, headless::Offscreen::targets(1), p)?;
             w.set_bake_budget(u64::MAX);
+            w.set_light_budget(u64::MAX);
             world = Some(w);
         }
         let Some(world) = world.as_mut() else {
