@@ -1810,7 +1810,7 @@ fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
     let arrival = || -> Result<()> {
         progress("arrival");
         let size = (options.width, options.height);
-        let frames = crate::bench_arrival::run(&gpu, params, size, if quick { 12 } else { 600 })?;
+        let frames = crate::bench_arrival::run(&gpu, params, size, if quick { 6 } else { 600 })?;
         done();
         let csv = crate::bench_arrival::csv(&frames, &gpu.describe(), size);
         write_whole(&dir.join("arrival.csv"), &csv)?;

@@ -1703,7 +1703,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         .skip(1)
         .map(|l| l.split(',').collect())
         .collect();
-    assert_eq!(frames.len(), 2 * 12, "{arrival}");
+    assert_eq!(frames.len(), 2 * 6, "{arrival}");
     for f in &frames {
         let lit: u64 = f[6].parse().unwrap();
         assert!(lit <= relief::gpu::world::DEFAULT_LIGHT_BUDGET, "{f:?}");

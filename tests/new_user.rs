@@ -421,3 +421,30 @@ fn each_commands_help_lists_the_flags_it_takes_and_refuses_those_it_leaves_out()
     }
     assert!(failed.is_empty(), "{}", failed.join("\n"));
 }
+
+#[test]
+fn the_readmes_height_example_shows_the_terrain() {
+    // 18: the README once suggested lattice points, where every octave's noise is 0 and each
+    // height the same 0.25.
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let line = readme
+        .lines()
+        .find(|l| l.trim_start().starts_with("relief height "))
+        .expect("the README's height example");
+    let args: Vec<&str> = line
+        .split('#')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .skip(1)
+        .collect();
+    let (code, stdout, err) = relief(&args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    let heights: Vec<f64> = stdout.lines().map(|l| l.parse().unwrap()).collect();
+    assert!(heights.len() >= 2, "{stdout}");
+    assert!(
+        heights.iter().all(|h| (h - 0.25).abs() > 1e-3) && heights[0] != heights[1],
+        "{args:?}: {heights:?}"
+    );
+}

@@ -503,28 +503,49 @@ pub fn csv(rows: &[GrazingRow], device: &str, backend: &str, options: &Options) 
     out
 }
 
-/// A table for the terminal: tunnelled fraction per method (rows) and elevation (columns).
+/// A table for the terminal: tunnelled fraction per method (rows) and elevation (columns),
+/// each column as wide as its widest cell.
 pub fn table(rows: &[GrazingRow], options: &Options) -> String {
-    let mut out = String::new();
+    let mut lines: Vec<Vec<String>> = Vec::new();
     for &hs in &options.height_scales {
-        let _ = write!(out, "{:<22}", format!("height scale {hs}"));
-        for e in &options.elevations {
-            let _ = write!(out, " {:>13}", format!("{e}°"));
+        let mut head = vec![format!("height scale {hs}")];
+        head.extend(options.elevations.iter().map(|e| format!("{e}°")));
+        lines.push(head);
+        for m in &options.marchers {
+            let mut line = vec![m.label()];
+            for e in &options.elevations {
+                line.push(
+                    rows.iter()
+                        .find(|r| r.marcher == *m && r.elevation_deg == *e && r.height_scale == hs)
+                        .map_or("-".to_owned(), |r| {
+                            format!("{:.4} ({})", r.tunnelled_fraction(), r.capped)
+                        }),
+                );
+            }
+            lines.push(line);
+        }
+    }
+    let columns = lines.iter().map(Vec::len).max().unwrap_or(0);
+    let widths: Vec<usize> = (0..columns)
+        .map(|c| {
+            lines
+                .iter()
+                .filter_map(|l| l.get(c))
+                .map(|t| t.chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut out = String::new();
+    for line in &lines {
+        for (c, cell) in line.iter().enumerate() {
+            let _ = if c == 0 {
+                write!(out, "{cell:<w$}", w = widths[c])
+            } else {
+                write!(out, "  {cell:>w$}", w = widths[c])
+            };
         }
         out.push('\n');
-        for m in &options.marchers {
-            let _ = write!(out, "{:<22}", m.label());
-            for e in &options.elevations {
-                let cell = rows
-                    .iter()
-                    .find(|r| r.marcher == *m && r.elevation_deg == *e && r.height_scale == hs)
-                    .map_or("-".to_owned(), |r| {
-                        format!("{:.4} ({})", r.tunnelled_fraction(), r.capped)
-                    });
-                let _ = write!(out, " {cell:>13}");
-            }
-            out.push('\n');
-        }
     }
     out.push_str("cells: tunnelled fraction of the truth's hits (rays that ran out of steps)\n");
     out
