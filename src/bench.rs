@@ -374,12 +374,12 @@ impl Reference {
 /// Relative depth difference beyond which a pixel counts as hit at the wrong depth.
 pub const DEPTH_TOLERANCE: f64 = 0.01;
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    Some(v[v.len() / 2])
+/// The middle of `values` (the upper middle of an even count): every benchmark's statistic.
+/// `None` when there are none.
+pub(crate) fn median<T: Copy + PartialOrd>(values: impl IntoIterator<Item = T>) -> Option<T> {
+    let mut v: Vec<T> = values.into_iter().collect();
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    v.get(v.len() / 2).copied()
 }
 
 /// Runs `frame` back to back for the warm-up (at least `warmup` frames and `warmup_ms`), then
@@ -535,7 +535,7 @@ fn blog_row(
         );
         blog.render(&mut pass);
     })?;
-    let slot = |s: Slot| median(times.iter().filter_map(|t| t[s as usize]).collect());
+    let slot = |s: Slot| median(times.iter().filter_map(|t| t[s as usize]));
     let image = headless::read_texture(&gpu.device, &gpu.queue, &target.color)?;
     let depth = distances(
         &target.read_depth(gpu)?,

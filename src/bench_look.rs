@@ -5,7 +5,7 @@
 //! light bake (shadows and valley occlusion) of the whole clipmap, as when the sun turns.
 //! Warm-up, then the median, as every benchmark here.
 
-use crate::bench::{measure, Options};
+use crate::bench::{measure, median, Options};
 use crate::bench_world::views;
 use crate::error::Result;
 use crate::gpu::headless::{Gpu, Offscreen, RENDER_SAMPLES};
@@ -134,12 +134,6 @@ pub fn run(
         }
     }
     Ok(rows)
-}
-
-fn median(v: impl Iterator<Item = f64>) -> Option<f64> {
-    let mut v: Vec<f64> = v.collect();
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied()
 }
 
 /// The rows as CSV, with the device and the options in a comment line, and each variant's

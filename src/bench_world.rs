@@ -5,7 +5,7 @@
 //! view (FLIP, missed and extra pixels). The seed's ray march (compute and fragment) beside
 //! them on every view. Written as `landscape.csv`.
 
-use crate::bench::{log_ticks, measure, tick_label, Options, CHART_SIZE};
+use crate::bench::{log_ticks, measure, median, tick_label, Options, CHART_SIZE};
 use crate::error::Result;
 use crate::gpu::headless::{
     render_samples, render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen,
@@ -149,8 +149,8 @@ impl WorldRow {
             measured: None,
             texels_median: median(timed.to_vec()).unwrap_or(0),
             texels_max: timed.iter().copied().max().unwrap_or(0),
-            render_ms: median(draw.collect()),
-            bake_ms: median(slot(Slot::Bake).collect()),
+            render_ms: median(draw),
+            bake_ms: median(slot(Slot::Bake)),
             bake_max_ms: slot(Slot::Bake).reduce(f64::max),
             wall_ms: median(wall.to_vec()).unwrap_or(0.0),
             texels_mean: mean_texels(timed),
@@ -227,14 +227,6 @@ fn resolved_coverage(reference: &[f32], test: &[f32]) -> Coverage {
         .map(|(&r, &t)| (r, t))
         .unzip();
     metrics::coverage(&r, &t, DEPTH_TOLERANCE)
-}
-
-fn median<T: Copy + PartialOrd>(mut v: Vec<T>) -> Option<T> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    Some(v[v.len() / 2])
 }
 
 /// Measures `views` at each knob, then a flight along a straight path low over the ground.
@@ -520,12 +512,7 @@ fn march_row(
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
         caster.encode(encoder, path, timer)
     })?;
-    let ms = median(
-        times
-            .iter()
-            .filter_map(|t| t[Slot::Render as usize])
-            .collect(),
-    );
+    let ms = median(times.iter().filter_map(|t| t[Slot::Render as usize]));
     let mut row = WorldRow::rays(
         v.name,
         method,
@@ -990,10 +977,10 @@ mod tests {
         assert_eq!(labels.placed.len(), 4);
     }
 
-    /// The rows of a committed landscape benchmark (docs/bench/store-present, H100): what the chart
-    /// needs of each.
+    /// The rows of a landscape benchmark run on an H100 (tests/data, an earlier run than
+    /// docs/results/landscape-frame.md's): what the chart needs of each.
     fn committed_rows() -> Vec<WorldRow> {
-        let csv = include_str!("../docs/bench/store-present/landscape.csv");
+        let csv = include_str!("../tests/data/landscape-h100.csv");
         let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
         let header: Vec<&str> = lines.next().expect("header").split(',').collect();
         let col = |name: &str| header.iter().position(|h| *h == name).expect(name);

@@ -1,6 +1,6 @@
 //! Camera maths on glam: an orbit camera and the per-frame view it produces.
 
-use glam::{Mat4, Vec3};
+use glam::{DVec3, Mat4, Vec3};
 
 /// What the render pass needs to know about the camera for one frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -300,6 +300,60 @@ impl PathCamera {
     ) -> crate::WorldView {
         let (eye, target) = self.at(ground, t);
         crate::WorldView::look_at(eye, target, self.fov_y, size)
+    }
+}
+
+/// A camera in the endless world: an eye in f64 metres, a direction and a lens.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldView {
+    /// Eye position in world metres (f64: it may be far from the origin).
+    pub eye: DVec3,
+    /// Unit direction looked along.
+    pub forward: Vec3,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+    /// Target size in pixels (the screen-error bound is in these pixels).
+    pub size: (u32, u32),
+    /// Applied after the projection (a crop to a tile of the image; identity otherwise).
+    pub crop: Mat4,
+    /// The host's own projection times view for camera-relative positions, used instead of
+    /// the lens (`fov_y` still sets the screen-error bound); `None`: the lens's, with near and
+    /// far planes that fit the world.
+    pub projection: Option<Mat4>,
+}
+
+impl WorldView {
+    /// A view from `eye` towards `target` with a vertical field of view of `fov_y` radians.
+    pub fn look_at(eye: DVec3, target: DVec3, fov_y: f32, size: (u32, u32)) -> Self {
+        let forward = (target - eye).normalize_or(DVec3::Z).as_vec3();
+        Self {
+            eye,
+            forward,
+            fov_y,
+            size,
+            crop: Mat4::IDENTITY,
+            projection: None,
+        }
+    }
+
+    /// `K` of the screen-error bound: pixels per radian at the image centre.
+    pub fn pixels_per_radian(&self) -> f64 {
+        f64::from(self.size.1.max(1)) / (2.0 * f64::from(self.fov_y * 0.5).tan())
+    }
+
+    /// Projection times view, with the camera at the origin (positions are camera-relative).
+    pub fn relative_matrix(&self, near: f32, far: f32) -> Mat4 {
+        if let Some(m) = self.projection {
+            return self.crop * m;
+        }
+        let up = if self.forward.y.abs() > 0.999 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
+        let aspect = self.size.0.max(1) as f32 / self.size.1.max(1) as f32;
+        let proj = Mat4::perspective_rh(self.fov_y, aspect, near, far);
+        self.crop * proj * Mat4::look_to_rh(Vec3::ZERO, self.forward, up)
     }
 }
 

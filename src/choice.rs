@@ -7,7 +7,8 @@
 //! (`--method auto`, its default) draws a few frames of each [`Candidate`] of its world on
 //! the device, and [`Choice::decide`] keeps the fastest. Every candidate draws at the forward
 //! mesh's accuracy (within 0.0003 of its FLIP against the reference on the benchmarks' views,
-//! `docs/bench`) or better; at one sample a pixel its edges are not anti-aliased. Near a tie
+//! `docs/results/landscape-frame.md`) or better; at one sample a pixel its edges are not
+//! anti-aliased. Near a tie
 //! the choice can differ from run to run: a reproducible image pins `--method`.
 //!
 //! This file is the decision; the frames are drawn by `gpu::headless::choose_method` (feature

@@ -122,5 +122,10 @@ pub use scene::BakeInfo;
 pub use wgpu;
 pub use world::{WorldKind, WorldParams};
 
+/// The README's Rust snippets, compiled as doctests so that they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 /// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].
 pub const WORLD_SIZE: f64 = 2.0;

@@ -2,8 +2,6 @@
 //! benchmark's sweep, its CSV and chart, and the tests. Each method knows its name, its words
 //! for people, and which GPU path draws it.
 
-use crate::gpu::raymarch::{RayPath, SeedMarch};
-
 /// A way of drawing the terrain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Method {
@@ -170,8 +168,7 @@ impl Method {
     }
 
     /// The ray caster's settings for a scene of `octaves` (seed march knobs at their default).
-    pub fn ray_method(self, octaves: u32) -> Option<crate::gpu::raymarch::RayMethod> {
-        use crate::gpu::raymarch::RayMethod;
+    pub fn ray_method(self, octaves: u32) -> Option<RayMethod> {
         match self {
             Method::Mesh | Method::Visibility | Method::Hybrid | Method::Blog => None,
             Method::Reference => Some(RayMethod::Reference),
@@ -190,6 +187,58 @@ impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
     }
+}
+
+/// Which ray caster, with its knobs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RayMethod {
+    /// Conservative stepping from the Lipschitz bound, bisection, all octaves, analytic normals.
+    Reference,
+    /// The seed's heightfield marcher.
+    SeedMarch(SeedMarch),
+}
+
+/// Knobs of the seed's heightfield ray marcher.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeedMarch {
+    /// c in `t += c * h`.
+    pub step_factor: f32,
+    /// k in "hit when |h| < k t".
+    pub hit_k: f32,
+    /// Octaves summed while stepping (at most the scene's).
+    pub march_octaves: u32,
+    /// Octaves summed for the normal (at most the scene's).
+    pub normal_octaves: u32,
+    /// Fade octaves finer than the pixel's footprint out of the shading (relief's own march;
+    /// the endless world only so far). The seed does not.
+    pub band_limit: bool,
+    /// The seed's relaxation variant: each step is multiplied by `max(relax * t, 1)`, so steps
+    /// grow with distance (per unit of distance; 0, the seed's plain march, leaves them be).
+    pub relax: f32,
+}
+
+impl Default for SeedMarch {
+    /// The seed's own choices: a step factor of 0.4, a hit threshold of 0.0015 t, and fewer
+    /// octaves while stepping than for the normal.
+    fn default() -> Self {
+        Self {
+            step_factor: 0.4,
+            hit_k: 0.0015,
+            march_octaves: 5,
+            normal_octaves: 8,
+            band_limit: false,
+            relax: 0.0,
+        }
+    }
+}
+
+/// Where a ray caster runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayPath {
+    /// A compute shader writing storage textures.
+    Compute,
+    /// A full-screen triangle whose fragment shader casts the ray.
+    Fragment,
 }
 
 #[cfg(test)]

@@ -1129,13 +1129,13 @@ fn the_tiles_stats_count_its_own_textures_and_bake_timings_say_how_they_were_tak
 }
 
 #[test]
-fn the_readme_lists_every_option_as_the_code_has_it() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+fn the_cli_page_lists_every_option_as_the_code_has_it() {
+    let page =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cli.md")).unwrap();
     let table = relief::cli::options_markdown();
     assert!(
-        readme.contains(&table),
-        "README.md's option table is out of date; it should read:\n{table}"
+        page.contains(&table),
+        "docs/cli.md's option table is out of date; it should read:\n{table}"
     );
 }
 

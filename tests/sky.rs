@@ -113,7 +113,7 @@ fn sky_error(rgba: &[u8], matrix: Mat4, p: &WorldParams) -> (f32, usize) {
 /// the H100), and the ray cast the reference is made of: the same bytes of sky. Its shaded image
 /// was half floats once, which lavapipe's store rounds toward zero: one step under the ray cast
 /// in 2.8% of a grazing view's sky values on lavapipe, and one step either side of it in 2.2% on
-/// the H100 (docs/bench/exact-bytes).
+/// the H100 (docs/bench/exact-bytes in git history, up to a57006a).
 #[test]
 fn the_visibility_methods_sky_is_the_ray_casts_byte_for_byte() {
     let gpu = common::gpu();

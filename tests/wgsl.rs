@@ -16,12 +16,77 @@ fn parse(name: &str, source: &str) -> naga::Module {
     module
 }
 
+/// The names of the files in `wgsl/` on disk.
+fn files_on_disk() -> Vec<String> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/wgsl");
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "wgsl"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 #[test]
-fn every_module_validates() {
-    let modules = shader::all_modules();
-    assert_eq!(modules.len(), 19);
+fn every_file_on_disk_is_built_in_and_every_module_validates() {
+    let on_disk = files_on_disk();
+    let built_in: Vec<String> = shader::FILES.iter().map(|(n, _)| n.to_string()).collect();
+    assert_eq!(built_in, on_disk, "shader::FILES and wgsl/ differ");
+    for name in &on_disk {
+        // Every file is composed into some module: its own, or those it is part of, each of
+        // which imports it.
+        for whole in shader::part_of(name) {
+            let mut seen = vec![whole];
+            let mut found = false;
+            while let Some(n) = seen.pop() {
+                let imports = shader::imports(n);
+                found |= imports.contains(&name.as_str());
+                seen.extend(imports);
+            }
+            assert!(
+                found,
+                "{name} says it is part of {whole}, which does not import it"
+            );
+        }
+        for import in shader::imports(name) {
+            assert!(
+                on_disk.iter().any(|n| n == import),
+                "{name} imports {import}: no such file"
+            );
+        }
+    }
+    let modules = shader::modules();
+    let parts = on_disk
+        .iter()
+        .filter(|n| !shader::part_of(n).is_empty())
+        .count();
+    assert_eq!(modules.len() + parts, on_disk.len());
     for (name, source) in modules {
         parse(name, &source);
+    }
+}
+
+#[test]
+fn a_part_alone_does_not_validate() {
+    // What `// part of:` claims: the file calls what only its wholes define.
+    for (name, _) in shader::FILES {
+        if !shader::part_of(name).is_empty() {
+            let source = shader::source(name);
+            let valid = naga::front::wgsl::parse_str(&source).is_ok_and(|m| {
+                naga::valid::Validator::new(
+                    naga::valid::ValidationFlags::all(),
+                    naga::valid::Capabilities::all(),
+                )
+                .validate(&m)
+                .is_ok()
+            });
+            assert!(
+                !valid,
+                "{name} validates alone: drop its `// part of:` line"
+            );
+        }
     }
 }
 
@@ -30,8 +95,9 @@ fn only_the_raster_with_ids_needs_64_bit_integers() {
     // The page's WebGPU has no 64-bit integers: every other module builds without them.
     use naga::valid::Capabilities as C;
     let int64 = C::SHADER_INT64 | C::SHADER_INT64_ATOMIC_MIN_MAX | C::SHADER_INT64_ATOMIC_ALL_OPS;
-    for (name, source) in shader::all_modules() {
-        let module = naga::front::wgsl::parse_str(&source).expect("parses");
+    for (name, source) in shader::modules() {
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
         let without =
             naga::valid::Validator::new(naga::valid::ValidationFlags::all(), C::all() - int64)
                 .validate(&module);
@@ -65,15 +131,7 @@ fn offset(members: &[(String, u32)], name: &str) -> usize {
 
 #[test]
 fn landscape_uniforms_match_wgsl() {
-    let m = parse(
-        "landscape_bake",
-        &shader::compose(&[
-            shader::NOISE,
-            shader::LANDSCAPE,
-            shader::LEVEL_TEXEL,
-            shader::LANDSCAPE_BAKE,
-        ]),
-    );
+    let m = parse("landscape_bake", &shader::source("landscape_bake"));
     let (size, members) = layout(&m, "LandscapeUniforms");
     assert_eq!(size as usize, size_of::<LandscapeUniforms>());
     for (name, at) in [
@@ -100,16 +158,7 @@ fn landscape_uniforms_match_wgsl() {
 #[test]
 fn visibility_uniforms_match_wgsl() {
     use relief::gpu::visibility::VisUniforms;
-    let m = parse(
-        "visibility",
-        &shader::compose(&[
-            shader::SHADE,
-            shader::LEVEL_TEXEL,
-            shader::WORLD,
-            shader::VIS_COMMON,
-            shader::VISIBILITY,
-        ]),
-    );
+    let m = parse("visibility", &shader::source("visibility"));
     let (size, members) = layout(&m, "VisUniforms");
     assert_eq!(size as usize, size_of::<VisUniforms>());
     for (name, at) in [
@@ -127,16 +176,13 @@ fn visibility_uniforms_match_wgsl() {
 
 #[test]
 fn uniform_structs_match_wgsl() {
-    let bake = parse("bake", &shader::compose(&[shader::NOISE, shader::BAKE]));
+    let bake = parse("bake", &shader::source("bake"));
     let (size, m) = layout(&bake, "BakeUniforms");
     assert_eq!(size as usize, size_of::<BakeUniforms>());
     assert_eq!(offset(&m, "gain"), offset_of!(BakeUniforms, gain));
     assert_eq!(offset(&m, "offset"), offset_of!(BakeUniforms, offset));
 
-    let normals = parse(
-        "normals",
-        &shader::compose(&[shader::NOISE, shader::NORMALS]),
-    );
+    let normals = parse("normals", &shader::source("normals"));
     let (size, m) = layout(&normals, "NormalUniforms");
     assert_eq!(size as usize, size_of::<NormalUniforms>());
     assert_eq!(
@@ -148,10 +194,7 @@ fn uniform_structs_match_wgsl() {
         offset_of!(NormalUniforms, texel_world)
     );
 
-    let render = parse(
-        "world",
-        &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
-    );
+    let render = parse("world", &shader::source("world"));
     let (size, m) = layout(&render, "RenderUniforms");
     assert_eq!(size as usize, size_of::<RenderUniforms>());
     assert_eq!(
@@ -174,7 +217,7 @@ fn uniform_structs_match_wgsl() {
 #[test]
 fn world_size_agrees_with_render_wgsl() {
     assert!(
-        shader::SHADE.contains(&format!(
+        shader::file("shade").unwrap().contains(&format!(
             "const WORLD_SIZE: f32 = {:.1};",
             relief::WORLD_SIZE
         )),
@@ -185,10 +228,7 @@ fn world_size_agrees_with_render_wgsl() {
 #[test]
 fn world_uniforms_match_wgsl() {
     use relief::gpu::world::{LevelUniforms, WorldUniforms};
-    let m = parse(
-        "world",
-        &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
-    );
+    let m = parse("world", &shader::source("world"));
     let (size, members) = layout(&m, "WorldUniforms");
     assert_eq!(size as usize, size_of::<WorldUniforms>());
     for (name, at) in [
@@ -232,15 +272,7 @@ fn world_uniforms_match_wgsl() {
 #[test]
 fn light_uniforms_match_wgsl() {
     use relief::gpu::world_light::{LightLevel, LightRect, LightUniforms};
-    let m = parse(
-        "world_light",
-        &shader::compose(&[
-            shader::NOISE,
-            shader::LANDSCAPE,
-            shader::LEVEL_TEXEL,
-            shader::WORLD_LIGHT,
-        ]),
-    );
+    let m = parse("world_light", &shader::source("world_light"));
     let (size, members) = layout(&m, "LightUniforms");
     assert_eq!(size as usize, size_of::<LightUniforms>());
     for (name, at) in [
@@ -285,16 +317,7 @@ fn light_uniforms_match_wgsl() {
 #[test]
 fn world_ray_uniforms_match_wgsl() {
     use relief::gpu::world_rays::WorldRayUniforms;
-    let m = parse(
-        "world_rays",
-        &shader::compose(&[
-            shader::NOISE,
-            shader::SHADE,
-            shader::LANDSCAPE,
-            shader::WORLD_RAYS,
-            shader::RAYS,
-        ]),
-    );
+    let m = parse("world_rays", &shader::source("world_rays_io"));
     let (size, members) = layout(&m, "WorldRayUniforms");
     assert_eq!(size as usize, size_of::<WorldRayUniforms>());
     for (name, at) in [
@@ -316,10 +339,7 @@ fn world_ray_uniforms_match_wgsl() {
 #[test]
 fn tile_ray_uniforms_match_wgsl() {
     use relief::gpu::raymarch::RayUniforms;
-    let m = parse(
-        "raymarch",
-        &shader::compose(&[shader::NOISE, shader::SHADE, shader::RAYMARCH, shader::RAYS]),
-    );
+    let m = parse("raymarch", &shader::source("raymarch"));
     let (size, members) = layout(&m, "RayUniforms");
     assert_eq!(size as usize, size_of::<RayUniforms>());
     for (name, at) in [

@@ -1,3 +1,4 @@
+// import: noise
 // Bake pass: writes normalised height (r) and the albedo-mix channel (g) into an rg32float
 // storage texture, one texel an invocation (`bake_main`) or, where every octave's lattice cells
 // hold whole pairs of texels, a 2x2 quad of texels an invocation (`bake_quads`).

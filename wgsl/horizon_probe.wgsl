@@ -1,3 +1,4 @@
+// import: world_rays_io
 // The terrain's horizon towards the sun at given points of the endless world's continuous
 // surface, as the ray casters shade them (`world_horizon` in world_rays.wgsl, by `ray.method`:
 // the reference's conservative march or the seed's shadow march). Composed after

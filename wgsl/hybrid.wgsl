@@ -1,3 +1,4 @@
+// import: shade, world_rays, march, vis_common
 // The hybrid method (src/gpu/visibility.rs, the endless world): the clipmap mesh, each level's
 // vertices raised by a bound on how far the continuous surface rises above that level's mesh
 // (clipmap::level_raise), is rasterised by the visibility method's raster pass. Where a
@@ -38,8 +39,8 @@ fn clearance(q: vec3<f32>) -> f32 {
 // HYBRID_HALVINGS halvings, then the secant through the clearances at the ends of what is
 // left. Halvings alone land anywhere within the last interval, and where that interval falls
 // depends on where the march started, which moves with the eye: a 1 cm step of the eye moved
-// the hybrid's picture 1.2-2.1 times as much as the reference's (docs/stability, distance). The
-// secant lands on the surface to second order where it is smooth across the interval.
+// the hybrid's picture 1.2-2.1 times as much as the reference's (docs/results/stability.md,
+// distance). The secant lands on the surface to second order where it is smooth across the interval.
 fn land_hit(ro: vec3<f32>, dir: vec3<f32>, span: vec2<f32>) -> f32 {
     var lo = span.x;
     var hi = span.y;

@@ -1,3 +1,4 @@
+// import: noise
 // The endless world's terrain function (composed after noise.wgsl, whose hash, gradients and
 // fade it uses). Its CPU twin, in f64, is `src/landscape.rs`.
 //
@@ -213,7 +214,7 @@ fn landscape_sample_at(s: vec2<i32>, f: vec2<f32>, u: LandscapeUniforms, channel
 // each sample would otherwise do alone. Each channel takes the operations landscape_sample_at
 // takes at offset 0 (the same bits on lavapipe; a driver may fuse multiply-adds differently).
 // Written out for the four samples, not as arrays: indexed arrays of sums ran 36% slower than
-// a sample an invocation on the H100, these 2.3x faster (docs/bench/README.md).
+// a sample an invocation on the H100, these 2.3x faster (docs/results/bakes.md).
 fn landscape_samples_quad(s: vec2<i32>, u: LandscapeUniforms) -> array<vec4<f32>, 4> {
     let eroded = u.terrain == 1u;
     var h0 = Octaves();

@@ -1,3 +1,4 @@
+// import: landscape, level_texel
 // Landscape bake pass: one invocation per sample of a rectangle of a level (or a region)
 // writes (height, dh/dx, dh/dz, colour channel) at toroidal (wrapping) texel addresses, so a
 // moving level bakes only the rows and columns the camera uncovers: into an rgba32float

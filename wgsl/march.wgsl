@@ -1,3 +1,4 @@
+// part of: rays, hybrid (the caster it calls comes from raymarch or world_rays)
 // The ray casters' march, shared by the tile's (raymarch.wgsl) and the endless world's
 // (world_rays.wgsl) casters and by the hybrid method's refinement (hybrid.wgsl), composed after
 // a caster's file. That file declares `ray` (with `width`, `height`, `inv_view_proj`,

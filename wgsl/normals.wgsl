@@ -1,3 +1,4 @@
+// import: noise
 // Normal pass: a signed rgba16float normal map (xyz = unit normal, y up; w unused) by one of
 // two methods. 0: wrap-around central differences of the baked heights (the tile is periodic,
 // so the neighbours of an edge texel are on the opposite edge). 1: the analytic gradient of the

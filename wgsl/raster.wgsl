@@ -1,3 +1,5 @@
+// import: world
+// part of: raster_depth, raster_ids (each defines `keep` and `drawn_bits` for it)
 // The visibility method's raster pass in compute (src/gpu/raster.rs; one sample a pixel): the
 // same patches and vertices as the hardware raster pass (world.wgsl's `place`), one thread a
 // cell, its two triangles clipped to the near plane, projected, and rasterised at pixel centres.

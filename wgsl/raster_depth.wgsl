@@ -1,3 +1,4 @@
+// import: raster
 // The compute raster's depth on any device (raster.wgsl; src/gpu/raster.rs): per pixel, row by
 // row, the nearest depth's complemented bits, 0 where nothing is drawn. The endless world's
 // attributes come from a second dispatch (`mode` 1) that stores them where a triangle's depth

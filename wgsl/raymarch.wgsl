@@ -1,3 +1,4 @@
+// import: noise, shade, rays
 // Ray casting of the continuous fBm surface: no texture, no mesh. Composed after noise.wgsl
 // and shade.wgsl. Two methods, chosen by `ray.method`:
 //

@@ -1,3 +1,5 @@
+// import: march
+// part of: raymarch, world_rays_io (each defines the caster it calls)
 // The ray casters' entry points, shared by the tile's (raymarch.wgsl) and the endless world's
 // (world_rays.wgsl) casters, composed after either and march.wgsl: a compute shader writing
 // storage textures and a full-screen fragment shader writing two colour targets. The caster's

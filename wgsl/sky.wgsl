@@ -1,3 +1,4 @@
+// import: shade
 // The sky pass: one full-screen triangle at the far plane (depth 1), drawn after the terrain
 // with a less-or-equal depth test, so it fills exactly the pixels nothing nearer covered (or
 // before the terrain where the host's pass has no depth). Each pixel shows `sky_pixel` (from

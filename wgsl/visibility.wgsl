@@ -1,3 +1,4 @@
+// import: world, vis_common
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the
@@ -130,7 +131,8 @@ fn composite_fs_color(@builtin(position) position: vec4<f32>) -> @location(0) ve
 // fills what no terrain covers): each pixel's colour sRGB-encoded to 8 bits a channel, packed
 // in the byte order of the target's format, into rows of `presented` padded to 256 bytes (64
 // pixels), which a copy then puts in the target. On a compute chip a full-screen draw costs
-// what the whole shading pass does several times over (docs/bench/present).
+// what the whole shading pass does several times over (docs/bench/present in git history, up
+// to a57006a).
 @group(0) @binding(20) var<storage, read_write> presented: array<u32>;
 
 fn present_pixel(id: vec2<u32>, bgra: bool) {
@@ -146,7 +148,7 @@ fn present_pixel(id: vec2<u32>, bgra: bool) {
 // Straight into a target that takes storage writes (an RGBA8 texture, not sRGB, with
 // STORAGE_BINDING: `relief render`'s offscreen image), with no buffer and no copy: the
 // encoded colour a quarter step over its byte (`unorm8_exact`), so the store writes the bytes
-// the packed frame holds (docs/bench/store-present).
+// the packed frame holds (docs/bench/store-present in git history, up to a57006a).
 @group(0) @binding(21) var presented_image: texture_storage_2d<rgba8unorm, write>;
 
 @compute @workgroup_size(8, 8)

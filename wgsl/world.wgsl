@@ -1,3 +1,4 @@
+// import: shade, level_texel
 // The endless world's render pass: the clipmap's patches (src/clipmap.rs) drawn as instances
 // of one indexed (patch+1)^2 grid, displaced by the levels' baked heights, in camera-relative
 // coordinates; shaded per pixel from the baked gradient by shade.wgsl (composed before this).

@@ -1,3 +1,4 @@
+// import: landscape, level_texel
 // The endless world's light bake: for each sample of a rectangle of a level, the elevation of
 // the terrain's horizon towards the sun's azimuth (what a sun lower than it cannot light) and
 // how far the sample lies below its neighbourhood (valley occlusion), written into an rg32float

@@ -1,3 +1,5 @@
+// import: noise, shade, landscape
+// part of: world_rays_io, hybrid (each declares the `r` and `ray` it reads)
 // Ray casting of the endless world's continuous surface (src/landscape.rs): no texture, no
 // mesh. Composed after noise.wgsl, shade.wgsl and landscape.wgsl, and before march.wgsl and
 // rays.wgsl (the entry points); it declares no bindings (`r` and `ray` come from

@@ -1,3 +1,4 @@
+// import: world_rays, rays
 // The endless world's ray casters' bindings (src/gpu/raymarch.rs), composed after
 // world_rays.wgsl, whose functions read `r` and `ray`.
 

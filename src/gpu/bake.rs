@@ -62,11 +62,7 @@ pub(crate) struct BakePass {
 
 impl BakePass {
     pub fn new(device: &wgpu::Device) -> Self {
-        let module = shader::module(
-            device,
-            "relief:bake:shader",
-            &shader::compose(&[shader::NOISE, shader::BAKE]),
-        );
+        let module = shader::module(device, "relief:bake:shader", &shader::source("bake"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:bake:bind-group-layout"),
             entries: &[

@@ -27,7 +27,7 @@ pub struct Blit {
 impl Blit {
     /// A blit into targets of `format` (single-sampled, no depth).
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
-        let module = shader::module(device, "relief:blit:shader", shader::BLIT);
+        let module = shader::module(device, "relief:blit:shader", &shader::source("blit"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:blit:layout"),
             entries: &[

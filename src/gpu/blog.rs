@@ -172,7 +172,8 @@ impl Blog {
     }
 
     fn create(device: &wgpu::Device, targets: Targets, kind: Kind, grid: u32) -> Result<Self> {
-        let module = super::shader::module(device, "relief:blog:shader", super::shader::BLOG);
+        let module =
+            super::shader::module(device, "relief:blog:shader", &super::shader::source("blog"));
         let uniforms = super::uniform_buffer::<BlogUniforms>(device, "relief:blog:uniforms");
         let (draw_layout, draw_group, entries, textured) = match kind {
             Kind::Pipeline => {

@@ -1459,14 +1459,7 @@ pub fn world_horizons(
         .map(|p| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32])
         .collect();
     let device = &gpu.device;
-    let source = super::shader::compose(&[
-        super::shader::NOISE,
-        super::shader::SHADE,
-        super::shader::LANDSCAPE,
-        super::shader::WORLD_RAYS,
-        super::shader::RAYS,
-        super::shader::HORIZON_PROBE,
-    ]);
+    let source = super::shader::source("horizon_probe");
     let init = |label: &str, contents: &[u8], usage| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),

@@ -151,12 +151,7 @@ impl LandscapeBake {
         let module = shader::module(
             device,
             "relief:landscape-bake:shader",
-            &shader::compose(&[
-                shader::NOISE,
-                shader::LANDSCAPE,
-                shader::LEVEL_TEXEL,
-                shader::LANDSCAPE_BAKE,
-            ]),
+            &shader::source("landscape_bake"),
         );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:landscape-bake:bind-group-layout"),

@@ -15,6 +15,7 @@ pub(crate) mod render;
 pub mod shader;
 pub(crate) mod sky;
 pub mod timing;
+mod uniforms;
 pub mod visibility;
 pub mod world;
 pub mod world_light;

@@ -63,7 +63,7 @@ impl NormalPass {
         let module = super::shader::module(
             device,
             "relief:normals:shader",
-            &super::shader::compose(&[super::shader::NOISE, super::shader::NORMALS]),
+            &super::shader::source("normals"),
         );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:normals:bind-group-layout"),

@@ -246,12 +246,8 @@ impl ComputeRaster {
     ) -> Self {
         use super::shader as s;
         let ids = attributes && device.features().contains(ID_FEATURES);
-        let keep = if ids { s::RASTER_IDS } else { s::RASTER_DEPTH };
-        let module = s::module(
-            device,
-            "relief:raster:shader",
-            &s::compose(&[s::SHADE, s::LEVEL_TEXEL, s::WORLD, s::RASTER, keep]),
-        );
+        let keep = if ids { "raster_ids" } else { "raster_depth" };
+        let module = s::module(device, "relief:raster:shader", &s::source(keep));
         let storage = super::storage_buffer_entry;
         let entry = |binding: u32| match binding {
             0 => wgpu::BindGroupLayoutEntry {
@@ -566,13 +562,14 @@ mod tests {
 
     #[test]
     fn the_big_triangles_constants_match_the_wgsl() {
-        let wgsl = super::super::shader::RASTER;
+        let wgsl = super::super::shader::file("raster").unwrap();
         assert!(wgsl.contains(&format!("const BLOCK: u32 = {BLOCK}u;")));
         assert!(wgsl.contains(&format!("const HIZ_TILE: u32 = {HIZ_TILE}u;")));
         assert!(wgsl.contains(&format!(
             "@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})\nfn raster_hiz"
         )));
-        assert!(super::super::shader::RASTER_IDS
+        assert!(super::super::shader::file("raster_ids")
+            .unwrap()
             .contains(&format!("@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})")));
         assert!(wgsl.contains(&format!(
             "big_count: array<atomic<u32>, {}>",

@@ -50,57 +50,7 @@ pub struct RayUniforms {
     pub offset: [f32; 2],
 }
 
-/// Which ray caster, with its knobs.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RayMethod {
-    /// Conservative stepping from the Lipschitz bound, bisection, all octaves, analytic normals.
-    Reference,
-    /// The seed's heightfield marcher.
-    SeedMarch(SeedMarch),
-}
-
-/// Knobs of the seed's heightfield ray marcher.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SeedMarch {
-    /// c in `t += c * h`.
-    pub step_factor: f32,
-    /// k in "hit when |h| < k t".
-    pub hit_k: f32,
-    /// Octaves summed while stepping (at most the scene's).
-    pub march_octaves: u32,
-    /// Octaves summed for the normal (at most the scene's).
-    pub normal_octaves: u32,
-    /// Fade octaves finer than the pixel's footprint out of the shading (relief's own march;
-    /// the endless world only so far). The seed does not.
-    pub band_limit: bool,
-    /// The seed's relaxation variant: each step is multiplied by `max(relax * t, 1)`, so steps
-    /// grow with distance (per unit of distance; 0, the seed's plain march, leaves them be).
-    pub relax: f32,
-}
-
-impl Default for SeedMarch {
-    /// The seed's own choices: a step factor of 0.4, a hit threshold of 0.0015 t, and fewer
-    /// octaves while stepping than for the normal.
-    fn default() -> Self {
-        Self {
-            step_factor: 0.4,
-            hit_k: 0.0015,
-            march_octaves: 5,
-            normal_octaves: 8,
-            band_limit: false,
-            relax: 0.0,
-        }
-    }
-}
-
-/// Where a ray caster runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RayPath {
-    /// A compute shader writing storage textures.
-    Compute,
-    /// A full-screen triangle whose fragment shader casts the ray.
-    Fragment,
-}
+pub use crate::method::{RayMethod, RayPath, SeedMarch};
 
 /// Largest number of steps a ray may take before it is marked unresolved.
 pub const MAX_STEPS: u32 = 4096;
@@ -151,16 +101,8 @@ pub enum RayScene {
 impl RayScene {
     fn source(self) -> String {
         match self {
-            RayScene::Tile => {
-                shader::compose(&[shader::NOISE, shader::SHADE, shader::RAYMARCH, shader::RAYS])
-            }
-            RayScene::World => shader::compose(&[
-                shader::NOISE,
-                shader::SHADE,
-                shader::LANDSCAPE,
-                shader::WORLD_RAYS,
-                shader::RAYS,
-            ]),
+            RayScene::Tile => shader::source("raymarch"),
+            RayScene::World => shader::source("world_rays_io"),
         }
     }
 

@@ -16,11 +16,8 @@ pub(crate) struct SkyPass {
 impl SkyPass {
     /// A sky pass reading the render uniforms in `uniforms`.
     pub fn new(device: &wgpu::Device, targets: &Targets, uniforms: &wgpu::Buffer) -> Self {
-        let module = super::shader::module(
-            device,
-            "relief:sky:shader",
-            &super::shader::compose(&[super::shader::SHADE, super::shader::SKY]),
-        );
+        let module =
+            super::shader::module(device, "relief:sky:shader", &super::shader::source("sky"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:sky:bind-group-layout"),
             entries: &[super::uniform_entry::<RenderUniforms>(

@@ -24,7 +24,7 @@
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
-use super::world::WorldUniforms;
+use super::uniforms::WorldUniforms;
 use super::world_rays::WorldRayUniforms;
 use super::Targets;
 
@@ -272,33 +272,10 @@ impl Visibility {
         });
 
         use super::shader as s;
-        let vis_module = s::module(
-            device,
-            "relief:visibility:shader",
-            &s::compose(&[
-                s::SHADE,
-                s::LEVEL_TEXEL,
-                s::WORLD,
-                s::VIS_COMMON,
-                s::VISIBILITY,
-            ]),
-        );
+        let vis_module = s::module(device, "relief:visibility:shader", &s::source("visibility"));
         // The hybrid's compute pass: a module of its own, with only what it needs.
-        let hybrid_module = hybrid.then(|| {
-            s::module(
-                device,
-                "relief:hybrid:shader",
-                &s::compose(&[
-                    s::SHADE,
-                    s::NOISE,
-                    s::LANDSCAPE,
-                    s::WORLD_SURFACE,
-                    s::MARCH,
-                    s::VIS_COMMON,
-                    s::HYBRID,
-                ]),
-            )
-        });
+        let hybrid_module =
+            hybrid.then(|| s::module(device, "relief:hybrid:shader", &s::source("hybrid")));
         let c = wgpu::ShaderStages::COMPUTE;
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let ms = samples > 1;

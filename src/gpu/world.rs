@@ -10,10 +10,12 @@ use super::light_queue::LightQueue;
 use super::raster::{Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
+pub use super::uniforms::{LevelUniforms, WorldUniforms};
 use super::visibility::{Visibility, WorldBindings};
 use super::world_light::{LightBake, LightRect, LightUniforms};
 use super::{scoped, shader, Targets};
 use crate::camera::View;
+pub use crate::camera::WorldView;
 use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
 use crate::error::{Error, Result};
 use crate::landscape::Landscape;
@@ -22,66 +24,12 @@ use crate::params::{Shading, TerrainParams};
 use crate::sky::SkyLight;
 pub use crate::world::WorldParams;
 
-/// A camera in the endless world: an eye in f64 metres, a direction and a lens.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WorldView {
-    /// Eye position in world metres (f64: it may be far from the origin).
-    pub eye: DVec3,
-    /// Unit direction looked along.
-    pub forward: Vec3,
-    /// Vertical field of view, radians.
-    pub fov_y: f32,
-    /// Target size in pixels (the screen-error bound is in these pixels).
-    pub size: (u32, u32),
-    /// Applied after the projection (a crop to a tile of the image; identity otherwise).
-    pub crop: Mat4,
-    /// The host's own projection times view for camera-relative positions, used instead of
-    /// the lens (`fov_y` still sets the screen-error bound); `None`: the lens's, with near and
-    /// far planes that fit the world.
-    pub projection: Option<Mat4>,
-}
-
 /// The endless world's default camera (chosen by eye): 1200 m above the ground at
 /// (2000, -3000), looking east-north-east and a little down over ridges running out to the
 /// horizon. Returns the eye and the point looked at.
 pub fn default_camera(land: &crate::landscape::Landscape) -> (DVec3, DVec3) {
     let eye = DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0);
     (eye, eye + DVec3::new(7000.0, -1000.0, 3000.0))
-}
-
-impl WorldView {
-    /// A view from `eye` towards `target` with a vertical field of view of `fov_y` radians.
-    pub fn look_at(eye: DVec3, target: DVec3, fov_y: f32, size: (u32, u32)) -> Self {
-        let forward = (target - eye).normalize_or(DVec3::Z).as_vec3();
-        Self {
-            eye,
-            forward,
-            fov_y,
-            size,
-            crop: Mat4::IDENTITY,
-            projection: None,
-        }
-    }
-
-    /// `K` of the screen-error bound: pixels per radian at the image centre.
-    pub fn pixels_per_radian(&self) -> f64 {
-        f64::from(self.size.1.max(1)) / (2.0 * f64::from(self.fov_y * 0.5).tan())
-    }
-
-    /// Projection times view, with the camera at the origin (positions are camera-relative).
-    pub fn relative_matrix(&self, near: f32, far: f32) -> Mat4 {
-        if let Some(m) = self.projection {
-            return self.crop * m;
-        }
-        let up = if self.forward.y.abs() > 0.999 {
-            Vec3::Z
-        } else {
-            Vec3::Y
-        };
-        let aspect = self.size.0.max(1) as f32 / self.size.1.max(1) as f32;
-        let proj = Mat4::perspective_rh(self.fov_y, aspect, near, far);
-        self.crop * proj * Mat4::look_to_rh(Vec3::ZERO, self.forward, up)
-    }
 }
 
 /// What the last frame cost, as `relief render --stats` prints it.
@@ -151,70 +99,6 @@ fn level_bytes(map: &Clipmap) -> u64 {
     u64::from(map.side()).pow(2)
         * (super::texel_bytes(super::landscape::LandscapeBake::LEVEL_FORMAT)
             + super::texel_bytes(LightBake::FORMAT))
-}
-
-/// Mirrors `Level` in `wgsl/world.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LevelUniforms {
-    /// Level origin in finest samples relative to the camera's reference sample.
-    pub origin_rel: [i32; 2],
-    /// Origin less twice the coarser level's, in this level's samples.
-    pub delta: [i32; 2],
-    /// Origin modulo the texture side.
-    pub origin_mod: [u32; 2],
-    /// log2 of spacing over the finest spacing.
-    pub shift: u32,
-    /// Texture-array layer.
-    pub layer: u32,
-    /// Index of the coarser level.
-    pub coarse: u32,
-    /// 1 when there is a coarser level to morph towards.
-    pub has_coarse: u32,
-    /// The eye in this level's samples from its first sample.
-    pub eye_local: [f32; 2],
-    /// The drawn bounds in this level's samples from its first sample (x0, z0, x1, z1):
-    /// vertices are clamped into them (huge for the endless world).
-    pub clip: [f32; 4],
-    /// Metres the vertices are raised by: 0, or for [`Method::Hybrid`] the level's raise
-    /// ([`World::level_raise`]: the mesh then lies on or above the surface).
-    pub raise: f32,
-    /// The level whose light this level is drawn with: its own index once its light is
-    /// baked, before that a coarser level's, or `u32::MAX` while none has light (unshadowed).
-    pub light_from: u32,
-    /// Padding to 16 bytes.
-    pub _pad: [u32; 2],
-}
-
-/// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct WorldUniforms {
-    /// xz: eye less the reference sample, metres; y: eye height; w: finest spacing.
-    pub eye: [f32; 4],
-    /// Cells per level side.
-    pub cells: u32,
-    /// Cells per patch side.
-    pub patch_cells: u32,
-    /// Texture side.
-    pub side: u32,
-    /// 1 while morphing.
-    pub morphing: u32,
-    /// Morph band: start and end, in a level's cells of distance from the eye.
-    pub morph: [f32; 2],
-    /// World height of normalised height 1.
-    pub peak: f32,
-    /// How far the first active level is morphed as a whole ([`Clipmap::fade`]).
-    pub fade: f32,
-    /// Index of the first active level.
-    pub first: u32,
-    /// Padding.
-    /// The tile's: one over its width in metres (0: the endless world, no tile textures).
-    pub tile_inv: f32,
-    /// The tile's: the eye less the tile's first corner, metres (x, z).
-    pub tile_eye: [f32; 2],
-    /// The levels.
-    pub levels: [LevelUniforms; MAX_LEVELS],
 }
 
 /// The endless world on the host's device: see the module docs.
@@ -369,11 +253,7 @@ impl World {
             let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
             let light = LevelLight::new(device, &light_bake, &texture, &map);
-            let module = shader::module(
-                device,
-                "relief:world:shader",
-                &shader::compose(&[shader::SHADE, shader::LEVEL_TEXEL, shader::WORLD]),
-            );
+            let module = shader::module(device, "relief:world:shader", &shader::source("world"));
             // Compute too: the visibility method's compute raster places the same vertices.
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -1362,7 +1242,8 @@ impl World {
     /// Writes the frame that [`World::encode_bake`] shaded in compute straight into `target`,
     /// with no render pass, for a host whose frame the world fills: `target` is then all the
     /// frame needs (no depth is written). On a compute chip such as the H100 a full-screen draw
-    /// in a render pass costs more than the shading itself (docs/bench/present).
+    /// in a render pass costs more than the shading itself (docs/bench/present in git history,
+    /// up to a57006a).
     ///
     /// Returns true, having recorded the frame's present (timed as [`Slot::Present`]), where
     /// the method shades in compute (the visibility method and the hybrid), the sky is on

@@ -143,12 +143,7 @@ impl LightBake {
         let module = shader::module(
             device,
             "relief:world-light:shader",
-            &shader::compose(&[
-                shader::NOISE,
-                shader::LANDSCAPE,
-                shader::LEVEL_TEXEL,
-                shader::WORLD_LIGHT,
-            ]),
+            &shader::source("world_light"),
         );
         let c = wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

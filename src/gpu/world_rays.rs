@@ -5,10 +5,10 @@
 
 use glam::DVec3;
 
-use super::raymarch::{RayMethod, SeedMarch};
-use super::world::WorldView;
+use crate::camera::WorldView;
 use crate::clipmap::{finest_log2, max_eye, Clipmap};
 use crate::error::{Error, Result};
+use crate::method::{RayMethod, SeedMarch};
 use crate::world::WorldParams;
 
 /// Step limit of the world's rays. Grazing rays that skim a slope for kilometres take small
