@@ -1,8 +1,9 @@
 // Periodic 2-D gradient (Perlin) noise and fBm, shared by the passes that need it.
 //
-// This file is prepended to a pass's own WGSL by `relief::gpu::shader::compose`; it declares
-// no bindings. Its CPU twin, in f64, is `src/noise.rs`: every constant and every step here has
-// its counterpart there, and the tests compare the two.
+// The files that name it in their `// import:` line get it before them
+// (`relief::gpu::shader::source`); it declares no bindings. Its CPU twin, in f64, is
+// `src/noise.rs`: every constant and every step here has its counterpart there, and the tests
+// compare the two.
 //
 // Lattice coordinates are integers and hashed with PCG (Jarzynski & Olano 2020, "Hash
 // Functions for GPU Rendering"), so a seed gives the same terrain on every GPU, in the browser

@@ -1,7 +1,7 @@
 // import: landscape, level_texel
 // The endless world's light bake: for each sample of a rectangle of a level, the elevation of
 // the terrain's horizon towards the sun's azimuth (what a sun lower than it cannot light) and
-// how far the sample lies below its neighbourhood (valley occlusion), written into an rg32float
+// how far the sample lies below its neighbourhood (valley occlusion), written into an r32uint
 // texture-array layer at the same toroidal texel as the sample's heights. Reads the levels'
 // baked heights, and near the sample the terrain function itself (composed after noise.wgsl and
 // landscape.wgsl). The truth it is measured against is src/light.rs.

@@ -1,6 +1,6 @@
 //! What light the endless world's levels still need, and which of it one frame bakes.
 //!
-//! The light bake (`wgpu/world_light.wgsl`) costs several times the height bake a texel, so it
+//! The light bake (`wgsl/world_light.wgsl`) costs several times the height bake a texel, so it
 //! keeps to a per-frame budget as the height bake does: coarse levels first, a level's light
 //! only once its heights and every coarser level's are baked (its march reads them, so what it
 //! bakes is final), and never more than the budget's texels a frame (a level is split into
