@@ -200,7 +200,7 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
     // 150 m above its ground looking at the pillar's spot, 900 m ahead.
     let mut terrain = None;
     let mut world = None;
-    let (view_proj, pillar_uniforms) = if draw.endless {
+    let (mut view_proj, pillar_uniforms) = if draw.endless {
         let params = WorldParams {
             pixel_error: 8.0,
             ..Default::default()
@@ -228,7 +228,6 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
                 break;
             }
         }
-        w.prepare(queue, &view);
         // Camera-relative, as relief draws: the pillar's place less the eye.
         let rel = spot - eye;
         let uniforms = [
@@ -241,9 +240,9 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             0.0,
             0.0,
         ];
-        let m = w.relative_matrix();
         world = Some((w, view));
-        (m, uniforms)
+        // The camera-relative matrix relief draws with, once the frame is prepared (below).
+        (glam::Mat4::IDENTITY, uniforms)
     } else {
         let mut t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
         if draw.raster == relief::Raster::Compute {
@@ -295,14 +294,13 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
     // The host's frame: its encoder, its pass, its depth buffer; relief records into them.
     let mut encoder = device.create_command_encoder(&Default::default());
     if let Some((t, view)) = &mut terrain {
-        t.encode_bake(device, queue, &mut encoder, view)
+        t.prepare(device, queue, &mut encoder, view)
             .map_err(|e| e.to_string())?;
-        t.prepare(queue, view);
     }
     if let Some((w, view)) = &mut world {
-        w.encode_bake(device, queue, &mut encoder, view)
+        w.prepare(device, queue, &mut encoder, view)
             .map_err(|e| e.to_string())?;
-        w.prepare(queue, view);
+        view_proj = w.relative_matrix();
     }
     queue.write_buffer(
         &pillar.uniforms,

@@ -419,10 +419,9 @@ fn mesh_row(
     let (times, wall) = measure(gpu, options, timer, |encoder, timer| {
         // The tile's textures each frame, as the blog bakes; the mesh's levels stay baked.
         terrain.invalidate();
-        if let Err(e) = terrain.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer) {
+        if let Err(e) = terrain.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer) {
             failed.get_or_insert(e);
         }
-        terrain.prepare(&gpu.queue, view);
         let clear = crate::gpu::clear_color(terrain.shading().sky_color, Offscreen::COLOR_FORMAT);
         target.draw(encoder, &terrain, clear, timer);
     })?;

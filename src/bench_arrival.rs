@@ -100,8 +100,7 @@ pub fn run(
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             let t = timer.as_ref();
             let texels_baked =
-                world.encode_bake_timed(&gpu.device, &gpu.queue, &mut encoder, &view, t)?;
-            world.prepare(&gpu.queue, &view);
+                world.prepare_timed(&gpu.device, &gpu.queue, &mut encoder, &view, t)?;
             target.draw(&mut encoder, &world, wgpu::Color::BLACK, t);
             if let Some(t) = t {
                 t.resolve(&mut encoder);

@@ -97,8 +97,7 @@ pub fn run(
                     q.sky.sun_azimuth = params.sky.sun_azimuth + turn % 10.0;
                     world.set_params(&gpu.device, q).ok();
                 }
-                let _ = world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, &v.view, timer);
-                world.prepare(&gpu.queue, &v.view);
+                let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &v.view, timer);
                 let mut pass = target.begin_pass(
                     encoder,
                     &color,

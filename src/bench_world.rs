@@ -259,9 +259,8 @@ pub fn run(
                  timer: Option<&GpuTimer>|
      -> u64 {
         let texels = world
-            .encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)
+            .prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer)
             .unwrap_or(0);
-        world.prepare(&gpu.queue, view);
         target_for(world.method()).draw(encoder, world, wgpu::Color::BLACK, timer);
         texels
     };

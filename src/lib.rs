@@ -16,15 +16,16 @@
 //!
 //! The core, [`Terrain`], owns no window, surface or event loop. It takes the host's
 //! `&wgpu::Device`, `&wgpu::Queue` and [`Targets`] (colour format, depth format, sample
-//! count), records its compute passes into the host's encoder ([`Terrain::encode_bake`], which
-//! records nothing when nothing changed), writes its per-frame uniforms ([`Terrain::prepare`])
-//! and draws into the host's render pass ([`Terrain::render`]). It never submits or presents.
-//! The window app, the headless `relief render`, and the tests all go through these same
-//! three calls; only the target differs.
+//! count), records everything a frame needs before the host's pass into the host's encoder
+//! ([`Terrain::prepare`]: the bake owed, nothing when nothing changed; the frame's uniforms;
+//! the compute passes of the methods shaded in compute), and draws into the host's render pass
+//! ([`Terrain::render`]) or writes the frame without one ([`Terrain::present`]). It never
+//! submits. The window app, the headless `relief render`, and the tests all go through these
+//! same calls; only the target differs.
 //!
 //! The endless world ([`World`], [`WorldParams`], [`WorldView`]) is the same middleware shape
 //! for a landscape in metres seen from inside: geometry clipmap levels ([`clipmap`]) baked by
-//! strips as the camera moves ([`World::encode_bake`] takes the view, and bakes within a
+//! strips as the camera moves ([`World::prepare`] takes the view, and bakes within a
 //! per-frame budget, [`World::set_bake_budget`]), drawn as patch rings morphing into each other
 //! without cracks, sized by a screen-space error knob. Its look is one shading path for every
 //! method: an analytic sky, sun and aerial perspective ([`sky`]), soft sun shadows and valley
@@ -69,8 +70,7 @@
 //! terrain.set_viewport((1280, 720)); // the target's pixels (the mesh's screen-error bound)
 //! // Each frame:
 //! let view = relief::OrbitCamera::default().view(1280.0 / 720.0);
-//! terrain.encode_bake(device, queue, encoder, &view)?; // what the camera uncovered, if anything
-//! terrain.prepare(queue, &view);
+//! terrain.prepare(device, queue, encoder, &view)?; // bakes, uniforms, compute passes
 //! terrain.render(pass); // inside the host's render pass
 //! # Ok(()) }
 //! ```

@@ -234,9 +234,8 @@ fn a_thousand_random_changes_leave_no_trace() {
         let view = camera.view(64.0 / 48.0);
         terrain.set_viewport((64, 48));
         terrain
-            .encode_bake(&device, &queue, &mut encoder, &view)
+            .prepare(&device, &queue, &mut encoder, &view)
             .unwrap();
-        terrain.prepare(&queue, &view);
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("stress:pass"),
@@ -408,9 +407,8 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     let frame = |world: &mut World, view: &WorldView| -> bool {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&Default::default());
-        let drawn = match world.encode_bake(&device, &queue, &mut encoder, view) {
+        let drawn = match world.prepare(&device, &queue, &mut encoder, view) {
             Ok(_) => {
-                world.prepare(&queue, view);
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("stress:world-pass"),
                     color_attachments: &[Some(wgpu::RenderPassColorAttachment {

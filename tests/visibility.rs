@@ -204,7 +204,7 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     let view = OrbitCamera::default().view(1.0);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     let e = terrain
-        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view)
+        .prepare(&gpu.device, &gpu.queue, &mut encoder, &view)
         .unwrap_err()
         .to_string();
     assert!(
@@ -234,7 +234,7 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     let view = common::world_view(&WorldParams::default(), (W, H));
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     let e = world
-        .encode_bake(&gpu.device, &gpu.queue, &mut encoder, &view)
+        .prepare(&gpu.device, &gpu.queue, &mut encoder, &view)
         .unwrap_err()
         .to_string();
     assert!(

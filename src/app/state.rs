@@ -438,11 +438,10 @@ impl State {
                     log::warn!("{e}");
                 }
                 if let Err(e) =
-                    world.encode_bake_timed(&self.device, &self.queue, &mut encoder, &view, timer)
+                    world.prepare_timed(&self.device, &self.queue, &mut encoder, &view, timer)
                 {
                     log::warn!("{e}");
                 }
-                world.prepare(&self.queue, &view);
                 Some(&*world)
             }
             _ if method == Method::Blog => {
@@ -457,16 +456,12 @@ impl State {
                 {
                     log::warn!("{e}");
                 }
-                if let Err(e) = self.terrain.encode_bake_timed(
-                    &self.device,
-                    &self.queue,
-                    &mut encoder,
-                    view,
-                    timer,
-                ) {
+                if let Err(e) =
+                    self.terrain
+                        .prepare_timed(&self.device, &self.queue, &mut encoder, view, timer)
+                {
                     log::warn!("{e}");
                 }
-                self.terrain.prepare(&self.queue, view);
                 None
             }
         };

@@ -442,11 +442,10 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                 let clear = super::clear_color(sky, Offscreen::COLOR_FORMAT);
                 measure_frames(gpu, warm, TRIAL_FRAMES, Some(&timer), |encoder, timer| {
                     let recorded =
-                        terrain.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer);
+                        terrain.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer);
                     if let Err(e) = recorded {
                         failed.get_or_insert(e);
                     }
-                    terrain.prepare(&gpu.queue, view);
                     target.draw(encoder, &**terrain, clear, timer);
                 })?
             }
@@ -477,11 +476,10 @@ pub fn choose_method(gpu: &Gpu, mut scene: TrialScene<'_>) -> Result<Choice> {
                 let measured =
                     measure_frames(gpu, warm, TRIAL_FRAMES, Some(&timer), |encoder, timer| {
                         let recorded =
-                            world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, &view, timer);
+                            world.prepare_timed(&gpu.device, &gpu.queue, encoder, &view, timer);
                         if let Err(e) = recorded {
                             failed.get_or_insert(e);
                         }
-                        world.prepare(&gpu.queue, &view);
                         target.draw(encoder, &**world, clear, timer);
                     });
                 restore(world);
@@ -949,8 +947,7 @@ impl Offscreen {
             timer,
             |encoder| {
                 let mut t = terrain.borrow_mut();
-                t.encode_bake(&gpu.device, &gpu.queue, encoder, view)?;
-                t.prepare(&gpu.queue, view);
+                t.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
                 Ok(())
             },
             |encoder| self.draw(encoder, &**terrain.borrow(), clear, timer),
@@ -1013,11 +1010,7 @@ impl Offscreen {
             timer,
             |encoder| {
                 let mut w = world.borrow_mut();
-                // The visibility method records its frame's passes there.
-                if !whole || w.method() == crate::Method::Visibility {
-                    w.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
-                }
-                w.prepare(&gpu.queue, view);
+                w.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
                 Ok(())
             },
             |encoder| self.draw(encoder, &**world.borrow(), clear, timer),

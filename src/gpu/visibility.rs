@@ -16,7 +16,7 @@
 //! each sample's ray meets the raised mesh, a short conservative march finds the continuous
 //! surface, which is shaded and whose depth is composited.
 //!
-//! The middleware contract holds: [`crate::World::encode_bake`] records the raster and compute
+//! The middleware contract holds: [`crate::World::prepare`] records the raster and compute
 //! passes into the host's encoder (before the host's render pass), and
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
 //! geometry and terrain occlude each other.

@@ -1,7 +1,8 @@
 //! [`World`]: the endless landscape as middleware. The camera drives it: each frame
-//! [`World::encode_bake`] moves the clipmap's levels ([`crate::clipmap`]) and bakes only the
-//! strips they uncovered; [`World::prepare`] selects the patches inside the view frustum and
-//! writes the frame's uniforms; [`World::render`] draws them into the host's pass.
+//! [`World::prepare`] moves the clipmap's levels ([`crate::clipmap`]) and bakes only the
+//! strips they uncovered ([`World::encode_bake`]), selects the patches inside the view frustum,
+//! writes the frame's uniforms and records the compute passes of the methods shaded in
+//! compute; [`World::render`] draws into the host's pass.
 
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
@@ -13,6 +14,7 @@ use super::timing::{GpuTimer, Slot};
 pub use super::uniforms::{LevelUniforms, WorldUniforms};
 use super::visibility::{Visibility, WorldBindings};
 use super::world_light::{LightBake, LightRect, LightUniforms};
+pub use super::world_stats::{mib, WorldStats};
 use super::{scoped, shader, Targets};
 use crate::camera::View;
 pub use crate::camera::WorldView;
@@ -30,68 +32,6 @@ pub use crate::world::WorldParams;
 pub fn default_camera(land: &crate::landscape::Landscape) -> (DVec3, DVec3) {
     let eye = DVec3::new(2000.0, land.height_at(2000.0, -3000.0) + 1200.0, -3000.0);
     (eye, eye + DVec3::new(7000.0, -1000.0, 3000.0))
-}
-
-/// What the last frame cost, as `relief render --stats` prints it.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct WorldStats {
-    /// Triangles drawn (patches inside the frustum times their triangles).
-    pub triangles: u64,
-    /// Patches drawn.
-    pub patches: u32,
-    /// Texels baked by the last `encode_bake` (four channels each).
-    pub texels_baked: u64,
-    /// Levels drawn.
-    pub levels: u32,
-    /// Level count of the clipmap (drawn or not).
-    pub levels_total: u32,
-    /// Cells per patch side.
-    pub patch_cells: u32,
-    /// Spacing of the finest level drawn, metres.
-    pub finest_spacing: f64,
-    /// The screen-error bound of the layout, pixels.
-    pub error_bound_px: f64,
-    /// Texels uncovered but not baked yet (over the per-frame budget).
-    pub texels_pending: u64,
-    /// Texels lit by the last `encode_bake` (the light bake's horizon and valley).
-    pub light_texels: u64,
-    /// Texels of the active levels still to be lit (over the per-frame light budget): until
-    /// they are, a level is drawn with a coarser level's light.
-    pub light_pending: u64,
-    /// GPU memory of one level's textures (its samples and its light), bytes.
-    pub level_bytes: u64,
-}
-
-impl WorldStats {
-    /// GPU memory of every level's textures, bytes (the clipmap's arrays hold every level,
-    /// drawn or not).
-    pub fn texture_bytes(&self) -> u64 {
-        self.level_bytes * u64::from(self.levels_total)
-    }
-
-    /// `key value` lines.
-    pub fn lines(&self) -> Vec<String> {
-        vec![
-            format!("triangles {}", self.triangles),
-            format!("patches {}", self.patches),
-            format!("texels_baked {}", self.texels_baked),
-            format!("texels_pending {}", self.texels_pending),
-            format!("light_texels {}", self.light_texels),
-            format!("light_pending {}", self.light_pending),
-            format!("levels {}", self.levels),
-            format!("levels_total {}", self.levels_total),
-            format!("patch_cells {}", self.patch_cells),
-            format!("finest_spacing_m {}", self.finest_spacing),
-            format!("error_bound_px {:.3}", self.error_bound_px),
-            format!("texture_mib_per_level {:.2}", mib(self.level_bytes)),
-            format!("texture_mib {:.1}", mib(self.texture_bytes())),
-        ]
-    }
-}
-
-/// Bytes to MiB.
-pub fn mib(bytes: u64) -> f64 {
-    bytes as f64 / f64::from(1u32 << 20)
 }
 
 /// GPU memory of one level's textures (samples and light) in a layout of `map`, bytes.
@@ -134,6 +74,8 @@ pub struct World {
     /// ([`super::raster::pass_ends`]).
     raster_passes: [u32; super::raster::PASSES - 1],
     stats: WorldStats,
+    /// Set by [`World::prepare`]: the next bake starts the next frame's counts in `stats`.
+    frame_prepared: bool,
     /// The reference sample of the last `prepare` (finest-level samples).
     reference: [i64; 2],
     /// The camera-relative projection of the last `prepare`.
@@ -326,6 +268,7 @@ impl World {
                 instance_counts: [0; 2],
                 raster_passes: [0; super::raster::PASSES - 1],
                 stats: WorldStats::default(),
+                frame_prepared: false,
                 reference: [0; 2],
                 matrix: Mat4::IDENTITY,
                 bake_budget: DEFAULT_BAKE_BUDGET,
@@ -486,7 +429,7 @@ impl World {
     /// effect with the next [`World::set_method`], which refuses what the compute raster cannot
     /// draw ([`World::set_targets`] sets the method again, so it refuses it too, and the world
     /// draws the mesh); a frame larger than the device's storage binding limit allows (4 bytes
-    /// a pixel) is refused by [`World::encode_bake`].
+    /// a pixel) is refused by [`World::prepare`].
     pub fn set_visibility_raster(&mut self, raster: Raster) {
         self.vis_raster = raster;
     }
@@ -759,12 +702,45 @@ impl World {
         held.saturating_sub(self.heights_pending())
     }
 
+    /// Everything a frame needs before the host's render pass, recorded into the host's
+    /// encoder: the bake of what `view` uncovered ([`World::encode_bake`]), the frame's
+    /// uniforms, and for the methods shaded in compute (`visibility`, `hybrid`) their raster
+    /// and shading passes. Then [`World::render`] draws into the host's pass, or
+    /// [`World::present`] writes the frame without one. Returns the texels baked.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+    ) -> Result<u64> {
+        self.prepare_timed(device, queue, encoder, view, None)
+    }
+
+    /// [`World::prepare`], timing its passes into `timer`.
+    pub fn prepare_timed(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) -> Result<u64> {
+        let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
+        self.write_uniforms(queue, view);
+        if matches!(self.method, Method::Visibility | Method::Hybrid) {
+            self.encode_visibility(device, queue, encoder, view, timer)?;
+        }
+        Ok(texels)
+    }
+
     /// Moves the levels to `view` and records the bake of whatever they uncovered (nothing if
     /// the camera stayed within its levels' snapping step), within the per-frame budget
     /// ([`World::set_bake_budget`]; what is over it waits for the next frames), into the host's
-    /// encoder. A view
-    /// whose pixels per radian differ much from the layout's re-lays out the levels first (new
-    /// textures, everything re-baked). Returns the texels baked.
+    /// encoder, and the light bake within its own budget. Records no frame work: a host that
+    /// draws calls [`World::prepare`], which bakes too. A view whose pixels per radian differ
+    /// much from the layout's re-lays out the levels first (new textures, everything
+    /// re-baked). Returns the texels baked.
     pub fn encode_bake(
         &mut self,
         device: &wgpu::Device,
@@ -801,6 +777,12 @@ impl World {
                     "x and z within ±{reach:.0} m (2^30 of this world's finest samples), y within ±1e9 m"
                 ),
             ));
+        }
+        if self.frame_prepared {
+            // The first bake since a frame: the counts are the next frame's.
+            self.frame_prepared = false;
+            self.stats.texels_baked = 0;
+            self.stats.light_texels = 0;
         }
         let patch = Clipmap::patch_for(&self.errors, self.params.pixel_error, k);
         if patch != self.map.patch {
@@ -843,14 +825,8 @@ impl World {
             .iter()
             .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
             .sum();
-        self.stats.texels_baked = texels;
+        self.stats.texels_baked += texels;
         self.stats.texels_pending = self.map.pending_texels();
-        if matches!(self.method, Method::Visibility | Method::Hybrid) {
-            // The visibility method's raster and shading passes precede the host's pass: the
-            // frame is prepared here (the host's own `prepare` then writes the same).
-            self.prepare(queue, view);
-            self.encode_visibility(device, queue, encoder, view, timer)?;
-        }
         Ok(texels)
     }
 
@@ -1036,10 +1012,10 @@ impl World {
                 _pad: [0; 3],
             })
             .collect();
-        self.stats.light_texels = rects
+        self.stats.light_texels += rects
             .iter()
             .map(|r| u64::from(r.extent[0]) * u64::from(r.extent[1]))
-            .sum();
+            .sum::<u64>();
         if rects.is_empty() {
             return;
         }
@@ -1057,7 +1033,7 @@ impl World {
     }
 
     /// Selects the patches inside `view`'s frustum and writes the frame's uniforms.
-    pub fn prepare(&mut self, queue: &wgpu::Queue, view: &WorldView) {
+    fn write_uniforms(&mut self, queue: &wgpu::Queue, view: &WorldView) {
         let s0 = 2f64.powi(self.map.finest_log2);
         let reference = [(view.eye.x / s0).floor(), (view.eye.z / s0).floor()];
         self.reference = [reference[0] as i64, reference[1] as i64];
@@ -1231,6 +1207,7 @@ impl World {
             light_pending: self.light_pending(),
             level_bytes: level_bytes(&self.map),
         };
+        self.frame_prepared = true;
     }
 
     /// The camera-relative projection times view of the last [`World::prepare`] (positions
@@ -1239,7 +1216,7 @@ impl World {
         self.matrix
     }
 
-    /// Writes the frame that [`World::encode_bake`] shaded in compute straight into `target`,
+    /// Writes the frame that [`World::prepare`] shaded in compute straight into `target`,
     /// with no render pass, for a host whose frame the world fills: `target` is then all the
     /// frame needs (no depth is written). On a compute chip such as the H100 a full-screen draw
     /// in a render pass costs more than the shading itself (docs/bench/present in git history,
@@ -1273,7 +1250,7 @@ impl World {
     /// 1.0).
     ///
     /// With the visibility method ([`World::set_method`]) it composites the image that
-    /// [`World::encode_bake`] shaded, colour and depth.
+    /// [`World::prepare`] shaded, colour and depth.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         if let (Method::Visibility | Method::Hybrid, Some(vis)) = (self.method, &self.visibility) {
             // Its compute pass shaded the sky too: one full-screen draw.
