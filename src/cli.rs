@@ -410,7 +410,7 @@ const EXIT_AFTER: Kind = Kind::Float {
     max: 86400.0,
 };
 
-/// The README's table of options: one row per parameter of both tables (flag, meaning,
+/// docs/cli.md's table of options: one row per parameter of both tables (flag, meaning,
 /// default, allowed, where it applies), so the docs are checked against the code.
 pub fn options_markdown() -> String {
     fn row<T>(p: &Param<T>, default: &T, applies: &str) -> String {
@@ -462,7 +462,9 @@ pub fn options_markdown() -> String {
         let applies = match p.key {
             "pixel_error" => "render --world endless",
             "sun_azimuth" | "sun_elevation" | "fog" | "water_level" | "no_water" | "palette"
-            | "no_shadows" => "window, render, scene files, URL --world endless",
+            | "no_shadows" | "clock" | "wind_speed" | "wind_azimuth" => {
+                "window, render, scene files, URL --world endless"
+            }
             _ => "render, height --world endless",
         };
         out.push_str(&row(p, &world, applies));

@@ -120,7 +120,7 @@ pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
 #[cfg(feature = "scene")]
 pub use scene::BakeInfo;
 pub use wgpu;
-pub use world::{WorldKind, WorldParams};
+pub use world::{Wind, WorldKind, WorldParams};
 
 /// The README's Rust snippets, compiled as doctests so that they stay true.
 #[cfg(doctest)]

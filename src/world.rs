@@ -71,6 +71,43 @@ pub struct WorldParams {
     pub palette: Palette,
     /// No sun shadows (every slope facing the sun is lit).
     pub no_shadows: bool,
+    /// The animation clock, seconds: what moves on its own (the water's ripples) is drawn as
+    /// it is at this time. A window adds the seconds since it started ([`World::set_time`]).
+    ///
+    /// [`World::set_time`]: crate::World::set_time
+    pub clock: f64,
+    /// The one wind every layer that moves with the wind follows (the water's ripples drift
+    /// with it).
+    pub wind: Wind,
+}
+
+/// The wind: a speed and the bearing it comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wind {
+    /// Metres a second.
+    pub speed: f32,
+    /// Degrees clockwise from north (-z) towards east (+x) of where the wind comes from, as
+    /// weather reports give it: 270 is a west wind, blowing towards +x.
+    pub from_azimuth: f32,
+}
+
+impl Default for Wind {
+    /// A light breeze from the west.
+    fn default() -> Self {
+        Self {
+            speed: 4.0,
+            from_azimuth: 270.0,
+        }
+    }
+}
+
+impl Wind {
+    /// The air's velocity in metres a second, (x, z).
+    pub fn velocity(&self) -> glam::DVec2 {
+        let a = f64::from(self.from_azimuth).to_radians();
+        // Coming from bearing a (the unit vector (sin a, -cos a) in x, z), blowing the other way.
+        glam::DVec2::new(-a.sin(), a.cos()) * f64::from(self.speed)
+    }
 }
 
 impl Default for WorldParams {
@@ -95,6 +132,8 @@ impl Default for WorldParams {
             no_water: false,
             palette: Palette::SeedTemplate,
             no_shadows: false,
+            clock: 0.0,
+            wind: Wind::default(),
         }
     }
 }
@@ -112,7 +151,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 16] = [
+pub static WORLD_PARAMS: [WorldParam; 19] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -377,7 +416,63 @@ pub static WORLD_PARAMS: [WorldParam; 16] = [
             }
         },
     },
+    Param {
+        key: "clock",
+        doc: "the animation clock in seconds: the water's ripples as they are at this time (a window runs on from it)",
+        kind: Kind::Float {
+            min: 0.0,
+            max: MAX_CLOCK,
+        },
+        control: Control::None,
+        get: |p| Value::Float(p.clock as f32),
+        set: |p, v| {
+            if let Some(x) = float(v) {
+                p.clock = x;
+            }
+        },
+    },
+    Param {
+        key: "wind_speed",
+        doc: "the wind's speed in metres a second (the water's ripples drift with it)",
+        kind: Kind::Float {
+            min: 0.0,
+            max: 50.0,
+        },
+        control: Control::Slider {
+            min: 0.0,
+            max: 20.0,
+            step: 0.5,
+        },
+        get: |p| Value::Float(p.wind.speed),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.wind.speed = x;
+            }
+        },
+    },
+    Param {
+        key: "wind_azimuth",
+        doc: "the bearing the wind comes from, in degrees clockwise from north (-z): 270 is a west wind",
+        kind: Kind::Float {
+            min: -360.0,
+            max: 360.0,
+        },
+        control: Control::Slider {
+            min: 0.0,
+            max: 360.0,
+            step: 5.0,
+        },
+        get: |p| Value::Float(p.wind.from_azimuth),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.wind.from_azimuth = x;
+            }
+        },
+    },
 ];
+
+/// The latest `clock` the table takes, seconds (a day); a window runs on past it.
+pub const MAX_CLOCK: f32 = 86_400.0;
 
 /// The endless world's row for `key` (dashes accepted).
 pub fn world_param(key: &str) -> Option<&'static WorldParam> {
@@ -422,6 +517,21 @@ impl WorldParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_wind_blows_away_from_where_it_comes_from() {
+        let v = |from_azimuth| {
+            Wind {
+                speed: 2.0,
+                from_azimuth,
+            }
+            .velocity()
+        };
+        // A west wind blows east (+x); a north wind (north is -z) blows towards +z.
+        assert!((v(270.0) - glam::DVec2::new(2.0, 0.0)).length() < 1e-12);
+        assert!((v(0.0) - glam::DVec2::new(0.0, 2.0)).length() < 1e-12);
+        assert!((v(90.0) - glam::DVec2::new(-2.0, 0.0)).length() < 1e-12);
+    }
 
     #[test]
     fn defaults_are_valid_and_every_row_round_trips() {

@@ -1398,6 +1398,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "no_water" => "1",
             "palette" => "blog",
             "no_shadows" => "1",
+            "clock" => "30",
+            "wind_speed" => "12",
+            "wind_azimuth" => "90",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
@@ -1407,9 +1410,23 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         };
         // The height occlusion exponent is the blog palette's: it changes that picture.
         let blog = row.key == "ao_exponent";
+        // The clock and the wind move the ripples, which fade out a few hundred metres away:
+        // seen from 20 m above a lake (its bed 770 m down, the water at 1000 m). The wind
+        // carries them as the clock runs: at clock 0 it has carried nothing.
+        let lake = ["--eye", "2000,1020,-4600", "--look-at", "2100,1000,-4400"];
+        let windy = row.key.starts_with("wind_");
         let base = if blog {
             args.extend(["--palette", "blog"]);
             render_endless(&dir, "blog", &["--palette", "blog"]).0
+        } else if windy {
+            args.extend(lake);
+            args.extend(["--clock", "30"]);
+            let mut at = lake.to_vec();
+            at.extend(["--clock", "30"]);
+            render_endless(&dir, "lake-30", &at).0
+        } else if row.key == "clock" {
+            args.extend(lake);
+            render_endless(&dir, "lake", &lake).0
         } else {
             base.clone()
         };

@@ -11,7 +11,7 @@ use glam::{DVec3, Mat4, Vec3, Vec4};
 use relief::gpu::headless::{self, Gpu, Offscreen};
 use relief::landscape::{Landscape, TerrainFn};
 use relief::sky::Sky;
-use relief::{Method, Shading, World, WorldParams, WorldView};
+use relief::{Method, Shading, Wind, World, WorldParams, WorldView};
 
 const SIZE: (u32, u32) = (160, 96);
 
@@ -422,4 +422,62 @@ fn water_lies_only_below_its_level_and_mirrors_the_sky() {
         mirrors * 100 >= grazing * 90,
         "{mirrors} of {grazing} grazing water pixels are nearer the mirrored sky than the ground"
     );
+}
+
+/// The water in the lakes ahead at `clock` with `wind`.
+fn ripples_at(gpu: &Gpu, clock: f64, wind: Wind) -> Vec<u8> {
+    let level = 58.0;
+    let p = WorldParams {
+        water_level: level,
+        no_water: false,
+        clock,
+        wind,
+        ..params(0.0)
+    };
+    let low = DVec3::new(0.0, f64::from(level) + 12.0, 0.0);
+    let view = WorldView::look_at(low, low + DVec3::new(1.0, -0.2, 0.3), 0.9, SIZE);
+    draw(gpu, p, Shading::default(), &view).0
+}
+
+/// The summed absolute difference of two images' bytes.
+fn difference(a: &[u8], b: &[u8]) -> u64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| u64::from(x.abs_diff(*y)))
+        .sum()
+}
+
+#[test]
+fn the_clock_moves_the_ripples_the_wind_carries_them_and_the_clock_folds_without_a_jump() {
+    let gpu = common::gpu();
+    let calm = Wind {
+        speed: 0.0,
+        ..Wind::default()
+    };
+    let start = ripples_at(&gpu, 0.0, calm);
+    let later = ripples_at(&gpu, 2.0, calm);
+    let moved = difference(&start, &later);
+    eprintln!("two seconds changed the image by {moved}");
+    assert!(moved > 1000, "two seconds moved the ripples by {moved}");
+    // The clock reaches the shaders reduced modulo its period, and every wave makes whole
+    // cycles in it: the last hundredth of a second of the period changes the picture as any
+    // other hundredth does, not as a jump to another time.
+    let period = f64::from(relief::gpu::world::CLOCK_PERIOD);
+    let seam = difference(&ripples_at(&gpu, period - 0.01, calm), &start);
+    let step = difference(&later, &ripples_at(&gpu, 2.01, calm));
+    let jump = difference(&start, &ripples_at(&gpu, 1000.0, calm));
+    eprintln!("a hundredth of a second: {step} (across the fold {seam}); 1000 s: {jump}");
+    assert!(
+        seam <= 2 * step + 20 && seam * 5 < jump,
+        "across the fold {seam}, a hundredth of a second elsewhere {step}, 1000 s {jump}"
+    );
+    assert_eq!(ripples_at(&gpu, period + 2.0, calm), later);
+    // The wind carries the pattern: the same clock with a wind is another picture, and at
+    // clock 0 the wind has carried nothing.
+    let windy = Wind {
+        speed: 10.0,
+        from_azimuth: 200.0,
+    };
+    assert_ne!(ripples_at(&gpu, 2.0, windy), later);
+    assert_eq!(ripples_at(&gpu, 0.0, windy), start);
 }

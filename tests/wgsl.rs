@@ -215,6 +215,18 @@ fn uniform_structs_match_wgsl() {
 }
 
 #[test]
+fn the_water_periods_agree_with_shade_wgsl() {
+    let shade = shader::file("shade").unwrap();
+    for (name, value) in [
+        ("RIPPLE_PERIOD", relief::gpu::world::RIPPLE_PERIOD),
+        ("CLOCK_PERIOD", relief::gpu::world::CLOCK_PERIOD),
+    ] {
+        let line = format!("const {name}: f32 = {value:.1};");
+        assert!(shade.contains(&line), "shade.wgsl lacks `{line}`");
+    }
+}
+
+#[test]
 fn world_size_agrees_with_render_wgsl() {
     assert!(
         shader::file("shade").unwrap().contains(&format!(

@@ -44,10 +44,11 @@ struct RenderUniforms {
     // x, y: horizontal distance where terrain begins and finishes fading into the sky (y = 0:
     // no fade).
     fade: vec4<f32>,
-    // Water: level in normalised height, its plane's y here, time (s), 1 when there is water.
+    // Water: level in normalised height, its plane's y here, the clock (s) modulo
+    // CLOCK_PERIOD, 1 when there is water.
     water: vec4<f32>,
-    // xy: the eye's xz modulo RIPPLE_PERIOD (ripples stay put in the world); z: the sand band
-    // above the water, normalised height.
+    // xy: the eye's xz less the wind's drift, modulo RIPPLE_PERIOD (ripples stay put in the
+    // world but for the wind); z: the sand band above the water, normalised height.
     water_origin: vec4<f32>,
     // x: 1 when the caller's horizon casts shadows; y: the sun's elevation (radians); z: the
     // palette (src/palette.rs: 0 the blog's, 1 the seed template's).
@@ -168,12 +169,13 @@ fn fog(r: RenderUniforms, lit: vec3<f32>, world: vec3<f32>) -> vec3<f32> {
 
 // Water (src/sky.rs documents the same constants): light left after a metre of clear water in
 // red, green and blue, the colour it scatters back (times the light falling on it), and the
-// ripples: plane waves of whole cycles per RIPPLE_PERIOD metres, so the eye's position can be
-// reduced modulo that period.
+// ripples: plane waves of whole cycles per RIPPLE_PERIOD metres and CLOCK_PERIOD seconds, so
+// the eye's position and the clock can be reduced modulo those periods.
 const WATER_EXTINCTION: vec3<f32> = vec3<f32>(0.45, 0.09, 0.06);
 const WATER_SCATTER: vec3<f32> = vec3<f32>(0.010, 0.040, 0.050);
 const SAND: vec3<f32> = vec3<f32>(0.55, 0.45, 0.24);
 const RIPPLE_PERIOD: f32 = 256.0;
+const CLOCK_PERIOD: f32 = 4096.0;
 const RIPPLES: array<vec3<f32>, 4> = array<vec3<f32>, 4>(
     // Cycles per period in x and z, and the wave's amplitude in metres.
     vec3<f32>(37.0, 11.0, 0.020),
@@ -192,8 +194,9 @@ fn ripple_normal(r: RenderUniforms, xz: vec2<f32>, d: f32) -> vec3<f32> {
         let k = w.xy * (6.2831853 / RIPPLE_PERIOD);
         let wavelength = 6.2831853 / length(k);
         let fade = 1.0 - smoothstep(25.0 * wavelength, 100.0 * wavelength, d);
-        // Deep-water waves: angular frequency sqrt(g k).
-        let phase = dot(k, xz) - sqrt(9.81 * length(k)) * r.water.z;
+        // Deep-water waves: angular frequency sqrt(g k), rounded to whole cycles a clock period.
+        let cycles = round(sqrt(9.81 * length(k)) * (CLOCK_PERIOD / 6.2831853));
+        let phase = dot(k, xz) - cycles * (6.2831853 / CLOCK_PERIOD) * r.water.z;
         slope += w.z * fade * cos(phase) * k;
     }
     return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));

@@ -662,7 +662,7 @@ impl App {
         self.stats.raster = self.options.raster;
         if let Some(world) = &mut s.world {
             // The water's ripples move on while frames come (an idle window draws none).
-            world.set_time(self.started.elapsed().as_secs_f32());
+            world.set_time(self.started.elapsed().as_secs_f64());
             let (heights, light) = self.pacer.budgets();
             world.set_bake_budget(heights);
             world.set_light_budget(light);

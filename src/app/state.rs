@@ -637,8 +637,13 @@ impl State {
                     (how, cast, region),
                     world.slope_bounds(),
                 )?;
+                // The world's clock, as the mesh-based methods draw it.
+                let now = crate::world::WorldParams {
+                    clock: world.clock(),
+                    ..*params
+                };
                 let render = crate::gpu::world::render_uniforms(
-                    params,
+                    &now,
                     world.shading(),
                     (crate::gpu::world_rays::ray_matrix(&view), region, view.eye),
                     true,

@@ -185,6 +185,8 @@ fn tile_world(
         no_water: true,
         palette: crate::palette::Palette::Blog,
         no_shadows: true,
+        clock: 0.0,
+        wind: crate::world::Wind::default(),
     };
     let setup = world::TileSetup {
         region: frame.region(),

@@ -61,10 +61,11 @@ pub struct RenderUniforms {
     /// the sky (y = 0: no fade). z, w unused.
     pub fade: [f32; 4],
     /// Water: x, its level in normalised height; y, its plane's y in the shading's space; z,
-    /// time in seconds (the ripples); w, 1 when there is water.
+    /// the clock in seconds modulo `CLOCK_PERIOD` (the ripples); w, 1 when there is water.
     pub water: [f32; 4],
-    /// xy: the eye's x and z reduced modulo the ripples' period (so ripples stay put in the
-    /// world while positions are camera-relative); z: the sand band above the water, in
+    /// xy: the eye's x and z less the wind's drift, reduced modulo the ripples' period (so
+    /// ripples stay put in the world, but for the wind, while positions are camera-relative);
+    /// z: the sand band above the water, in
     /// normalised height; w unused.
     pub water_origin: [f32; 4],
     /// The look: x, 1 when the terrain casts shadows (`shade`'s caller passes the horizon);

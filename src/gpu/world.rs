@@ -83,8 +83,8 @@ pub struct World {
     /// Most texels one `encode_bake` bakes.
     bake_budget: u64,
     light_budget: u64,
-    /// Seconds of animation (the water's ripples), from [`World::set_time`].
-    time: f32,
+    /// Seconds since the parameters' clock ([`World::set_time`]).
+    time: f64,
     /// Set when this world draws the seed blog's tile ([`crate::Terrain`]'s mesh).
     tile: Option<TileSetup>,
     /// The tile's textures, read per pixel (stand-ins for the endless world).
@@ -511,10 +511,18 @@ impl World {
         self.params.land.height_at(x, z)
     }
 
-    /// Sets the animation's time in seconds (the water's ripples move with it); the next
-    /// [`World::prepare`] uses it. Still frames keep 0.
-    pub fn set_time(&mut self, seconds: f32) {
+    /// Sets the seconds since the parameters' clock ([`WorldParams::clock`]): a window's
+    /// time since it started. The next [`World::prepare`] draws what moves on its own (the
+    /// water's ripples, drifting with the wind) at the clock plus these seconds. Still frames
+    /// keep 0.
+    pub fn set_time(&mut self, seconds: f64) {
         self.time = if seconds.is_finite() { seconds } else { 0.0 };
+    }
+
+    /// The clock the next frame is drawn at: the parameters' clock plus [`World::set_time`]'s
+    /// seconds. What a ray caster drawing this world's frame should take too.
+    pub fn clock(&self) -> f64 {
+        self.params.clock + self.time
     }
 
     /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out,
@@ -1179,12 +1187,17 @@ impl World {
 
         let encode = !self.targets.color_format.is_srgb();
         let region = self.map.drawn_region(eye.x, eye.z);
-        let mut uniforms = match self.tile {
+        let uniforms = match self.tile {
             // The tile: the shading's own sun and sky, clear air, no water.
             Some(t) => tile_uniforms(&self.params, &self.shading, matrix, encode, &t),
-            None => render_uniforms(&self.params, &self.shading, (matrix, region, eye), encode),
+            None => {
+                let now = WorldParams {
+                    clock: self.clock(),
+                    ..self.params
+                };
+                render_uniforms(&now, &self.shading, (matrix, region, eye), encode)
+            }
         };
-        uniforms.water[2] = self.time;
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
         let active: Vec<_> = self.map.levels[first.min(n)..]
@@ -1333,15 +1346,18 @@ pub fn render_uniforms(
     if !params.no_water {
         let peak = params.land.peak_height;
         let period = f64::from(RIPPLE_PERIOD);
+        // The clock and the wind's drift reduced in f64 before they become f32: the waves
+        // repeat every CLOCK_PERIOD seconds and every RIPPLE_PERIOD metres.
+        let drift = params.wind.velocity() * params.clock;
         u.water = [
             (f64::from(params.water_level) / peak) as f32,
             (f64::from(params.water_level) - eye.y) as f32,
-            0.0,
+            params.clock.rem_euclid(f64::from(CLOCK_PERIOD)) as f32,
             1.0,
         ];
         u.water_origin = [
-            eye.x.rem_euclid(period) as f32,
-            eye.z.rem_euclid(period) as f32,
+            (eye.x - drift.x).rem_euclid(period) as f32,
+            (eye.z - drift.y).rem_euclid(period) as f32,
             (SAND_BAND / peak) as f32,
             0.0,
         ];
@@ -1392,6 +1408,11 @@ fn base_uniforms(
 
 /// Period in metres of the water's ripples (`RIPPLE_PERIOD` in `wgsl/shade.wgsl`).
 pub const RIPPLE_PERIOD: f32 = 256.0;
+
+/// Period in seconds of everything that moves on its own (`CLOCK_PERIOD` in
+/// `wgsl/shade.wgsl`): the clock reaches the shaders reduced modulo it, and each wave repeats
+/// within it (a whole number of cycles).
+pub const CLOCK_PERIOD: f32 = 4096.0;
 /// Height in metres of the sand along the shore (jittered by the colour noise).
 pub const SAND_BAND: f64 = 12.0;
 
