@@ -127,3 +127,15 @@ fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Rast
         "terrain changed away from the pillar: {same}/{outside}"
     );
 }
+
+/// A host may keep relief's renderers in shared state and hand them between threads.
+#[test]
+fn the_renderers_are_send_and_sync() {
+    fn send_sync<T: Send + Sync>() {}
+    send_sync::<relief::Terrain>();
+    send_sync::<relief::World>();
+    send_sync::<relief::Targets>();
+    send_sync::<relief::WorldParams>();
+    send_sync::<relief::TerrainParams>();
+    send_sync::<relief::Error>();
+}

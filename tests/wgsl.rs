@@ -227,6 +227,36 @@ fn the_water_periods_agree_with_shade_wgsl() {
 }
 
 #[test]
+fn each_ripple_makes_whole_cycles_in_a_clock_period_at_its_deep_water_frequency() {
+    // `RIPPLES` in shade.wgsl: (cycles a ripple period in x and z, amplitude, cycles a clock
+    // period); the last is sqrt(g k) rounded to whole cycles.
+    let shade = shader::file("shade").unwrap();
+    let at = shade.find("const RIPPLES").expect("RIPPLES");
+    let body = &shade[at..at + shade[at..].find(");").unwrap()];
+    let waves: Vec<[f64; 4]> = body
+        .split("vec4<f32>(")
+        .skip(1)
+        .map(|w| {
+            let nums: Vec<f64> = w
+                .split(')')
+                .next()
+                .unwrap()
+                .split(',')
+                .map(|x| x.trim().parse().unwrap())
+                .collect();
+            [nums[0], nums[1], nums[2], nums[3]]
+        })
+        .collect();
+    assert_eq!(waves.len(), 4, "{body}");
+    let tau = std::f64::consts::TAU;
+    for [x, z, _, cycles] in waves {
+        let k = x.hypot(z) * tau / f64::from(relief::gpu::world::RIPPLE_PERIOD);
+        let exact = (9.81 * k).sqrt() * f64::from(relief::gpu::world::CLOCK_PERIOD) / tau;
+        assert_eq!(cycles, exact.round(), "({x}, {z}): {exact} cycles");
+    }
+}
+
+#[test]
 fn world_size_agrees_with_render_wgsl() {
     assert!(
         shader::file("shade").unwrap().contains(&format!(

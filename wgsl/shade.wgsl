@@ -176,12 +176,14 @@ const WATER_SCATTER: vec3<f32> = vec3<f32>(0.010, 0.040, 0.050);
 const SAND: vec3<f32> = vec3<f32>(0.55, 0.45, 0.24);
 const RIPPLE_PERIOD: f32 = 256.0;
 const CLOCK_PERIOD: f32 = 4096.0;
-const RIPPLES: array<vec3<f32>, 4> = array<vec3<f32>, 4>(
-    // Cycles per period in x and z, and the wave's amplitude in metres.
-    vec3<f32>(37.0, 11.0, 0.020),
-    vec3<f32>(-19.0, 41.0, 0.016),
-    vec3<f32>(53.0, -29.0, 0.011),
-    vec3<f32>(-71.0, -60.0, 0.007),
+const RIPPLES: array<vec4<f32>, 4> = array<vec4<f32>, 4>(
+    // Cycles per RIPPLE_PERIOD in x and z, the wave's amplitude in metres, and its cycles per
+    // CLOCK_PERIOD: a deep-water wave's angular frequency sqrt(g k) rounded to whole cycles
+    // (tests/wgsl.rs checks them).
+    vec4<f32>(37.0, 11.0, 0.020, 1987.0),
+    vec4<f32>(-19.0, 41.0, 0.016, 2150.0),
+    vec4<f32>(53.0, -29.0, 0.011, 2486.0),
+    vec4<f32>(-71.0, -60.0, 0.007, 3084.0),
 );
 
 // The water's normal at `xz` (world metres, reduced) `d` metres from the eye: the slope of
@@ -194,9 +196,7 @@ fn ripple_normal(r: RenderUniforms, xz: vec2<f32>, d: f32) -> vec3<f32> {
         let k = w.xy * (6.2831853 / RIPPLE_PERIOD);
         let wavelength = 6.2831853 / length(k);
         let fade = 1.0 - smoothstep(25.0 * wavelength, 100.0 * wavelength, d);
-        // Deep-water waves: angular frequency sqrt(g k), rounded to whole cycles a clock period.
-        let cycles = round(sqrt(9.81 * length(k)) * (CLOCK_PERIOD / 6.2831853));
-        let phase = dot(k, xz) - cycles * (6.2831853 / CLOCK_PERIOD) * r.water.z;
+        let phase = dot(k, xz) - w.w * (6.2831853 / CLOCK_PERIOD) * r.water.z;
         slope += w.z * fade * cos(phase) * k;
     }
     return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
