@@ -149,10 +149,22 @@ pub struct Draw {
     /// The endless world rather than the tile.
     pub endless: bool,
     /// How relief draws it: `Mesh` or `Visibility` (whose raster and shading passes
-    /// `encode_bake` records before the host's pass).
+    /// `prepare` records before the host's pass).
     pub method: relief::Method,
     /// Where the visibility method and the hybrid rasterise; `Compute` draws one sample a pixel.
     pub raster: relief::Raster,
+}
+
+impl Draw {
+    /// relief's method configuration: the compute raster at one sample a pixel.
+    fn config(&self) -> relief::MethodConfig {
+        let config = relief::MethodConfig::new(self.method).with_raster(self.raster);
+        if self.raster == relief::Raster::Compute {
+            config.with_samples(1)
+        } else {
+            config
+        }
+    }
 }
 
 /// The host's MSAA sample count and formats; relief is built for exactly these.
@@ -206,11 +218,7 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
             ..Default::default()
         };
         let mut w = World::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
-        if draw.raster == relief::Raster::Compute {
-            w.set_visibility_samples(1).map_err(|e| e.to_string())?;
-        }
-        w.set_visibility_raster(draw.raster);
-        w.set_method(device, draw.method)
+        w.set_method(device, draw.config())
             .map_err(|e| e.to_string())?;
         let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);
         let spot = glam::DVec3::new(900.0, w.height_at(900.0, 0.0), 0.0);
@@ -245,11 +253,7 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         (glam::Mat4::IDENTITY, uniforms)
     } else {
         let mut t = Terrain::new(device, queue, TARGETS, params).map_err(|e| e.to_string())?;
-        if draw.raster == relief::Raster::Compute {
-            t.set_visibility_samples(1).map_err(|e| e.to_string())?;
-        }
-        t.set_visibility_raster(draw.raster);
-        t.set_method(device, draw.method)
+        t.set_method(device, draw.config())
             .map_err(|e| e.to_string())?;
         let view = OrbitCamera::default().view(width as f32 / height as f32);
         // The screen-error bound's pixels, and one still frame: every level baked at once.

@@ -86,9 +86,12 @@ pub fn run(
             Offscreen::targets(render_samples(method)),
             *params,
         )?;
-        world.set_visibility_samples(samples)?;
-        world.set_visibility_raster(raster);
-        world.set_method(&gpu.device, method)?;
+        world.set_method(
+            &gpu.device,
+            crate::MethodConfig::new(method)
+                .with_samples(samples)
+                .with_raster(raster),
+        )?;
         for frame in 0..frames {
             let turned = frame > 0 && frame == frames / 2;
             if turned {

@@ -24,13 +24,22 @@ pub struct Candidate {
     /// The method.
     pub method: Method,
     /// Samples a pixel: the host target's MSAA for the mesh (4), the method's own for the
-    /// visibility method and the hybrid (4 or 1, [`crate::World::set_visibility_samples`]).
+    /// visibility method and the hybrid (4 or 1, [`crate::MethodConfig::samples`]).
     pub samples: u32,
-    /// Where the visibility method rasterises ([`crate::World::set_visibility_raster`]).
+    /// Where the visibility method rasterises ([`crate::MethodConfig::raster`]).
     pub raster: Raster,
 }
 
 impl Candidate {
+    /// How a renderer draws it ([`crate::World::set_method`]).
+    pub const fn config(self) -> crate::MethodConfig {
+        crate::MethodConfig {
+            method: self.method,
+            samples: self.samples,
+            raster: self.raster,
+        }
+    }
+
     /// relief's forward-shaded mesh into a 4x MSAA target: the default where nothing was
     /// measured.
     pub const MESH: Candidate = Candidate {

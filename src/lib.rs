@@ -85,10 +85,16 @@ pub mod bench_arrival;
 pub mod bench_look;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod bench_world;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod bench_world_chart;
 pub mod camera;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod chart;
 pub mod choice;
 #[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
 pub mod cli;
+#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
+pub mod cli_options;
 pub mod clipmap;
 pub mod error;
 pub mod gpu;
@@ -112,10 +118,9 @@ pub mod world;
 
 pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};
 pub use error::{Error, Result};
-pub use gpu::raster::Raster;
 pub use gpu::world::{World, WorldStats, WorldView};
 pub use gpu::{height_at, Targets, Terrain, Textures};
-pub use method::Method;
+pub use method::{Method, MethodConfig, Raster};
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
 #[cfg(feature = "scene")]
 pub use scene::BakeInfo;

@@ -241,6 +241,120 @@ pub enum RayPath {
     Fragment,
 }
 
+/// Where the visibility method rasterises its mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Raster {
+    /// The GPU's rasteriser: a render pass writing depth (and the world's attributes).
+    #[default]
+    Hardware,
+    /// A compute pass: one sample a pixel only.
+    Compute,
+}
+
+impl Raster {
+    /// Every raster, in the order of docs and tables.
+    pub const ALL: [Raster; 2] = [Raster::Hardware, Raster::Compute];
+
+    /// Its name on the command line and in the benchmark's CSV.
+    pub fn name(self) -> &'static str {
+        match self {
+            Raster::Hardware => "hardware",
+            Raster::Compute => "compute",
+        }
+    }
+
+    /// The raster called `name`.
+    pub fn from_name(name: &str) -> crate::Result<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == name.trim())
+            .ok_or_else(|| crate::Error::invalid("raster", name, "hardware or compute"))
+    }
+
+    /// Why this raster cannot draw at `samples` a pixel, or `None` where it can.
+    pub fn refusal(self, samples: u32) -> Option<&'static str> {
+        match self {
+            Raster::Compute if samples != 1 => Some(
+                "hardware at 4 samples a pixel; the compute raster draws one sample a pixel \
+                 (--samples 1)",
+            ),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Raster {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How frames are drawn, whole: the method and, for the methods shaded in compute
+/// (`visibility`, `hybrid`), the samples a pixel they rasterise and shade and where they
+/// rasterise. Set in one call ([`crate::World::set_method`], [`crate::Terrain::set_method`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MethodConfig {
+    /// The method.
+    pub method: Method,
+    /// Samples a pixel that `visibility` and `hybrid` rasterise and shade: 4 (edges
+    /// anti-aliased) or 1 (a quarter of the raster work). The mesh draws at the host
+    /// target's samples and ignores it.
+    pub samples: u32,
+    /// Where `visibility` and `hybrid` rasterise: [`Raster::Compute`] at one sample a pixel
+    /// only.
+    pub raster: Raster,
+}
+
+impl MethodConfig {
+    /// The forward-shaded mesh: what a renderer draws until told otherwise.
+    pub const MESH: Self = Self::new(Method::Mesh);
+
+    /// `method` at 4 samples a pixel, rasterised by the GPU's rasteriser.
+    pub const fn new(method: Method) -> Self {
+        Self {
+            method,
+            samples: 4,
+            raster: Raster::Hardware,
+        }
+    }
+
+    /// The same at `samples` a pixel.
+    pub const fn with_samples(self, samples: u32) -> Self {
+        Self { samples, ..self }
+    }
+
+    /// The same rasterised by `raster`.
+    pub const fn with_raster(self, raster: Raster) -> Self {
+        Self { raster, ..self }
+    }
+
+    /// Refuses samples other than 1 or 4, and the compute raster at 4 samples for the methods
+    /// that rasterise.
+    pub fn validate(&self) -> crate::Result<()> {
+        if !matches!(self.samples, 1 | 4) {
+            return Err(crate::Error::invalid("samples", self.samples, "1 or 4"));
+        }
+        if matches!(self.method, Method::Visibility | Method::Hybrid) {
+            if let Some(why) = self.raster.refusal(self.samples) {
+                return Err(crate::Error::invalid("raster", self.raster, why));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Default for MethodConfig {
+    fn default() -> Self {
+        Self::MESH
+    }
+}
+
+impl From<Method> for MethodConfig {
+    fn from(method: Method) -> Self {
+        Self::new(method)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

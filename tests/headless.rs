@@ -187,8 +187,8 @@ fn choose_method_leaves_the_terrain_set_to_its_choice() {
     );
     assert_eq!(terrain.method(), chosen.method);
     if chosen.method != relief::Method::Mesh {
-        assert_eq!(terrain.visibility_samples(), chosen.samples);
-        assert_eq!(terrain.visibility_raster(), chosen.raster);
+        assert_eq!(terrain.method_config().samples, chosen.samples);
+        assert_eq!(terrain.method_config().raster, chosen.raster);
     }
     // The trial's viewport is put back, and the next frame bakes afresh.
     assert_eq!(terrain.viewport(), (320, 200));

@@ -75,9 +75,16 @@ fn presenting_the_tile_draws_what_the_composite_draws() {
         let draw = |target: &Offscreen| {
             let mut terrain =
                 Terrain::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
-            terrain.set_visibility_samples(samples).unwrap();
-            terrain.set_visibility_raster(raster);
-            terrain.set_method(&gpu.device, Method::Visibility).unwrap();
+            terrain
+                .set_method(
+                    &gpu.device,
+                    relief::MethodConfig {
+                        method: Method::Visibility,
+                        samples,
+                        raster,
+                    },
+                )
+                .unwrap();
             target
                 .render(&gpu, &mut terrain, &view, timer.as_ref())
                 .unwrap()
@@ -107,9 +114,16 @@ fn world_frame(
         ..Default::default()
     };
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
-    world.set_visibility_samples(1).unwrap();
-    world.set_visibility_raster(Raster::Compute);
-    world.set_method(&gpu.device, method).unwrap();
+    world
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig {
+                method,
+                samples: 1,
+                raster: Raster::Compute,
+            },
+        )
+        .unwrap();
     let view = common::world_view(&params, (W, H));
     let frame = target.render_world(gpu, &mut world, &view, timer).unwrap();
     (world, frame)
@@ -345,8 +359,12 @@ fn a_tiled_image_is_presented_and_times_no_render_pass() {
         ..Default::default()
     };
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
-    world.set_visibility_samples(1).unwrap();
-    world.set_method(&gpu.device, Method::Visibility).unwrap();
+    world
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig::new(Method::Visibility).with_samples(1),
+        )
+        .unwrap();
     let view = common::world_view(&params, (W, H));
     let (whole_image, whole) =
         headless::render_world_image(&gpu, &mut world, &view, (W, H), W, Some(&timer)).unwrap();

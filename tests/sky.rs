@@ -121,9 +121,16 @@ fn the_visibility_methods_sky_is_the_ray_casts_byte_for_byte() {
     let eye = DVec3::new(300.0, p.land.peak_height + 40.0, -200.0);
     let view = WorldView::look_at(eye, eye + DVec3::new(1.0, 0.0, 0.4), 0.9, SIZE);
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
-    world.set_visibility_samples(1).unwrap();
-    world.set_visibility_raster(relief::Raster::Compute);
-    world.set_method(&gpu.device, Method::Visibility).unwrap();
+    world
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig {
+                method: Method::Visibility,
+                samples: 1,
+                raster: relief::Raster::Compute,
+            },
+        )
+        .unwrap();
     let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
     let (vis, _) = target.render_world(&gpu, &mut world, &view, None).unwrap();
     let rays =

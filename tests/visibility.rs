@@ -58,10 +58,17 @@ fn draw_tile(
     (method, samples, raster): (Method, u32, Raster),
 ) -> Vec<u8> {
     let mut terrain = terrain(gpu, params);
-    terrain.set_visibility_samples(samples).unwrap();
-    terrain.set_visibility_raster(raster);
-    terrain.set_method(&gpu.device, method).unwrap();
-    assert_eq!(terrain.visibility_raster(), raster);
+    terrain
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig {
+                method,
+                samples,
+                raster,
+            },
+        )
+        .unwrap();
+    assert_eq!(terrain.method_config().raster, raster);
     headless::render_image(gpu, &mut terrain, view, (W, H), headless::TILE, None)
         .unwrap()
         .0
@@ -123,7 +130,12 @@ fn one_sample_a_pixel_draws_the_same_tile_and_other_counts_are_refused() {
         "one sample a pixel: {same:.4} against four, {control:.4} against another seed"
     );
     let mut terrain = terrain(&gpu, scene(1));
-    let e = terrain.set_visibility_samples(2).unwrap_err();
+    let e = terrain
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig::new(Method::Visibility).with_samples(2),
+        )
+        .unwrap_err();
     assert!(e.to_string().contains("1 or 4"), "{e}");
 }
 
@@ -190,13 +202,14 @@ fn the_compute_raster_draws_what_the_gpus_rasteriser_draws() {
 fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     let gpu = gpu();
     let mut terrain = terrain(&gpu, scene(1));
-    terrain.set_visibility_raster(Raster::Compute);
-    let e = terrain
-        .set_method(&gpu.device, Method::Visibility)
-        .unwrap_err();
+    let compute = relief::MethodConfig::new(Method::Visibility).with_raster(Raster::Compute);
+    let e = terrain.set_method(&gpu.device, compute).unwrap_err();
     assert!(e.to_string().contains("one sample a pixel"), "{e}");
-    terrain.set_visibility_samples(1).unwrap();
-    terrain.set_method(&gpu.device, Method::Visibility).unwrap();
+    // A refused configuration changes nothing.
+    assert_eq!(terrain.method_config(), relief::MethodConfig::MESH);
+    terrain
+        .set_method(&gpu.device, compute.with_samples(1))
+        .unwrap();
     // A frame whose depth buffer (4 bytes a pixel, bound whole) passes the device's storage
     // binding limit is refused in words, before anything is made at that size.
     let side = 65_536;
@@ -218,9 +231,9 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
         WorldParams::default(),
     )
     .unwrap();
-    world.set_visibility_raster(Raster::Compute);
     for method in [Method::Visibility, Method::Hybrid] {
-        let e = world.set_method(&gpu.device, method).unwrap_err();
+        let config = relief::MethodConfig::new(method).with_raster(Raster::Compute);
+        let e = world.set_method(&gpu.device, config).unwrap_err();
         assert!(
             e.to_string().contains("one sample a pixel"),
             "{method}: {e}"
@@ -228,8 +241,9 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     }
     // The endless world's raster keeps each pixel's triangle beside its depth (lavapipe has
     // 64-bit atomics): 8 bytes a pixel, and the refusal says so.
-    world.set_visibility_samples(1).unwrap();
-    world.set_method(&gpu.device, Method::Visibility).unwrap();
+    world
+        .set_method(&gpu.device, compute.with_samples(1))
+        .unwrap();
     world.set_target_size(Some((side, side)));
     let view = common::world_view(&WorldParams::default(), (W, H));
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -276,9 +290,16 @@ fn world_rasterised_skipping(
         params,
     )
     .unwrap();
-    world.set_visibility_samples(1).unwrap();
-    world.set_visibility_raster(raster);
-    world.set_method(&gpu.device, method).unwrap();
+    world
+        .set_method(
+            &gpu.device,
+            relief::MethodConfig {
+                method,
+                samples: 1,
+                raster,
+            },
+        )
+        .unwrap();
     world.set_raster_skips_hidden(skip);
     headless::render_world_image(gpu, &mut world, view, (W, H), headless::TILE, None)
         .unwrap()

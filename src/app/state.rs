@@ -67,6 +67,9 @@ pub struct State {
     samples: u32,
     /// Setting the terrain's or the world's targets to [`State::samples`] failed.
     targets_failed: bool,
+    /// The samples a pixel and the raster that `visibility` and `hybrid` draw with (from the
+    /// chosen candidate); the method is the app's, given to each [`State::draw`].
+    method_knobs: (u32, crate::Raster),
     pub(crate) terrain: Terrain,
     /// The endless world, when the window shows it instead of the tile.
     pub(crate) world: Option<World>,
@@ -215,6 +218,7 @@ impl State {
             msaa: None,
             samples: SAMPLES,
             targets_failed: false,
+            method_knobs: (4, crate::Raster::Hardware),
             terrain,
             world,
             timer,
@@ -307,12 +311,8 @@ impl State {
     /// terrain and the world, and the window's targets for its method (the method itself is the
     /// app's, given to each [`State::draw`]).
     pub fn use_candidate(&mut self, c: crate::choice::Candidate) -> Result<()> {
-        self.terrain.set_visibility_samples(c.samples)?;
-        self.terrain.set_visibility_raster(c.raster);
-        if let Some(world) = &mut self.world {
-            world.set_visibility_samples(c.samples)?;
-            world.set_visibility_raster(c.raster);
-        }
+        c.config().validate()?;
+        self.method_knobs = (c.samples, c.raster);
         self.set_samples(crate::gpu::render_samples(c.method))
     }
 
@@ -431,10 +431,11 @@ impl State {
             }
             return self.finish(encoder, frame, timed);
         }
+        let config = self.method_config(method);
         let world = match (&mut self.world, fly) {
             (Some(world), Some(fly)) => {
                 let view = fly.view(size);
-                if let Err(e) = world.set_method(&self.device, Self::mesh_method(method)) {
+                if let Err(e) = world.set_method(&self.device, config) {
                     log::warn!("{e}");
                 }
                 if let Err(e) =
@@ -450,10 +451,7 @@ impl State {
             }
             _ => {
                 self.terrain.set_viewport(size);
-                if let Err(e) = self
-                    .terrain
-                    .set_method(&self.device, Self::mesh_method(method))
-                {
+                if let Err(e) = self.terrain.set_method(&self.device, config) {
                     log::warn!("{e}");
                 }
                 if let Err(e) =
@@ -521,6 +519,16 @@ impl State {
             method
         } else {
             Method::Mesh
+        }
+    }
+
+    /// How the terrain and the world draw a frame of `method`: the mesh-based method with the
+    /// chosen samples and raster.
+    fn method_config(&self, method: Method) -> crate::MethodConfig {
+        crate::MethodConfig {
+            method: Self::mesh_method(method),
+            samples: self.method_knobs.0,
+            raster: self.method_knobs.1,
         }
     }
 

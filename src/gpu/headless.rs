@@ -362,15 +362,11 @@ impl TrialScene<'_> {
         match self {
             TrialScene::Tile(terrain, ..) => {
                 terrain.set_targets(device, targets)?;
-                terrain.set_visibility_samples(c.samples)?;
-                terrain.set_visibility_raster(c.raster);
-                terrain.set_method(device, c.method)
+                terrain.set_method(device, c.config())
             }
             TrialScene::Endless(world, _) => {
                 world.set_targets(device, targets)?;
-                world.set_visibility_samples(c.samples)?;
-                world.set_visibility_raster(c.raster);
-                world.set_method(device, c.method)
+                world.set_method(device, c.config())
             }
         }
     }

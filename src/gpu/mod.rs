@@ -11,6 +11,7 @@ mod light_queue;
 pub(crate) mod normals;
 pub mod raster;
 pub mod raymarch;
+mod region;
 pub(crate) mod render;
 pub mod shader;
 pub(crate) mod sky;
@@ -280,19 +281,19 @@ impl Terrain {
         self.viewport
     }
 
-    /// Samples a pixel of the visibility method ([`Terrain::set_visibility_samples`]).
-    pub fn visibility_samples(&self) -> u32 {
-        self.world.visibility_samples()
-    }
-
     /// How the mesh is drawn: [`crate::Method::Mesh`] (forward shading, the default) or
     /// [`crate::Method::Visibility`] (shaded per MSAA sample in compute, composited into the
     /// host's pass: [`visibility`]); see [`world::World::set_method`]. With the visibility
     /// method [`Terrain::prepare`] records the frame's raster and shading passes, so call
     /// it every frame before the host's pass, with the view drawn; its images are made at the
     /// viewport's size ([`Terrain::set_viewport`]), which must be the host target's.
-    pub fn set_method(&mut self, device: &wgpu::Device, method: crate::Method) -> Result<()> {
-        self.world.set_method(device, method)
+    /// `config` is a [`crate::MethodConfig`] or a bare [`crate::Method`].
+    pub fn set_method(
+        &mut self,
+        device: &wgpu::Device,
+        config: impl Into<crate::MethodConfig>,
+    ) -> Result<()> {
+        self.world.set_method(device, config)
     }
 
     /// How the mesh is drawn ([`Terrain::set_method`]).
@@ -300,21 +301,9 @@ impl Terrain {
         self.world.method()
     }
 
-    /// Samples a pixel of the visibility method (see [`world::World::set_visibility_samples`]);
-    /// takes effect with the next [`Terrain::set_method`].
-    pub fn set_visibility_samples(&mut self, samples: u32) -> Result<()> {
-        self.world.set_visibility_samples(samples)
-    }
-
-    /// Where the visibility method rasterises (see [`world::World::set_visibility_raster`]);
-    /// takes effect with the next [`Terrain::set_method`].
-    pub fn set_visibility_raster(&mut self, raster: raster::Raster) {
-        self.world.set_visibility_raster(raster);
-    }
-
-    /// Where the visibility method rasterises ([`Terrain::set_visibility_raster`]).
-    pub fn visibility_raster(&self) -> raster::Raster {
-        self.world.visibility_raster()
+    /// How frames are drawn: the method with its samples and raster ([`Terrain::set_method`]).
+    pub fn method_config(&self) -> crate::MethodConfig {
+        self.world.method_config()
     }
 
     /// Most texels of the mesh's levels one [`Terrain::encode_bake`] bakes (see

@@ -36,55 +36,7 @@
 //! triangles span much of the screen, and one thread looping over all their pixels held up the
 //! whole pass.
 
-use crate::error::{Error, Result};
-
-/// Where the visibility method rasterises its mesh.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Raster {
-    /// The GPU's rasteriser: a render pass writing depth (and the world's attributes).
-    #[default]
-    Hardware,
-    /// A compute pass: one sample a pixel only.
-    Compute,
-}
-
-impl Raster {
-    /// Every raster, in the order of docs and tables.
-    pub const ALL: [Raster; 2] = [Raster::Hardware, Raster::Compute];
-
-    /// Its name on the command line and in the benchmark's CSV.
-    pub fn name(self) -> &'static str {
-        match self {
-            Raster::Hardware => "hardware",
-            Raster::Compute => "compute",
-        }
-    }
-
-    /// The raster called `name`.
-    pub fn from_name(name: &str) -> Result<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|r| r.name() == name.trim())
-            .ok_or_else(|| Error::invalid("raster", name, "hardware or compute"))
-    }
-
-    /// Why this raster cannot draw at `samples` a pixel, or `None` where it can.
-    pub fn refusal(self, samples: u32) -> Option<&'static str> {
-        match self {
-            Raster::Compute if samples != 1 => Some(
-                "hardware at 4 samples a pixel; the compute raster draws one sample a pixel \
-                 (--samples 1)",
-            ),
-            _ => None,
-        }
-    }
-}
-
-impl std::fmt::Display for Raster {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+pub use crate::method::Raster;
 
 /// Mirrors `RasterUniforms` in `wgsl/raster.wgsl`.
 #[repr(C)]

@@ -29,7 +29,7 @@ use super::world_rays::WorldRayUniforms;
 use super::Targets;
 
 /// Samples a pixel of the raster pass, each shaded, by default: the standard 4x MSAA pattern.
-/// One sample a pixel ([`crate::World::set_visibility_samples`]) rasterises a quarter of the
+/// One sample a pixel ([`crate::MethodConfig::samples`]) rasterises a quarter of the
 /// samples and draws edges without anti-aliasing.
 pub const SAMPLES: u32 = 4;
 /// Depth of the raster pass.

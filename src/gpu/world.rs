@@ -9,6 +9,7 @@ use glam::{DVec3, Mat4, Vec3, Vec4};
 use super::landscape::{LandscapeBake, LevelTarget, Rect};
 use super::light_queue::LightQueue;
 use super::raster::{Patches, Raster};
+use super::region::{crop, crop_exact, subtract};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 pub use super::uniforms::{LevelUniforms, WorldUniforms};
@@ -21,7 +22,7 @@ pub use crate::camera::WorldView;
 use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
 use crate::error::{Error, Result};
 use crate::landscape::Landscape;
-use crate::method::Method;
+use crate::method::{Method, MethodConfig};
 use crate::params::{Shading, TerrainParams};
 use crate::sky::SkyLight;
 pub use crate::world::WorldParams;
@@ -101,7 +102,7 @@ pub struct World {
     visibility: Option<Visibility>,
     /// Samples a pixel the visibility method rasterises and shades.
     vis_samples: u32,
-    /// Where the visibility method rasterises ([`World::set_visibility_raster`]).
+    /// Where the visibility method rasterises ([`World::set_method`]).
     vis_raster: Raster,
     /// The size of the host's target when it differs from the view's (a tile of a larger
     /// image): what the visibility method's images are made at.
@@ -309,7 +310,7 @@ impl World {
         self.targets = targets;
         // The visibility method's composite draws into the host's pass: built again for these.
         self.visibility = None;
-        let rebuilt = self.set_method(device, self.method);
+        let rebuilt = self.set_method(device, self.method_config());
         if rebuilt.is_err() {
             // Never a method without its passes: the forward mesh draws, and says so.
             self.method = Method::Mesh;
@@ -349,7 +350,17 @@ impl World {
     /// [`Method::Hybrid`] (the same raster of the levels raised to bound the surface from
     /// above, each sample refined to the continuous surface in compute). Other methods are ray
     /// casters with their own paths and are refused.
-    pub fn set_method(&mut self, device: &wgpu::Device, method: Method) -> Result<()> {
+    ///
+    /// `config` is a [`MethodConfig`] or a bare [`Method`] (at 4 samples, the GPU's raster).
+    /// A refused configuration changes nothing.
+    pub fn set_method(
+        &mut self,
+        device: &wgpu::Device,
+        config: impl Into<MethodConfig>,
+    ) -> Result<()> {
+        let config = config.into();
+        config.validate()?;
+        let method = config.method;
         match method {
             Method::Mesh => {}
             Method::Hybrid if self.tile.is_some() => {
@@ -360,12 +371,8 @@ impl World {
                 ))
             }
             Method::Visibility | Method::Hybrid => {
-                let samples = self.vis_samples;
+                let (samples, raster) = (config.samples, config.raster);
                 let hybrid = method == Method::Hybrid;
-                let raster = self.vis_raster;
-                if let Some(why) = raster.refusal(samples) {
-                    return Err(Error::invalid("raster", raster, why));
-                }
                 let built = self
                     .visibility
                     .as_ref()
@@ -392,7 +399,18 @@ impl World {
             )),
         }
         self.method = method;
+        self.vis_samples = config.samples;
+        self.vis_raster = config.raster;
         Ok(())
+    }
+
+    /// How frames are drawn: the method with its samples and raster ([`World::set_method`]).
+    pub fn method_config(&self) -> MethodConfig {
+        MethodConfig {
+            method: self.method,
+            samples: self.vis_samples,
+            raster: self.vis_raster,
+        }
     }
 
     /// Metres the level spaced `2^spacing_log2` metres is raised by: for the hybrid method
@@ -413,27 +431,6 @@ impl World {
         self.method
     }
 
-    /// Samples a pixel the visibility method rasterises and shades: 4 (the default, the
-    /// standard MSAA pattern, edges anti-aliased) or 1 (a quarter of the raster work, edges
-    /// aliased). Takes effect with the next [`World::set_method`].
-    pub fn set_visibility_samples(&mut self, samples: u32) -> Result<()> {
-        if !matches!(samples, 1 | 4) {
-            return Err(Error::invalid("visibility samples", samples, "1 or 4"));
-        }
-        self.vis_samples = samples;
-        Ok(())
-    }
-
-    /// Where the visibility method rasterises its mesh: [`Raster::Hardware`] (the default) or
-    /// [`Raster::Compute`] (at one sample a pixel only: [`super::raster`]). Takes
-    /// effect with the next [`World::set_method`], which refuses what the compute raster cannot
-    /// draw ([`World::set_targets`] sets the method again, so it refuses it too, and the world
-    /// draws the mesh); a frame larger than the device's storage binding limit allows (4 bytes
-    /// a pixel) is refused by [`World::prepare`].
-    pub fn set_visibility_raster(&mut self, raster: Raster) {
-        self.vis_raster = raster;
-    }
-
     /// Whether the compute raster's later passes skip the blocks of cells that nearer levels
     /// hide (on by default; for the test that skipping changes no pixel). Applies to the
     /// current method's raster.
@@ -442,11 +439,6 @@ impl World {
         if let Some(vis) = &mut self.visibility {
             vis.set_raster_skips_hidden(on);
         }
-    }
-
-    /// Where the visibility method rasterises ([`World::set_visibility_raster`]).
-    pub fn visibility_raster(&self) -> Raster {
-        self.vis_raster
     }
 
     /// The host target's size where it differs from the view's ([`WorldView::size`]): a tile
@@ -459,12 +451,6 @@ impl World {
     /// The host target's size where it differs from the view's ([`World::set_target_size`]).
     pub fn target_size(&self) -> Option<(u32, u32)> {
         self.target_size
-    }
-
-    /// Samples a pixel of the visibility method and the hybrid
-    /// ([`World::set_visibility_samples`]).
-    pub fn visibility_samples(&self) -> u32 {
-        self.vis_samples
     }
 
     /// GPU memory of the visibility method's own images for the last frame's size, bytes (0
@@ -1416,69 +1402,6 @@ pub const CLOCK_PERIOD: f32 = 4096.0;
 /// Height in metres of the sand along the shore (jittered by the colour noise).
 pub const SAND_BAND: f64 = 12.0;
 
-/// `rect` less what lies outside the square `bounds` (metres: x0, z0, x1, z1) by more than two
-/// samples: texels no clamped vertex, bilinear read or morph ever reaches. `None` when nothing
-/// is left. What is cut is never baked (the bounded tile's levels reach far beyond it).
-fn crop(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
-    cut(rect, bounds, 2.0)
-}
-
-/// `rect` less what lies outside the samples in `bounds` (metres, on the level's samples).
-fn crop_exact(rect: Rect, bounds: [f64; 4]) -> Option<Rect> {
-    cut(rect, bounds, 0.0)
-}
-
-fn cut(rect: Rect, bounds: [f64; 4], margin: f64) -> Option<Rect> {
-    let s = 2f64.powi(rect.level_log2);
-    let (min, max) = (f64::from(i32::MIN), f64::from(i32::MAX));
-    let lo = |v: f64| ((v / s).floor() - margin).clamp(min, max) as i64;
-    let hi = |v: f64| ((v / s).ceil() + margin + 1.0).clamp(min, max) as i64;
-    let mut r = rect;
-    for (axis, (b0, b1)) in [(0, (bounds[0], bounds[2])), (1, (bounds[1], bounds[3]))] {
-        let start = i64::from(rect.origin[axis]).max(lo(b0));
-        let end = (i64::from(rect.origin[axis]) + i64::from(rect.extent[axis])).min(hi(b1));
-        if end <= start {
-            return None;
-        }
-        r.origin[axis] = start as i32;
-        r.extent[axis] = (end - start) as u32;
-    }
-    Some(r)
-}
-
-/// `a` less `b`: up to four rectangles (bands below and above `b`, then left and right of it).
-fn subtract(a: Rect, b: Option<Rect>) -> Vec<Rect> {
-    let Some(b) = b else {
-        return vec![a];
-    };
-    let span = |r: &Rect, i: usize| {
-        let o = i64::from(r.origin[i]);
-        (o, o + i64::from(r.extent[i]))
-    };
-    let ((ax0, ax1), (az0, az1)) = (span(&a, 0), span(&a, 1));
-    let ((bx0, bx1), (bz0, bz1)) = (span(&b, 0), span(&b, 1));
-    let (ix0, ix1, iz0, iz1) = (ax0.max(bx0), ax1.min(bx1), az0.max(bz0), az1.min(bz1));
-    if ix0 >= ix1 || iz0 >= iz1 {
-        return vec![a];
-    }
-    let rect = |x0: i64, x1: i64, z0: i64, z1: i64| Rect {
-        origin: [x0 as i32, z0 as i32],
-        extent: [(x1 - x0) as u32, (z1 - z0) as u32],
-        ..a
-    };
-    [
-        (ax0, ax1, az0, iz0),
-        (ax0, ax1, iz1, az1),
-        (ax0, ix0, iz0, iz1),
-        (ix1, ax1, iz0, iz1),
-    ]
-    .into_iter()
-    .filter(|&(x0, x1, z0, z1)| x0 < x1 && z0 < z1)
-    .map(|(x0, x1, z0, z1)| rect(x0, x1, z0, z1))
-    .collect()
-}
-
-/// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
 /// The hybrid method's raise for every level spacing a clipmap of `land` can have.
 fn level_raises(land: &Landscape) -> Vec<(i32, f64)> {
     let finest = crate::clipmap::finest_log2(land);
@@ -1487,6 +1410,7 @@ fn level_raises(land: &Landscape) -> Vec<(i32, f64)> {
         .collect()
 }
 
+/// The levels' errors from the finest spacing `land` needs, or `floor` where that is coarser.
 fn level_errors(land: &Landscape, floor: Option<i32>) -> Vec<(i32, f64)> {
     let finest = crate::clipmap::finest_log2(land).max(floor.unwrap_or(i32::MIN));
     (0..MAX_LEVELS as i32)

@@ -309,7 +309,7 @@ pub fn detail_chart(
     scene: (u32, u32),
     (title, stem): (&str, &std::path::Path),
 ) -> Result<()> {
-    crate::bench::write_chart(
+    crate::chart::write_chart(
         stem,
         |b| draw(b, rows, scene, title),
         |b| draw(b, rows, scene, title),
@@ -449,7 +449,7 @@ where
             ))
             .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, legend)
+    crate::chart::legend(&mut chart, legend)
 }
 
 /// FLIP against the LOD knob (the mesh's grid, on a log2 axis), the scene's grid marked.
@@ -521,5 +521,5 @@ where
             .label(format!("the scene: grid {scene_grid}"))
             .legend(|(x, y)| Cross::new((x + 10, y), 6, BLACK.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)
 }

@@ -150,8 +150,10 @@ pub fn distances(
         let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
         w.set_bake_budget(u64::MAX);
         w.set_light_budget(u64::MAX);
-        w.set_visibility_samples(1)?;
-        w.set_method(&gpu.device, method)?;
+        w.set_method(
+            &gpu.device,
+            crate::MethodConfig::new(method).with_samples(1),
+        )?;
         others.push(w);
     }
     let (w, h) = options.size;
@@ -383,7 +385,7 @@ pub fn distance_table(rows: &[DistanceRow]) -> String {
 /// The chart: per distance (log), the mesh's jitter against the reference, the screen
 /// error's 99th percentile (px) and missed pixels (%), refused distances marked.
 pub fn distance_chart(rows: &[DistanceRow], (title, stem): (&str, &std::path::Path)) -> Result<()> {
-    crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
+    crate::chart::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
 }
 
 /// A line of the chart: its legend, colour and value per row.
@@ -486,6 +488,6 @@ where
             .label("refused: the eye beyond the world's reach")
             .legend(move |(x, y)| Cross::new((x + 10, y), 6, red.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present().map_err(|e| e.to_string())
 }

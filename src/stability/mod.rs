@@ -438,13 +438,13 @@ where
         .build_cartesian_2d(
             (x0..x1)
                 .log_scale()
-                .with_key_points(crate::bench::log_ticks(x0, x1, 5)),
+                .with_key_points(crate::chart::log_ticks(x0, x1, 5)),
             0.0..top,
         )
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .x_label_formatter(&|v| crate::bench::tick_label(*v))
+        .x_label_formatter(&|v| crate::chart::tick_label(*v))
         .x_desc(x_desc)
         .y_desc(y_desc)
         .label_style(("sans-serif", 15))
@@ -573,7 +573,7 @@ pub fn chart(
             .unwrap_or("grazing");
         let scale = hs.to_string().replace('.', "p");
         let stem = stem.with_file_name(format!("{name}-hs{scale}"));
-        crate::bench::write_chart(
+        crate::chart::write_chart(
             &stem,
             |b| draw(b, &mine, options, &title),
             |b| draw(b, &mine, options, &title),
@@ -632,7 +632,7 @@ where
             .draw_series(line.iter().map(|&p| Circle::new(p, 4, color.filled())))
             .map_err(|e| e.to_string())?;
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present().map_err(|e| e.to_string())
 }
 
@@ -798,7 +798,7 @@ pub fn storage_table(rows: &[StorageRow]) -> String {
 /// The storage axis's chart: the 99th-percentile normal error (log) against bits a value, a
 /// line for heights and one for normals, the blog's formats ringed.
 pub fn storage_chart(rows: &[StorageRow], title: &str, stem: &std::path::Path) -> Result<()> {
-    crate::bench::write_chart(
+    crate::chart::write_chart(
         stem,
         |b| draw_storage(b, rows, title),
         |b| draw_storage(b, rows, title),
@@ -829,13 +829,13 @@ where
                 .with_key_points(vec![8.0, 16.0, 32.0]),
             (lo..hi)
                 .log_scale()
-                .with_key_points(crate::bench::log_ticks(lo, hi, 5)),
+                .with_key_points(crate::chart::log_ticks(lo, hi, 5)),
         )
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
         .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| crate::bench::tick_label(*v))
+        .y_label_formatter(&|v| crate::chart::tick_label(*v))
         .x_desc("bits a stored value (log)")
         .y_desc("normal error, 99th percentile, degrees (log)")
         .label_style(("sans-serif", 15))
@@ -886,7 +886,7 @@ where
             )])
             .map_err(|e| e.to_string())?;
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(|e| e.to_string())
 }
 

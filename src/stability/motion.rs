@@ -149,8 +149,10 @@ pub fn motion(
         world.set_bake_budget(options.budget);
         if method != Method::Mesh {
             // At one sample a pixel, as relief's default chooses them on an H100.
-            world.set_visibility_samples(1)?;
-            world.set_method(&gpu.device, method)?;
+            world.set_method(
+                &gpu.device,
+                crate::MethodConfig::new(method).with_samples(1),
+            )?;
         }
         let at = |i: usize| eye_at(&p, options.height, speed * i as f64, options.size);
         // The first frame whole, as after a window's first bake; then frame by frame.
@@ -244,7 +246,7 @@ pub fn motion_chart(
     default_knob: f64,
     (title, stem): (&str, &std::path::Path),
 ) -> Result<()> {
-    crate::bench::write_chart(
+    crate::chart::write_chart(
         stem,
         |b| draw(b, rows, default_knob, title),
         |b| draw(b, rows, default_knob, title),
@@ -319,6 +321,6 @@ where
             }))
             .map_err(|e| e.to_string())?;
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present().map_err(|e| e.to_string())
 }

@@ -365,7 +365,7 @@ pub fn scroll_table(rows: &[ScrollRow]) -> String {
 /// The chart: per distance (log), each pipeline's held and repeated fractions, relief's
 /// refusals marked.
 pub fn scroll_chart(rows: &[ScrollRow], (title, stem): (&str, &std::path::Path)) -> Result<()> {
-    crate::bench::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
+    crate::chart::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
 }
 
 /// A fraction the chart draws a line of for each pipeline: its legend, its value, and whether
@@ -461,7 +461,7 @@ where
             .label("relief refuses the offset (past 2^40 tiles)")
             .legend(move |(x, y)| Cross::new((x + 10, y), 6, red.stroke_width(3)));
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(|e| e.to_string())
 }
 

@@ -328,7 +328,7 @@ pub fn shadow_chart(
     default_deg: f64,
     (title, stem): (&str, &std::path::Path),
 ) -> Result<()> {
-    crate::bench::write_chart(
+    crate::chart::write_chart(
         stem,
         |b| draw(b, rows, options, default_deg, title),
         |b| draw(b, rows, options, default_deg, title),
@@ -404,6 +404,6 @@ where
             .draw_series(wrong.iter().map(|&p| Cross::new(p, 4, color)))
             .map_err(|e| e.to_string())?;
     }
-    crate::bench::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(|e| e.to_string())
 }

@@ -85,8 +85,10 @@ pub fn world_grazing(
     // The compute-shaded methods at one sample a pixel: each pixel's depth is its centre's.
     let at_one_sample = |method| -> Result<World> {
         let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
-        w.set_visibility_samples(1)?;
-        w.set_method(&gpu.device, method)?;
+        w.set_method(
+            &gpu.device,
+            crate::MethodConfig::new(method).with_samples(1),
+        )?;
         Ok(w)
     };
     let mut visibility = at_one_sample(Method::Visibility)?;

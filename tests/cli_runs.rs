@@ -1,0 +1,451 @@
+//! The `relief` program's long runs, each once: `bench --quick` in both worlds and
+//! `stability --quick` (every axis, then `--axis`): the files they write and what they refuse.
+
+#[path = "common/cli.rs"]
+mod cli_common;
+use cli_common::*;
+
+#[test]
+fn bench_quick_writes_a_csv_and_a_chart() {
+    let dir = scratch("bench");
+    // Scene flags set the benchmark's scene (they were once silently ignored).
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--quick",
+        "--octaves",
+        "3",
+        "--seed",
+        "99",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert!(stdout.contains("seed 99, octaves 3"), "{stdout}");
+    assert!(
+        stdout.contains("<- default"),
+        "the table marks the default: {stdout}"
+    );
+    let csv = std::fs::read_to_string(dir.join("bench.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    for column in [
+        "device",
+        "backend",
+        "method",
+        "size",
+        "grid",
+        "normals",
+        "step_factor",
+        "render_ms",
+        "wall_ms",
+        "flip_mean",
+        "missed",
+        "mesh_rms",
+    ] {
+        assert!(header.contains(&column), "CSV lacks {column}");
+    }
+    assert_eq!(lines.len(), 1 + 10, "ten configurations in the quick sweep");
+    let rows: Vec<Vec<String>> = lines[1..].iter().map(|l| csv_fields(l)).collect();
+    for row in &rows {
+        assert_eq!(row.len(), header.len(), "{row:?}");
+    }
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    // One default, chosen among the mesh-based candidates as `relief render --method auto`
+    // chooses, from the rows' own draw times.
+    let defaults: Vec<&str> = rows
+        .iter()
+        .filter(|r| r[col("default")] == "true")
+        .map(|r| r[col("method")].as_str())
+        .collect();
+    assert!(
+        defaults == ["mesh"] || defaults == ["visibility"],
+        "{defaults:?}"
+    );
+    let methods: Vec<&str> = rows.iter().map(|r| r[col("method")].as_str()).collect();
+    for m in [
+        "mesh",
+        "visibility",
+        "raymarch-fragment",
+        "raymarch",
+        "blog",
+    ] {
+        assert!(methods.contains(&m), "no {m} row");
+    }
+    // The visibility method at one sample rasterised in compute, beside it at four in hardware.
+    let rasters: Vec<(&str, &str)> = rows
+        .iter()
+        .filter(|r| r[col("method")] == "visibility")
+        .map(|r| (r[col("samples")].as_str(), r[col("raster")].as_str()))
+        .collect();
+    assert_eq!(rasters, [("4", "hardware"), ("1", "compute")]);
+    for row in &rows {
+        let flip: f64 = row[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
+        if row[col("method")] == "blog" {
+            // The blog's own terrain, texture and grid, baked and drawn every frame.
+            assert_eq!(row[col("octaves")], "5", "{row:?}");
+            assert_eq!(row[col("seed")], "", "{row:?}");
+            assert_eq!(row[col("size")], "1024", "{row:?}");
+            assert_eq!(row[col("grid")], "1024", "{row:?}");
+            let ms = |c: &str| row[col(c)].parse::<f64>().unwrap();
+            let parts = ms("bake_ms") + ms("normals_ms") + ms("render_ms");
+            assert!((ms("frame_gpu_ms") - parts).abs() < 1e-3, "{row:?}");
+            continue;
+        }
+        assert_eq!(row[col("octaves")], "3", "{row:?}");
+        assert_eq!(row[col("seed")], "99", "{row:?}");
+        let flip: f64 = row[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.5, "FLIP mean {flip} in {row:?}");
+    }
+    let png = image::open(dir.join("bench.png")).unwrap();
+    assert_eq!((png.width(), png.height()), (960, 640));
+    let svg = std::fs::read_to_string(dir.join("bench.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("Pareto front") && svg.contains("default"));
+    // The default's label is drawn right beside its marker (it once floated far from it): on
+    // whichever side it is, its nearer end lies within a few marker widths. The SVG gives the
+    // text's start; its end is estimated at up to 8 px a character of 15 px sans-serif (a long
+    // label left of a marker near the right edge starts some 350 px away and ends beside it).
+    let (label, text) = svg_text(&svg, "default (").expect("a default label");
+    let marker = svg_circle_position(&svg, 11.0).expect("the default's ring");
+    let width = text.chars().count() as f64 * 8.0;
+    let gap_x = if label.0 > marker.0 {
+        label.0 - marker.0
+    } else {
+        (marker.0 - (label.0 + width)).max(0.0)
+    };
+    let d = (gap_x.powi(2) + (label.1 - marker.1).powi(2)).sqrt();
+    assert!(
+        d < 80.0,
+        "label {text:?} at {label:?} (about {width} px wide), marker at {marker:?}"
+    );
+    // ... and inside the picture.
+    assert!((0.0..960.0).contains(&label.0), "{label:?}");
+}
+
+#[test]
+fn bench_world_endless_quick_writes_landscape_csv() {
+    let dir = scratch("bench-endless");
+    let out = dir.join("out");
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // Not a terminal: no progress (nor its escape codes) on stderr.
+    assert_eq!(err, "", "a run into a pipe keeps stderr clean");
+    let csv = std::fs::read_to_string(out.join("landscape.csv")).unwrap();
+    let look = std::fs::read_to_string(out.join("look.csv")).unwrap();
+    // Stdout says what was written, and the arrival in words; the CSVs stay in their files.
+    for name in ["look.csv", "landscape.csv", "arrival.csv"] {
+        assert!(
+            stdout.contains(&format!("rows in {}", out.join(name).display())),
+            "{stdout}"
+        );
+    }
+    assert!(!stdout.contains("view,method"), "{stdout}");
+    for method in ["mesh", "visibility 1 compute"] {
+        assert!(
+            stdout.contains(&format!("arrival ({method}): first frame")),
+            "{stdout}"
+        );
+    }
+    assert_eq!(
+        files_in(&out),
+        [
+            "arrival.csv",
+            "landscape.csv",
+            "landscape.png",
+            "landscape.svg",
+            "look.csv"
+        ]
+    );
+    // The arrival: every frame from the first, each lighting within the budget, and the
+    // light waiting at the start (nothing is lit on arrival).
+    let arrival = std::fs::read_to_string(out.join("arrival.csv")).unwrap();
+    let frames: Vec<Vec<&str>> = arrival
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(frames.len(), 2 * 6, "{arrival}");
+    for f in &frames {
+        let lit: u64 = f[6].parse().unwrap();
+        assert!(lit <= relief::gpu::world::DEFAULT_LIGHT_BUDGET, "{f:?}");
+    }
+    assert!(frames[0][7].parse::<u64>().unwrap() > 0, "{arrival}");
+    // The look's cost: each part off in turn on the first view, and the light bake.
+    let look: Vec<Vec<&str>> = look
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(look.len(), 7, "{look:?}");
+    assert_eq!(look[0][1], "everything on");
+    assert!(
+        look[0][4].parse::<f64>().unwrap() > 0.0,
+        "light bake: {look:?}"
+    );
+    assert!(
+        look.iter().all(|r| r[2].parse::<f64>().unwrap() > 0.0),
+        "{look:?}"
+    );
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    let header: Vec<&str> = rows[0].split(',').collect();
+    // Three views at two knobs: the mesh and the hybrid (at four samples a pixel and one) at
+    // each, the visibility method beside them at the first; the four ray casters on each view,
+    // and two flights.
+    assert_eq!(rows.len(), 1 + 3 * 4 + 3 * 3 + 3 * 4 + 2, "{csv}");
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    // The quick run rasterises in hardware (the full run adds the hybrid rasterised in compute).
+    let meshes: Vec<(&str, &str, &str)> = rows[1..22]
+        .iter()
+        .map(|r| {
+            let v: Vec<&str> = r.split(',').collect();
+            (v[col("method")], v[col("samples")], v[col("raster")])
+        })
+        .collect();
+    let first = [
+        ("mesh", "", ""),
+        ("visibility", "4", "hardware"),
+        ("hybrid", "4", "hardware"),
+        ("hybrid", "1", "hardware"),
+    ];
+    let second = [
+        ("mesh", "", ""),
+        ("hybrid", "4", "hardware"),
+        ("hybrid", "1", "hardware"),
+    ];
+    assert_eq!(
+        meshes,
+        [&first[..], &first, &first, &second, &second, &second].concat(),
+        "{csv}"
+    );
+    let flip_of = |row: &str| -> f64 {
+        let v: Vec<&str> = row.split(',').collect();
+        v[col("flip_mean")].parse().unwrap()
+    };
+    // From the same coarse mesh, the hybrid's refined surface is closer to the reference than
+    // the mesh on every view at both knobs, at four samples a pixel and at one.
+    let first_knob = (0..3).map(|v| (1 + 4 * v, [3 + 4 * v, 4 + 4 * v]));
+    let second_knob = (0..3).map(|v| (13 + 3 * v, [14 + 3 * v, 15 + 3 * v]));
+    for (mesh, hybrids) in first_knob.chain(second_knob) {
+        for hybrid in hybrids {
+            assert!(
+                flip_of(rows[hybrid]) < flip_of(rows[mesh]),
+                "{}\n{}",
+                rows[mesh],
+                rows[hybrid]
+            );
+        }
+    }
+    for row in &rows[1..22] {
+        let v: Vec<&str> = row.split(',').collect();
+        if v[col("method")] == "hybrid" {
+            // Its surface is the continuous one: the mesh's screen error and depth are not
+            // its, and are left empty; its FLIP is measured.
+            assert_eq!(v[col("measured_max_px")], "", "{row}");
+            assert_eq!(v[col("missed")], "", "{row}");
+            let flip = flip_of(row);
+            assert!(flip > 0.0 && flip < 0.25, "{row}");
+            continue;
+        }
+        let measured: f64 = v[col("measured_max_px")].parse().unwrap();
+        let bound: f64 = v[col("error_bound_px")].parse().unwrap();
+        assert!(measured <= bound, "{row}");
+        assert!(v[col("triangles")].parse::<u64>().unwrap() > 0, "{row}");
+        // Against the reference of the same view: close, and drawing where it draws.
+        let flip: f64 = v[col("flip_mean")].parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.25, "{row}");
+        let holes: f64 =
+            v[col("missed")].parse::<f64>().unwrap() + v[col("extra")].parse::<f64>().unwrap();
+        assert!(holes < 0.02, "{row}");
+    }
+    let casters = [
+        "reference",
+        "raymarch",
+        "raymarch-fragment",
+        "raymarch-bandlimited",
+    ];
+    for (row, method) in rows[22..34].iter().zip(casters.iter().cycle()) {
+        let v: Vec<&str> = row.split(',').collect();
+        assert_eq!(v[col("method")], *method, "{row}");
+        assert_eq!(v[col("triangles")], "0", "{row}");
+        assert!(v[col("render_ms")].parse::<f64>().unwrap() > 0.0, "{row}");
+        assert!(v[col("unresolved_rays")].parse::<u64>().is_ok(), "{row}");
+        if *method != "reference" {
+            assert!(v[col("flip_mean")].parse::<f64>().unwrap() < 0.25, "{row}");
+        }
+    }
+    assert!(rows[34].starts_with("flight,"), "{csv}");
+    assert!(rows[35].starts_with("path,"), "{csv}");
+}
+
+#[test]
+fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
+    let dir = scratch("stability");
+    let (code, stdout, err) = relief(&[
+        "stability",
+        "--quick",
+        "--octaves",
+        "6",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert!(
+        stdout.contains("octaves 6") && stdout.contains("height scale 2"),
+        "{stdout}"
+    );
+    assert_eq!(
+        files_in(&dir),
+        [
+            "detail.csv",
+            "detail.png",
+            "detail.svg",
+            "distance.csv",
+            "distance.png",
+            "distance.svg",
+            "grazing-hs0p5.png",
+            "grazing-hs0p5.svg",
+            "grazing-hs2.png",
+            "grazing-hs2.svg",
+            "motion.csv",
+            "motion.png",
+            "motion.svg",
+            "scroll.csv",
+            "scroll.png",
+            "scroll.svg",
+            "shadow.csv",
+            "shadow.png",
+            "shadow.svg",
+            "stability.csv",
+            "storage.csv",
+            "storage.png",
+            "storage.svg",
+            "world-grazing-hs2400.png",
+            "world-grazing-hs2400.svg",
+            "world-grazing.csv"
+        ]
+    );
+    // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the
+    // default world's refusal 10^9 m out, the flights (2 speeds: the mesh with the morph on
+    // and off, the visibility method, the hybrid).
+    let lines = |name: &str| {
+        std::fs::read_to_string(dir.join(name))
+            .unwrap()
+            .lines()
+            .count()
+    };
+    assert_eq!(lines("shadow.csv"), 1 + 9);
+    assert_eq!(lines("motion.csv"), 1 + 8);
+    let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
+    assert!(
+        distance
+            .lines()
+            .any(|l| l.starts_with("1e9,\"x and z within")),
+        "{distance}"
+    );
+    // The visibility method and the hybrid beside the mesh on the distance axis.
+    for column in [
+        "jitter_visibility",
+        "missed_hybrid",
+        "flip_hybrid_vs_reference",
+    ] {
+        assert!(
+            distance.lines().next().unwrap_or_default().contains(column),
+            "distance.csv lacks {column}"
+        );
+    }
+    assert!(
+        stdout.contains("refused: the eye must be x and z within"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(dir.join("stability.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<String>> = csv.lines().skip(1).map(csv_fields).collect();
+    // 3 elevations x 2 height scales x (2 step factors, the relaxation, the march in a
+    // fragment shader, the mesh, the reference).
+    assert_eq!(rows.len(), 36, "{csv}");
+    for row in &rows {
+        let tunnelled: usize = row[col("tunnelled")].parse().unwrap();
+        if row[col("method")] == "reference" {
+            assert_eq!(tunnelled, 0, "the reference tunnelled: {row:?}");
+        }
+    }
+    for (flag, value) in [("--height-scale", "1"), ("--grid", "64"), ("--timings", "")] {
+        let mut args = vec!["stability", "--quick", flag];
+        if !value.is_empty() {
+            args.push(value);
+        }
+        rejects(&args, &[flag, "stability"]);
+    }
+    rejects(&["stability", "--world", "endless"], &["stability", "tile"]);
+    // The scroll axis: relief's tile and the blog's at each quick distance, relief refusing
+    // 10^13 tiles in words.
+    let scroll = std::fs::read_to_string(dir.join("scroll.csv")).unwrap();
+    assert_eq!(scroll.lines().count(), 1 + 2 * 4, "{scroll}");
+    assert!(
+        scroll.lines().any(|l| l.starts_with("relief,1e13,\"")),
+        "{scroll}"
+    );
+}
+
+#[test]
+fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
+    let dir = scratch("stability-axis");
+    let (code, stdout, err) = relief(&[
+        "stability",
+        "--quick",
+        "--axis",
+        "storage,scroll",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a successful run keeps stderr clean");
+    assert_eq!(
+        files_in(&dir),
+        [
+            "scroll.csv",
+            "scroll.png",
+            "scroll.svg",
+            "storage.csv",
+            "storage.png",
+            "storage.svg"
+        ]
+    );
+    // In the order the full sweep runs them, whatever the order named.
+    assert!(stdout.contains("2 axes (scroll, storage)"), "{stdout}");
+    assert!(!stdout.contains("grazing views"), "{stdout}");
+    // Repeating the flag adds to the list.
+    let again = scratch("stability-axis-again");
+    let (code, _, err) = relief(&[
+        "stability",
+        "--quick",
+        "--axis",
+        "storage",
+        "--axis",
+        "storage",
+        "--out-dir",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        files_in(&again),
+        ["storage.csv", "storage.png", "storage.svg"]
+    );
+    rejects(
+        &["stability", "--axis", "sideways"],
+        &["--axis", "sideways", "world-grazing", "scroll"],
+    );
+    rejects(&["render", "--axis", "scroll"], &["--axis"]);
+}
