@@ -136,6 +136,15 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         if blog {
             knob.push_str("palette = \"blog\"\n");
         }
+        if windy {
+            knob.push_str("clock = 30\n");
+        }
+        // Over the lake for the clock and the wind (the flags override the scene's camera).
+        let camera: &[&str] = if windy || row.key == "clock" {
+            &lake
+        } else {
+            &[]
+        };
         std::fs::write(
             &scene,
             format!(
@@ -146,7 +155,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         )
         .unwrap();
         let out = dir.join(format!("{}-scene.png", row.key));
-        let (code, stdout, err) = relief(&[
+        let mut scene_args = vec![
             "render",
             "--method",
             "mesh",
@@ -159,7 +168,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "--height",
             "64",
             "--stats",
-        ]);
+        ];
+        scene_args.extend(camera);
+        let (code, stdout, err) = relief(&scene_args);
         assert_eq!(code, 0, "{}: {err}", row.key);
         assert_eq!(
             image::open(&out).unwrap().into_rgb8().into_raw(),
