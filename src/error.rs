@@ -40,8 +40,14 @@ pub enum Error {
     #[error("could not create a GPU device: {0}")]
     Device(String),
     /// wgpu reported a validation or out-of-memory error for work relief recorded.
-    #[error("{0}")]
-    Gpu(String),
+    #[error("{message}")]
+    Gpu {
+        /// wgpu's error as one short line.
+        message: String,
+        /// wgpu's own error, whole.
+        #[source]
+        source: Option<wgpu::Error>,
+    },
     /// The GPU device was lost (driver reset, GPU removed, browser reclaimed it).
     #[error("GPU device lost: {0}")]
     DeviceLost(String),

@@ -784,7 +784,7 @@ impl Offscreen {
         let mib = (u64::from(width) * u64::from(height) * bytes_per_pixel) >> 20;
         let too_big = |e: Error| {
             match e {
-            Error::Gpu(_) => Error::invalid(
+            Error::Gpu { .. } => Error::invalid(
                 "width x height",
                 format!("{width}x{height}"),
                 format!("a size whose {sample_count}-sample targets (~{mib} MiB) fit this device's memory: {e}"),

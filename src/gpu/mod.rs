@@ -556,7 +556,7 @@ impl Terrain {
 /// A GPU error while making the textures for `size` as an error naming the size.
 fn size_too_big(size: u32, e: Error) -> Error {
     match e {
-        Error::Gpu(why) => {
+        Error::Gpu { message: why, .. } => {
             // rg32float terrain + rgba16float normals: 16 bytes a texel.
             let mib = (u64::from(size) * u64::from(size) * 16) >> 20;
             Error::invalid(
@@ -638,7 +638,7 @@ pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<
     {
         // Native error scopes resolve as soon as they are popped.
         if let Some(e) = ready_now(oom).flatten().or(ready_now(validation).flatten()) {
-            return Err(gpu_error(&e));
+            return Err(gpu_error(e));
         }
     }
     #[cfg(target_arch = "wasm32")]
@@ -648,7 +648,7 @@ pub(crate) fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<
 
 /// A wgpu error as one short line (wgpu's own messages span several lines and can be long).
 #[cfg(not(target_arch = "wasm32"))]
-pub(crate) fn gpu_error(e: &wgpu::Error) -> Error {
+pub(crate) fn gpu_error(e: wgpu::Error) -> Error {
     let kind = match e {
         wgpu::Error::OutOfMemory { .. } => "out of GPU memory",
         _ => "GPU error",
@@ -658,7 +658,10 @@ pub(crate) fn gpu_error(e: &wgpu::Error) -> Error {
         .split_whitespace()
         .collect::<Vec<_>>()
         .join(" ");
-    Error::Gpu(format!("{kind}: {}", crate::table::shorten_to(&text, 150)))
+    Error::Gpu {
+        message: format!("{kind}: {}", crate::table::shorten_to(&text, 150)),
+        source: Some(e),
+    }
 }
 
 /// The output of a future that is already complete, without an executor; `None` if it is not.
