@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::gpu::headless::{self, Gpu, Offscreen};
 use crate::gpu::raymarch::{RayMarcher, RayMethod, RayPath, SeedMarch};
 use crate::gpu::timing::{GpuTimer, Slot};
-use crate::metrics::{self, Coverage};
+use crate::metrics::{self, median, Coverage};
 use crate::params::{NormalMethod, Shading, TerrainParams};
 use crate::{OrbitCamera, Terrain, View};
 use std::fmt::Write as _;
@@ -374,14 +374,6 @@ impl Reference {
 
 /// Relative depth difference beyond which a pixel counts as hit at the wrong depth.
 pub const DEPTH_TOLERANCE: f64 = 0.01;
-
-/// The middle of `values` (the upper middle of an even count): every benchmark's statistic.
-/// `None` when there are none.
-pub(crate) fn median<T: Copy + PartialOrd>(values: impl IntoIterator<Item = T>) -> Option<T> {
-    let mut v: Vec<T> = values.into_iter().collect();
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    v.get(v.len() / 2).copied()
-}
 
 /// Runs `frame` back to back for the warm-up (at least `warmup` frames and `warmup_ms`), then
 /// `frames` timed frames ([`headless::measure_frames`]).

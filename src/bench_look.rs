@@ -5,11 +5,12 @@
 //! light bake (shadows and valley occlusion) of the whole clipmap, as when the sun turns.
 //! Warm-up, then the median, as every benchmark here.
 
-use crate::bench::{measure, median, Options};
+use crate::bench::{measure, Options};
 use crate::bench_world::views;
 use crate::error::Result;
 use crate::gpu::headless::{Gpu, Offscreen, RENDER_SAMPLES};
 use crate::gpu::timing::{GpuTimer, Slot};
+use crate::metrics::median;
 use crate::palette::Palette;
 use crate::world::WorldParams;
 use crate::{Shading, World};

@@ -5,7 +5,7 @@
 //! view (FLIP, missed and extra pixels). The seed's ray march (compute and fragment) beside
 //! them on every view. Written as `landscape.csv`.
 
-use crate::bench::{measure, median, Options};
+use crate::bench::{measure, Options};
 use crate::error::Result;
 use crate::gpu::headless::{
     render_samples, render_world_rays, render_world_rays_at, world_depth_metrics, Gpu, Offscreen,
@@ -13,7 +13,7 @@ use crate::gpu::headless::{
 };
 use crate::gpu::raymarch::{RayMarcher, RayScene};
 use crate::gpu::timing::{GpuTimer, Slot};
-use crate::metrics::{self, Coverage};
+use crate::metrics::{self, median, Coverage};
 use crate::world::WorldParams;
 use crate::{Method, World, WorldView};
 use glam::DVec3;

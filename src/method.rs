@@ -297,8 +297,8 @@ pub struct MethodConfig {
     /// The method.
     pub method: Method,
     /// Samples a pixel that `visibility` and `hybrid` rasterise and shade: 4 (edges
-    /// anti-aliased) or 1 (a quarter of the raster work). The mesh draws at the host
-    /// target's samples and ignores it.
+    /// anti-aliased) or 1 (a quarter of the raster work); 1 or 4 for every method. The mesh
+    /// draws at the host target's samples and keeps this for when the method changes.
     pub samples: u32,
     /// Where `visibility` and `hybrid` rasterise: [`Raster::Compute`] at one sample a pixel
     /// only.

@@ -314,6 +314,18 @@ pub fn second_derivative_bound(fbm: &Fbm) -> f64 {
     0.5 / (norm * NOISE_MAX_ABS) * bound
 }
 
+/// The middle of `values` (the upper middle of an even count): every benchmark's statistic.
+/// `None` when there are none.
+pub(crate) fn median<T: Copy + PartialOrd>(values: impl IntoIterator<Item = T>) -> Option<T> {
+    // NaN (a value not comparable with itself) is left out: the rest sorts totally.
+    let mut v: Vec<T> = values
+        .into_iter()
+        .filter(|x| x.partial_cmp(x).is_some())
+        .collect();
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    v.get(v.len() / 2).copied()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -20,7 +20,7 @@ fn host_geometry_and_the_endless_world_are_depth_tested_together() {
 }
 
 /// The visibility method keeps the middleware contract: its compute work is recorded by
-/// `encode_bake` before the host's pass, and its composite writes depth into the host's.
+/// `prepare` before the host's pass, and its composite writes depth into the host's.
 #[test]
 fn the_visibility_method_is_depth_tested_with_host_geometry() {
     depth_tested_together(false, relief::Method::Visibility);

@@ -203,10 +203,12 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     let gpu = gpu();
     let mut terrain = terrain(&gpu, scene(1));
     let compute = relief::MethodConfig::new(Method::Visibility).with_raster(Raster::Compute);
+    // A refused configuration changes nothing: from one that is not the default.
+    let before = relief::MethodConfig::new(Method::Visibility).with_samples(1);
+    terrain.set_method(&gpu.device, before).unwrap();
     let e = terrain.set_method(&gpu.device, compute).unwrap_err();
     assert!(e.to_string().contains("one sample a pixel"), "{e}");
-    // A refused configuration changes nothing.
-    assert_eq!(terrain.method_config(), relief::MethodConfig::MESH);
+    assert_eq!(terrain.method_config(), before);
     terrain
         .set_method(&gpu.device, compute.with_samples(1))
         .unwrap();

@@ -38,12 +38,17 @@ fn every_file_on_disk_is_built_in_and_every_module_validates() {
         // Every file is composed into some module: its own, or those it is part of, each of
         // which imports it.
         for whole in shader::part_of(name) {
-            let mut seen = vec![whole];
+            let mut todo = vec![whole];
+            let mut visited = Vec::new();
             let mut found = false;
-            while let Some(n) = seen.pop() {
+            while let Some(n) = todo.pop() {
+                if visited.contains(&n) {
+                    continue;
+                }
+                visited.push(n);
                 let imports = shader::imports(n);
                 found |= imports.contains(&name.as_str());
-                seen.extend(imports);
+                todo.extend(imports);
             }
             assert!(
                 found,

@@ -528,6 +528,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_clock_and_the_wind_ride_in_the_url() {
+        let mut o = AppOptions::default();
+        assert!(o
+            .apply_query("world=endless&clock=30&wind_speed=7&wind_azimuth=90")
+            .is_empty());
+        let (world, _) = o.world.expect("endless");
+        assert_eq!(world.clock, 30.0);
+        assert_eq!((world.wind.speed, world.wind.from_azimuth), (7.0, 90.0));
+        let query = o.to_query();
+        for key in ["clock=30", "wind_speed=7", "wind_azimuth=90"] {
+            assert!(query.split('&').any(|k| k == key), "{key} in {query}");
+        }
+    }
+
+    #[test]
     fn the_endless_world_in_the_url() {
         let mut o = AppOptions::default();
         let ignored = o.apply_query(
