@@ -316,6 +316,10 @@ pub fn second_derivative_bound(fbm: &Fbm) -> f64 {
 
 /// The middle of `values` (the upper middle of an even count): every benchmark's statistic.
 /// `None` when there are none.
+#[cfg_attr(
+    not(all(feature = "cli", not(target_arch = "wasm32"))),
+    allow(dead_code) // only the benchmarks (the CLI) take medians
+)]
 pub(crate) fn median<T: Copy + PartialOrd>(values: impl IntoIterator<Item = T>) -> Option<T> {
     // NaN (a value not comparable with itself) is left out: the rest sorts totally.
     let mut v: Vec<T> = values
