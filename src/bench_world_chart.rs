@@ -7,9 +7,16 @@ use crate::chart::{log_ticks, tick_label, CHART_SIZE};
 use crate::error::Result;
 use crate::Method;
 
-/// Charts the views' rows (not the flight): measured screen error and GPU render time against
-/// triangles, one line per view through the knobs, as `stem`.png and `stem`.svg.
+/// Charts the named views' rows (not the flight, nor the random views measured at one knob):
+/// measured screen error and GPU render time against triangles, one line per view through the
+/// knobs, as `stem`.png and `stem`.svg.
 pub fn chart(rows: &[WorldRow], title: &str, stem: &std::path::Path) -> Result<()> {
+    let named: Vec<WorldRow> = rows
+        .iter()
+        .filter(|r| !crate::bench_world::RANDOM_VIEWS.contains(&r.view.as_str()))
+        .cloned()
+        .collect();
+    let rows = &named[..];
     crate::chart::write_chart(stem, |b| draw(b, rows, title), |b| draw(b, rows, title))
 }
 

@@ -484,7 +484,7 @@ impl AppOptions {
 }
 
 /// Why a method's [`crate::Method::unread_keys`] do not apply to it, in the words of
-/// `relief render --method`'s refusal (src/cli.rs).
+/// `relief render --method`'s refusal (src/cli/mod.rs).
 fn unread_why(method: crate::Method) -> &'static str {
     if method == crate::Method::Blog {
         "the blog's pipeline bakes its own noise into its own texture and grid"

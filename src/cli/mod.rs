@@ -4,6 +4,9 @@
 //! parameter has its flag, its help line and its error text from one place. Every user error
 //! ends in exit status 2 and one line on stderr of at most [`MAX_ERROR_CHARS`] characters.
 
+mod bench_endless;
+
+use self::bench_endless::bench_endless;
 use crate::app::{AppOptions, Script, OPTIONS};
 use crate::choice::Candidate;
 use crate::error::{Error, Result};
@@ -1690,79 +1693,6 @@ fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
             "--world endless applies to relief render, height and bench only".into(),
         )),
     }
-}
-
-/// `relief bench --world endless`: landscape views over the pixel-error knob and a flight.
-fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
-    use crate::bench::Options;
-    check_out_dir(dir)?;
-    let gpu = Gpu::new()?;
-    let (options, knobs): (Options, &[f64]) = if quick {
-        (Options::QUICK, &[8.0, 16.0])
-    } else {
-        (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
-    };
-    println!(
-        "relief bench --world endless{} on {}: {} views x {} knobs and a flight at {}x{}",
-        if quick { " --quick" } else { "" },
-        gpu.describe(),
-        3,
-        knobs.len(),
-        options.width,
-        options.height
-    );
-    let created = create_dirs(dir)?;
-    // Progress on stderr where a person watches it, never into a file.
-    let progress = |what: &str| {
-        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-            eprint!("\r\x1b[K{what}");
-        }
-    };
-    let done = || progress("");
-    let wrote = |name: &str, rows: usize| {
-        println!("{} rows in {}", rows, dir.join(name).display());
-    };
-    // The look's cost first (it is short), then the LOD sweep, then the arrival.
-    let look = || -> Result<()> {
-        let rows = crate::bench_look::run(&gpu, params, &options, progress)?;
-        done();
-        let csv = crate::bench_look::csv(&rows, &gpu.describe(), &options);
-        write_whole(&dir.join("look.csv"), &csv)?;
-        wrote("look.csv", rows.len());
-        Ok(())
-    };
-    let sweep = || -> Result<()> {
-        let rows = crate::bench_world::run(&gpu, params, knobs, &options, progress)?;
-        done();
-        let csv = crate::bench_world::csv(&rows, &gpu.describe(), &options);
-        let title = format!(
-            "relief: the endless world's LOD on {} (knob in px beside each point)",
-            gpu.describe()
-        );
-        write_whole(&dir.join("landscape.csv"), &csv)?;
-        wrote("landscape.csv", rows.len());
-        crate::bench_world_chart::chart(&rows, &title, &dir.join("landscape"))
-    };
-    let arrival = || -> Result<()> {
-        progress("arrival");
-        let size = (options.width, options.height);
-        let frames = crate::bench_arrival::run(&gpu, params, size, if quick { 6 } else { 600 })?;
-        done();
-        let csv = crate::bench_arrival::csv(&frames, &gpu.describe(), size);
-        write_whole(&dir.join("arrival.csv"), &csv)?;
-        wrote("arrival.csv", frames.len());
-        for line in crate::bench_arrival::summary(&frames) {
-            println!("{line}");
-        }
-        Ok(())
-    };
-    let result = look().and_then(|()| sweep()).and_then(|()| arrival());
-    if result.is_err() {
-        if let Some(c) = created {
-            let _ = std::fs::remove_dir_all(c);
-        }
-    }
-    result
 }
 
 /// Writes `text` to `path` whole or not at all (a temporary name, then a rename).
