@@ -335,13 +335,26 @@ pub fn run(
         } else {
             [&[(Method::Mesh, 4, Hardware)][..], &hybrid].concat()
         };
-        // Beside the named views, the random ones at the scene's knob (full runs only).
+        // Beside the named views, the random ones at the scene's knob (full runs only), with
+        // fewer methods.
         let mut here = views(&p, size);
         if !quick && knob == params.pixel_error {
             here.extend(random_views(&p, size));
         }
+        // On the random views: the mesh, the visibility method as `auto` picks it on a fast
+        // GPU (one sample, rasterised in compute) and the hybrid at one sample.
+        let random = [
+            (Method::Mesh, 4, Hardware),
+            (Method::Visibility, 1, Compute),
+            (Method::Hybrid, 1, Hardware),
+        ];
         for v in here {
-            for &(method, samples, raster) in &methods {
+            let methods = if RANDOM_VIEWS.contains(&v.name) {
+                &random[..]
+            } else {
+                &methods[..]
+            };
+            for &(method, samples, raster) in methods {
                 let named = match (method, raster) {
                     (Method::Mesh, _) => method.to_string(),
                     (_, Hardware) => format!("{method}, {samples} a pixel"),

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Stage 2 of issue 28: the new binary against the last measured one (new4): bytes of the
+# default frame and the mesh on the named views, and render --timings interleaved.
+set -uo pipefail
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+chmod +x .bin/relief-*
+nvidia-smi --query-gpu=name,driver_version --format=csv >"$OUT/gpu.txt" 2>&1
+views=(
+    "horizon --world endless --eye 0,1202,0 --look-at 1,1201.99,0.2"
+    "ridge --world endless --eye 5730,1198.7011293135074,1000 --look-at 5730.3,1198.6811293135074,1001"
+    "oblique --world endless --eye -5000,4195.8573366294322,2000 --look-at -4999.2,4195.3573366294322,2000.33"
+    "default --world endless"
+    "tile"
+)
+timeout 60 .bin/relief-new render --world endless --width 1920 --height 1080 --out /tmp/warm.png >/dev/null 2>&1
+for i in 1 2; do
+    for v in "${views[@]}"; do
+        set -- $v; name=$1; shift
+        for b in new4 new; do
+            echo "== $name $b ($i)"
+            timeout 60 .bin/relief-$b render --width 1920 --height 1080 --timings --out "/tmp/$name-$b.png" "$@" 2>&1 | grep -v "^relief: --pixel-error"
+        done
+    done
+done >"$OUT/render-timings.txt" 2>&1
+for v in horizon ridge oblique default tile; do
+    cmp -s "/tmp/$v-new4.png" "/tmp/$v-new.png" && echo "$v auto: same bytes" || echo "$v auto: DIFFERENT"
+done >"$OUT/same.txt"
+for v in "${views[@]}"; do
+    set -- $v; name=$1; shift
+    for m in mesh visibility hybrid reference; do
+        [ "$name" = tile ] && [ "$m" = hybrid ] && continue
+        for b in new4 new; do
+            timeout 60 .bin/relief-$b render --width 1920 --height 1080 --out "/tmp/m-$b.png" --method $m "$@" >/dev/null 2>&1
+        done
+        cmp -s /tmp/m-new4.png /tmp/m-new.png && echo "$name --method $m: same bytes" || echo "$name --method $m: DIFFERENT"
+    done
+done >>"$OUT/same.txt"
+cat "$OUT/same.txt"
+grep -E "^== |frame|median|total" "$OUT/render-timings.txt" | head -60
