@@ -316,7 +316,6 @@ const TOO_LONG: &[(&str, usize)] = &[
     ("src/bench.rs", 926),
     ("src/cli/mod.rs", 878),
     ("src/clipmap.rs", 973),
-    ("src/gpu/headless.rs", 1631),
     ("src/gpu/visibility.rs", 866),
     ("src/stability/mod.rs", 899),
     ("tests/cli.rs", 1206),

@@ -1,0 +1,487 @@
+//! Measurements on offscreen frames: the bake of a region, the mesh's screen error and depth,
+//! the ray casters' images, the world's horizons for the light bake's checks.
+
+use super::*;
+
+/// How long [`warm_median`] runs the work untimed before it times it.
+pub const BAKE_WARM_UP: std::time::Duration = std::time::Duration::from_millis(300);
+/// How many timed runs [`warm_median`] takes the median of.
+pub const BAKE_RUNS: usize = 9;
+
+/// Bakes `size` x `size` samples of `land`, spaced `2^level_log2` metres, from world sample
+/// `origin` (in that spacing) on, in bands of rows; `sink(first_row, texels)` receives each
+/// band's (height, dh/dx, dh/dz, colour) texels, rows tightly packed. The grid keeps the octaves
+/// whose cells span at least two samples (as a clipmap level does). Returns the GPU time of the
+/// bake passes summed, when `timer` is given (each band's [`warm_median`]).
+pub fn bake_region(
+    gpu: &Gpu,
+    land: &crate::landscape::Landscape,
+    origin: [i32; 2],
+    size: u32,
+    level_log2: i32,
+    timer: Option<&GpuTimer>,
+    mut sink: impl FnMut(u32, &[[f32; 4]]),
+) -> Result<Option<f64>> {
+    use crate::gpu::landscape::{LandscapeBake, Rect};
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    if !(1..=max).contains(&size) {
+        return Err(Error::invalid(
+            "size",
+            size,
+            format!("1..={max} on this device"),
+        ));
+    }
+    let row_bytes = u64::from(size) * 16;
+    let band = (MAX_READBACK_BYTES / row_bytes).clamp(1, u64::from(size)) as u32;
+    let pass = LandscapeBake::new(&gpu.device);
+    let texture = crate::gpu::scoped(&gpu.device, || {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("relief:bake-region:band"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: band,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: LandscapeBake::FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        })
+    })?;
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let target = pass.bind(&gpu.device, &view, size.max(band));
+    let mut total: Option<f64> = None;
+    let mut row = 0;
+    while row < size {
+        let rows = band.min(size - row);
+        let rect = Rect {
+            layer: 0,
+            level_log2,
+            origin: [origin[0], origin[1] + row as i32],
+            extent: [size, rows],
+        };
+        let bake = |timer: Option<&GpuTimer>| {
+            crate::gpu::scoped(&gpu.device, || {
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                pass.encode_at_origin(
+                    &gpu.queue,
+                    &mut encoder,
+                    &target,
+                    land,
+                    &rect,
+                    timer.map(|t| t.compute_writes(Slot::Bake)),
+                );
+                if let Some(t) = timer {
+                    t.resolve(&mut encoder);
+                }
+                gpu.queue.submit([encoder.finish()]);
+            })
+        };
+        match timer {
+            Some(t) => {
+                let ms = warm_median(t, |timer| {
+                    bake(timer)?;
+                    read_or_wait(gpu, timer)
+                })?[Slot::Bake as usize];
+                if let Some(ms) = ms {
+                    total = Some(total.unwrap_or(0.0) + ms);
+                }
+            }
+            None => bake(None)?,
+        }
+        let bytes = read_texture(&gpu.device, &gpu.queue, &texture)?;
+        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+        sink(row, &texels[..(rows * size) as usize]);
+        row += rows;
+    }
+    Ok(total)
+}
+
+/// The screen-space geometric error of a drawn frame of the endless world, measured against the
+/// continuous surface: each pixel's depth is turned back into the point drawn there, and its
+/// vertical distance δ from the surface (the twin's `height_at`) at distance d counts as
+/// `K·δ/d` pixels, the quantity [`crate::clipmap`]'s bound bounds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ScreenError {
+    /// Largest over the pixels measured, in pixels.
+    pub max: f64,
+    /// 99th percentile, pixels.
+    pub p99: f64,
+    /// Pixels measured (terrain pixels on the sampling grid).
+    pub pixels: usize,
+}
+
+/// Draws `world` through `view` single-sampled (the world must target
+/// `Offscreen::targets(1)`) and measures [`ScreenError`] at every `stride`-th pixel each way.
+pub fn world_screen_error(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    stride: u32,
+) -> Result<ScreenError> {
+    Ok(world_depth_metrics(gpu, world, view, stride)?.0)
+}
+
+/// [`world_screen_error`], and the distance from the eye of what every pixel shows (-1 for
+/// sky): what the coverage against a ray cast compares.
+pub fn world_depth_metrics(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    stride: u32,
+) -> Result<(ScreenError, Vec<f32>)> {
+    let (w, h) = view.size;
+    let target = Offscreen::new(&gpu.device, w, h, 1)?.keeping_depth();
+    target.render_world(gpu, world, view, None)?;
+    let depth = target.read_depth(gpu)?;
+    let inverse = world.relative_matrix().inverse().as_dmat4();
+    let k = view.pixels_per_radian();
+    let mut errors = Vec::new();
+    let stride = stride.max(1) as usize;
+    let mut distance = vec![-1f32; depth.len()];
+    for py in 0..h as usize {
+        for px in 0..w as usize {
+            let d = depth[py * w as usize + px];
+            if d >= 1.0 {
+                continue; // sky
+            }
+            let ndc = glam::DVec4::new(
+                (px as f64 + 0.5) / f64::from(w) * 2.0 - 1.0,
+                1.0 - (py as f64 + 0.5) / f64::from(h) * 2.0,
+                f64::from(d),
+                1.0,
+            );
+            let p = inverse * ndc;
+            let rel = p.truncate() / p.w;
+            distance[py * w as usize + px] = rel.length() as f32;
+            if py % stride != 0 || px % stride != 0 {
+                continue;
+            }
+            let at = view.eye + rel;
+            let delta = (at.y - world.height_at(at.x, at.z)).abs();
+            errors.push(k * delta / rel.length().max(1e-9));
+        }
+    }
+    errors.sort_by(f64::total_cmp);
+    let pick = |q: f64| {
+        errors
+            .get(((errors.len() as f64 * q) as usize).min(errors.len().saturating_sub(1)))
+            .copied()
+            .unwrap_or(0.0)
+    };
+    let error = ScreenError {
+        max: errors.last().copied().unwrap_or(0.0),
+        p99: pick(0.99),
+        pixels: errors.len(),
+    };
+    Ok((error, distance))
+}
+
+/// What a ray-cast method drew: the image, and per pixel the distance of the pixel-centre ray.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayImage {
+    /// sRGB RGBA8, supersampled where the method asks for it.
+    pub rgba: Vec<u8>,
+    /// Distance along the pixel-centre ray to the surface; -1 for sky, -2 where the ray ran
+    /// out of steps (never counted as sky).
+    pub distance: Vec<f32>,
+    /// Rays (of every subsample) that ran out of steps.
+    pub unresolved: usize,
+    /// The cast's GPU time, when a timer was given.
+    pub timings: Option<Timings>,
+}
+
+/// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
+/// distance targets, supersampled where the method asks for it (and the device allows),
+/// averaged in linear light. Returns sRGB RGBA8, with the cast's GPU time when `timer` is given.
+pub fn render_rays(
+    gpu: &Gpu,
+    params: &crate::TerrainParams,
+    shading: &crate::Shading,
+    view: &View,
+    size: (u32, u32),
+    method: crate::Method,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
+    let Some(rays) = method.ray_method(params.octaves) else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let how = (method, method.supersample());
+    let image = cast(gpu, size, how, RayScene::Tile, timer, |caster, _| {
+        caster.prepare(&gpu.queue, params, shading, view, rays);
+        Ok(())
+    })?;
+    Ok((image.rgba, image.timings))
+}
+
+/// [`render_rays`] for the endless world, bounded by the region the mesh draws at
+/// `params.pixel_error` ([`crate::gpu::world_rays::drawn_region`]).
+pub fn render_world_rays(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
+    let ss = method.supersample();
+    render_world_rays_at(gpu, params, shading, view, method, ss, timer)
+}
+
+/// [`render_world_rays`] with `supersample` rays per pixel each way (what checks that the
+/// reference's 3x3 has converged).
+pub fn render_world_rays_at(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    supersample: u32,
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
+    let Some(rays) = method.ray_method(params.land.octaves) else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let region = crate::gpu::world_rays::drawn_region(params, view);
+    cast(
+        gpu,
+        view.size,
+        (method, supersample),
+        RayScene::World,
+        timer,
+        |caster, size| {
+            let ray =
+                crate::gpu::world_rays::WorldRayUniforms::new(params, view, rays, size, region)?;
+            let render = crate::gpu::world::render_uniforms(
+                params,
+                shading,
+                (crate::gpu::world_rays::ray_matrix(view), region, view.eye),
+                true,
+            );
+            caster.prepare_world(&gpu.queue, &render, &ray)
+        },
+    )
+}
+
+/// The terrain's horizon towards the sun (radians above the horizontal) at each point `(x, z)`
+/// (world metres) of the endless world's continuous surface, as `method`'s rays shade it
+/// (`wgsl/horizon_probe.wgsl`): the reference's conservative march, or the seed's shadow march
+/// with `method`'s ray settings. The sun is `params.sky`'s; `view` places the casters' reference
+/// sample and bounds the march by the region the mesh draws.
+pub fn world_horizons(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    view: &WorldView,
+    method: crate::gpu::raymarch::RayMethod,
+    points: &[[f64; 2]],
+) -> Result<Vec<f32>> {
+    use wgpu::util::DeviceExt as _;
+    if points.is_empty() {
+        return Ok(Vec::new());
+    }
+    let region = crate::gpu::world_rays::drawn_region(params, view);
+    let ray =
+        crate::gpu::world_rays::WorldRayUniforms::new(params, view, method, view.size, region)?;
+    let render = crate::gpu::world::render_uniforms(
+        params,
+        &crate::Shading::default(),
+        (crate::gpu::world_rays::ray_matrix(view), region, view.eye),
+        true,
+    );
+    // Positions relative to the reference sample, as the casters' are.
+    let s = 2f64.powi(ray.base_log2);
+    let origin = [
+        f64::from(ray.reference[0]) * s,
+        f64::from(ray.reference[1]) * s,
+    ];
+    let relative: Vec<[f32; 2]> = points
+        .iter()
+        .map(|p| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32])
+        .collect();
+    let device = &gpu.device;
+    let source = crate::gpu::shader::source("horizon_probe");
+    let init = |label: &str, contents: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let render_buffer = init(
+        "relief:horizon-probe:render",
+        bytemuck::bytes_of(&render),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let ray_buffer = init(
+        "relief:horizon-probe:ray",
+        bytemuck::bytes_of(&ray),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let point_buffer = init(
+        "relief:horizon-probe:points",
+        bytemuck::cast_slice(&relative),
+        wgpu::BufferUsages::STORAGE,
+    );
+    let bytes = (points.len() * 4) as u64;
+    let out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("relief:horizon-probe:horizons"),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("relief:horizon-probe:staging"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    crate::gpu::scoped(device, || {
+        let module = crate::gpu::shader::module(device, "relief:horizon-probe", &source);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("relief:horizon-probe"),
+            layout: None,
+            module: &module,
+            entry_point: Some("horizon_cs"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let group = |index: u32, buffers: [&wgpu::Buffer; 2]| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:horizon-probe"),
+                layout: &pipeline.get_bind_group_layout(index),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: buffers[0].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: buffers[1].as_entire_binding(),
+                    },
+                ],
+            })
+        };
+        let uniforms = group(0, [&render_buffer, &ray_buffer]);
+        let io = group(1, [&point_buffer, &out]);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &uniforms, &[]);
+            pass.set_bind_group(1, &io, &[]);
+            pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&out, 0, &staging, 0, bytes);
+        gpu.queue.submit([encoder.finish()]);
+    })?;
+    Ok(bytemuck::pod_collect_to_vec(&crate::gpu::map_read(
+        device, &staging,
+    )?))
+}
+
+/// The light bake's horizon towards the sun (radians) at every `stride`-th texel each way of
+/// each of `world`'s levels `levels`, as the mesh shades them: per level, (world x, z,
+/// horizon), unpacked from the light texture's two 16-bit floats.
+pub fn world_light_horizons(
+    gpu: &Gpu,
+    world: &crate::gpu::world::World,
+    levels: &[usize],
+    stride: usize,
+) -> Result<Vec<Vec<(f64, f64, f32)>>> {
+    let packed: Vec<u32> = bytemuck::pod_collect_to_vec(&read_texture(
+        &gpu.device,
+        &gpu.queue,
+        world.light_texture(),
+    )?);
+    let map = world.clipmap();
+    let side = map.side() as i64;
+    let cells = map.cells() as i64;
+    let mut out = Vec::with_capacity(levels.len());
+    for &l in levels {
+        let Some(level) = map.levels.get(l) else {
+            return Err(Error::invalid(
+                "level",
+                l,
+                format!("0..{} (the clipmap's levels)", map.levels.len()),
+            ));
+        };
+        let s = level.spacing();
+        let mut texels = Vec::new();
+        for j in (0..=cells).step_by(stride.max(1)) {
+            for i in (0..=cells).step_by(stride.max(1)) {
+                let (si, sj) = (
+                    i64::from(level.origin[0]) + i,
+                    i64::from(level.origin[1]) + j,
+                );
+                let t = (i64::from(level.layer) * side + sj.rem_euclid(side)) * side
+                    + si.rem_euclid(side);
+                let horizon = half::f16::from_bits(packed[t as usize] as u16).to_f32();
+                texels.push((si as f64 * s, sj as f64 * s, horizon));
+            }
+        }
+        out.push(texels);
+    }
+    Ok(out)
+}
+
+/// Casts `method`'s rays at `scene` into a `width` x `height` image, `ss` rays per pixel each
+/// way where the device allows; `prepare(caster, cast size)` writes the uniforms.
+pub(super) fn cast(
+    gpu: &Gpu,
+    (width, height): (u32, u32),
+    (method, ss): (crate::Method, u32),
+    scene: RayScene,
+    timer: Option<&GpuTimer>,
+    prepare: impl FnOnce(&RayMarcher, (u32, u32)) -> Result<()>,
+) -> Result<RayImage> {
+    let Some(path) = method.ray_path() else {
+        return Err(Error::invalid("method", method, "a ray-cast method"));
+    };
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let ss = ss.max(1);
+    let ss = if width * ss <= max && height * ss <= max {
+        ss
+    } else {
+        1
+    };
+    let size = (width * ss, height * ss);
+    let caster = RayMarcher::for_scene(&gpu.device, size.0, size.1, scene)?;
+    prepare(&caster, size)?;
+    crate::gpu::scoped(&gpu.device, || {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        caster.encode(&mut encoder, path, timer);
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+    })?;
+    let timings = timer.map(|t| t.read(&gpu.device)).transpose()?;
+    let image = read_texture(&gpu.device, &gpu.queue, &caster.color)?;
+    let all: Vec<f32> =
+        bytemuck::pod_collect_to_vec(&read_texture(&gpu.device, &gpu.queue, &caster.distance)?);
+    let unresolved = all.iter().filter(|&&d| d == -2.0).count();
+    // The subsample nearest each pixel's centre (its centre where ss is odd).
+    let distance = (0..height as usize)
+        .flat_map(|y| {
+            let row = (y * ss as usize + ss as usize / 2) * size.0 as usize;
+            let all = &all;
+            (0..width as usize).map(move |x| all[row + x * ss as usize + ss as usize / 2])
+        })
+        .collect();
+    let rgba = if ss > 1 {
+        downsample_srgb(&image, size.0, size.1, ss)
+    } else {
+        image
+    };
+    Ok(RayImage {
+        rgba,
+        distance,
+        unresolved,
+        timings,
+    })
+}
