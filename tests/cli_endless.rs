@@ -258,13 +258,14 @@ fn the_endless_world_heights_and_the_tile_camera() {
 
 #[test]
 fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
+    let refused = Rejections::default();
     let dir = scratch("bad-camera");
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
     let render = |extra: &[&str], needles: &[&str]| {
         let mut args = vec!["render", "--out", out];
         args.extend_from_slice(extra);
-        rejects(&args, needles);
+        refused.check(&args, needles);
     };
     render(&["--eye", "nan,0,0"], &["--eye", "nan", "X,Y,Z"]);
     render(&["--eye", "1,2"], &["--eye", "X,Y,Z"]);
@@ -321,7 +322,7 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--world", "endless", "--water-level", "1e9"],
         &["--water-level", "1e9"],
     );
-    rejects(
+    refused.check(
         &[
             "bake",
             "--out-dir",
@@ -333,8 +334,8 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         ],
         &["--normals", "tile"],
     );
-    rejects(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
-    rejects(&["window", "--eye", "1,2,3"], &["--eye", "render"]);
+    refused.check(&["height", "--eye", "1,2,3", "0,0"], &["--eye", "render"]);
+    refused.check(&["window", "--eye", "1,2,3"], &["--eye", "render"]);
     render(
         &["--world", "endless", "--camera", "zoom"],
         &["--camera", "zoom", "path"],
@@ -353,15 +354,15 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--time", "-1", "seconds"],
     );
     render(&["--world", "endless", "--time", "5"], &["--time", "path"]);
-    rejects(
+    refused.check(
         &["--world", "endless", "--speed", "1"],
         &["--speed", "tile"],
     );
-    rejects(
+    refused.check(
         &["window", "--world", "endless", "--stats"],
         &["--stats", "render"],
     );
-    rejects(
+    refused.check(
         &["height", "--world", "endless", "--pixel-error", "2", "0,0"],
         &["--pixel-error", "height"],
     );

@@ -21,6 +21,9 @@
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
 //! geometry and terrain occlude each other.
 
+mod targets;
+
+use self::targets::*;
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
@@ -155,61 +158,6 @@ pub struct Visibility {
     uniforms: wgpu::Buffer,
     images: Option<Images>,
     encode_srgb: bool,
-}
-
-fn sampled_entry(
-    binding: u32,
-    sample_type: wgpu::TextureSampleType,
-    multisampled: bool,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled,
-        },
-        count: None,
-    }
-}
-
-/// The bindings of the raster pass's targets in `wgsl/visibility.wgsl`: multisampled, or
-/// single-sampled at one sample a pixel.
-fn target_bindings(samples: u32) -> [u32; 3] {
-    if samples > 1 {
-        [7, 8, 9]
-    } else {
-        [15, 16, 17]
-    }
-}
-
-fn ms_texture(
-    device: &wgpu::Device,
-    (label, samples): (&str, u32),
-    (width, height): (u32, u32),
-    format: wgpu::TextureFormat,
-) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: samples,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
-}
-
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
 }
 
 impl Visibility {
@@ -811,56 +759,4 @@ impl Visibility {
         pass.draw(0..3, 0..1);
         pass.pop_debug_group();
     }
-}
-
-/// The format [`Visibility::present`] stores straight into (a target with `STORAGE_BINDING`).
-const STORE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-
-/// Bytes a pixel of the presented frame.
-const PRESENTED_BYTES: u64 = 4;
-
-/// Bytes a row of the presented frame `width` pixels wide: padded to what a copy into a
-/// texture needs (`wgsl/visibility.wgsl`'s `present_pixel` pads the same).
-fn present_pitch(width: u32) -> u32 {
-    (width * PRESENTED_BYTES as u32).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-}
-
-/// Whether [`Visibility::present`] packs for `format` as BGRA (`Some(true)`) or RGBA
-/// (`Some(false)`); `None` for a format it does not write.
-fn present_order(format: wgpu::TextureFormat) -> Option<bool> {
-    use wgpu::TextureFormat as F;
-    match format {
-        F::Rgba8Unorm | F::Rgba8UnormSrgb => Some(false),
-        F::Bgra8Unorm | F::Bgra8UnormSrgb => Some(true),
-        _ => None,
-    }
-}
-
-/// The composite's pipeline into the host's targets: premultiplied colour over what is there
-/// (or opaque), and the nearest sample's depth, tested (less or equal: the sky's 1 passes where
-/// nothing was drawn) and written, where the host's pass has depth.
-fn composite_pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    module: &wgpu::ShaderModule,
-    (targets, opaque): (&Targets, bool),
-) -> wgpu::RenderPipeline {
-    let fragment = if targets.depth_format.is_some() {
-        "composite_fs"
-    } else {
-        "composite_fs_color"
-    };
-    super::blended_pipeline(
-        device,
-        (
-            "relief:visibility:composite",
-            layout,
-            module,
-            ("composite_vs", fragment),
-        ),
-        targets,
-        (wgpu::PrimitiveTopology::TriangleList, &[]),
-        (true, wgpu::CompareFunction::LessEqual),
-        (!opaque).then_some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
-    )
 }
