@@ -260,7 +260,7 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         t.set_viewport((width, height));
         t.set_bake_budget(u64::MAX);
         // The host's own geometry sits on the terrain: relief answers where the ground is.
-        let ground = t.height_at(0.0, 0.0);
+        let ground = t.height_at(0.0, 0.0) as f32;
         terrain = Some((t, view));
         (
             view.view_proj,

@@ -541,9 +541,10 @@ fn height_prints_the_surface_height_at_each_point() {
         ..Default::default()
     };
     let got: Vec<f32> = stdout.lines().map(|l| l.parse().unwrap()).collect();
-    let want: Vec<f32> = [(0.1, 0.2), (-0.3, 0.7), (-5.0, -3.25)]
+    // The CLI reads each point as f32 and prints the height as f32.
+    let want: Vec<f32> = [(0.1f32, 0.2f32), (-0.3, 0.7), (-5.0, -3.25)]
         .iter()
-        .map(|&(x, z)| relief::height_at(&params, x, z))
+        .map(|&(x, z)| relief::height_at(&params, f64::from(x), f64::from(z)) as f32)
         .collect();
     assert_eq!(got, want, "{stdout}");
     rejects(&["height", "1,x"], &["point", "1,x", "X,Z"]);

@@ -106,7 +106,7 @@ fn height_at_agrees_with_the_rendered_depth() {
             if p.x.abs() > 0.98 || p.z.abs() > 0.98 {
                 continue; // the tile's edge: a pixel there may straddle the border
             }
-            let cpu = f64::from(terrain.height_at(p.x as f32, p.z as f32));
+            let cpu = terrain.height_at(p.x, p.z);
             worst = worst.max((cpu - p.y).abs());
             n += 1;
         }

@@ -315,7 +315,10 @@ fn a_thousand_random_changes_leave_no_trace() {
                     camera.rotate(pick(rng), pick(rng));
                     camera.zoom(pick(rng));
                     let params = *terrain.params();
-                    camera.keep_above(|x, z| relief::height_at(&params, x, z), 0.05);
+                    camera.keep_above(
+                        |x, z| relief::height_at(&params, f64::from(x), f64::from(z)) as f32,
+                        0.05,
+                    );
                     assert!(camera.view(1.3).view_proj.is_finite(), "{camera:?}");
                     moves += 1;
                 }

@@ -76,7 +76,7 @@ async fn bake_matches_twin_in_the_browser() {
         };
         let mut terrain = Terrain::new(&device, &queue, targets, params).unwrap();
         let mut encoder = device.create_command_encoder(&Default::default());
-        assert!(terrain.encode_textures(&mut encoder, None));
+        assert!(terrain.encode_textures(&mut encoder, None) > 0);
         queue.submit([encoder.finish()]);
         let raw = read_texture(&device, &queue, &terrain.textures().terrain).await;
         let rg: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&raw);

@@ -295,7 +295,7 @@ impl App {
         self.camera.keep_above(
             |x, z| {
                 if x.abs() <= half && z.abs() <= half {
-                    crate::height_at(&params, x, z)
+                    crate::height_at(&params, f64::from(x), f64::from(z)) as f32
                 } else {
                     0.0
                 }

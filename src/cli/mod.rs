@@ -553,7 +553,10 @@ fn run(top: &ArgMatches) -> Result<()> {
         } => stability(&params, &out_dir, quick, &axes),
         Run::Height { points } => {
             for [x, z] in points {
-                println!("{}", crate::height_at(&params, x as f32, z as f32));
+                println!(
+                    "{}",
+                    crate::height_at(&params, f64::from(x as f32), f64::from(z as f32)) as f32
+                );
             }
             Ok(())
         }

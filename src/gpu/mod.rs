@@ -424,14 +424,14 @@ impl Terrain {
     /// Records whatever bake work is owed into the host's encoder: the tile's textures when
     /// the parameters changed, and the mesh's levels for `view` (the strips the camera or the
     /// scroll uncovered; nothing when neither moved). No frame work: a host that draws calls
-    /// [`Terrain::prepare`], which bakes too. Returns whether anything was recorded.
+    /// [`Terrain::prepare`], which bakes too. Returns the texels baked (0: nothing was owed).
     pub fn encode_bake(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         view: &View,
-    ) -> Result<bool> {
+    ) -> Result<u64> {
         self.encode_bake_timed(device, queue, encoder, view, None)
     }
 
@@ -443,52 +443,55 @@ impl Terrain {
         encoder: &mut wgpu::CommandEncoder,
         view: &View,
         timer: Option<&GpuTimer>,
-    ) -> Result<bool> {
-        let recorded = self.encode_textures(encoder, timer);
+    ) -> Result<u64> {
+        let tile = self.encode_textures(encoder, timer);
         let (wp, setup) = tile_world(&self.params, self.shown_offset);
         self.world.set_tile(device, wp, setup)?;
         let wv = self.world_view(view);
-        let texels = self
+        let levels = self
             .world
             .encode_bake_timed(device, queue, encoder, &wv, timer)?;
-        Ok(recorded || texels > 0)
+        Ok(tile + levels)
     }
 
-    /// Records the tile's texture passes that are owed (none if nothing changed).
+    /// Records the tile's texture passes that are owed (none if nothing changed). Returns the
+    /// texels written: `size`² for the height and colour bake, `size`² for the normals.
     pub fn encode_textures(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timer: Option<&GpuTimer>,
-    ) -> bool {
+    ) -> u64 {
         let size = self.params.size;
-        let mut recorded = false;
+        let texels = u64::from(size) * u64::from(size);
+        let mut written = 0;
         if self.pending.bake || self.pending.resize {
             self.bake
                 .encode(encoder, size, timer.map(|t| t.compute_writes(Slot::Bake)));
-            recorded = true;
+            written += texels;
         }
-        if recorded || self.pending.normals {
+        if written > 0 || self.pending.normals {
             self.normals.encode(
                 encoder,
                 size,
                 timer.map(|t| t.compute_writes(Slot::Normals)),
             );
-            recorded = true;
+            written += texels;
         }
         self.pending = Dirty::default();
-        recorded
+        written
     }
 
     /// Everything a frame needs before the host's render pass, recorded into the host's
     /// encoder: the bake owed ([`Terrain::encode_bake`]), the frame's uniforms, and the
-    /// compute passes of the methods shaded in compute. Returns whether a bake was recorded.
+    /// compute passes of the methods shaded in compute. Returns the texels baked (the tile's
+    /// textures and the levels'), as [`world::World::prepare`] does; 0 when nothing was owed.
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         view: &View,
-    ) -> Result<bool> {
+    ) -> Result<u64> {
         self.prepare_timed(device, queue, encoder, view, None)
     }
 
@@ -500,15 +503,15 @@ impl Terrain {
         encoder: &mut wgpu::CommandEncoder,
         view: &View,
         timer: Option<&GpuTimer>,
-    ) -> Result<bool> {
-        let recorded = self.encode_textures(encoder, timer);
+    ) -> Result<u64> {
+        let tile = self.encode_textures(encoder, timer);
         let (wp, setup) = tile_world(&self.params, self.shown_offset);
         self.world.set_tile(device, wp, setup)?;
         let wv = self.world_view(view);
-        let texels = self
+        let levels = self
             .world
             .prepare_timed(device, queue, encoder, &wv, timer)?;
-        Ok(recorded || texels > 0)
+        Ok(tile + levels)
     }
 
     /// Draws the terrain, and the sky behind it unless [`Shading::sky`] is off, into the
@@ -540,7 +543,7 @@ impl Terrain {
     /// interpolates its levels' samples linearly across triangles, so what is drawn differs
     /// from this by the mesh's sampling error (within the screen-error bound); at texel
     /// centres the baked heights equal it to within 1e-5 of the range.
-    pub fn height_at(&self, x: f32, z: f32) -> f32 {
+    pub fn height_at(&self, x: f64, z: f64) -> f64 {
         height_at(&self.shown_params(), x, z)
     }
 
@@ -571,14 +574,11 @@ fn size_too_big(size: u32, e: Error) -> Error {
 
 /// World height of the continuous terrain surface at world (x, z) for `params` (see
 /// [`Terrain::height_at`]).
-pub fn height_at(params: &TerrainParams, x: f32, z: f32) -> f32 {
+pub fn height_at(params: &TerrainParams, x: f64, z: f64) -> f64 {
     let fbm = crate::noise::Fbm::from_params(params);
-    let u = [
-        f64::from(x) / crate::WORLD_SIZE + 0.5,
-        f64::from(z) / crate::WORLD_SIZE + 0.5,
-    ];
+    let u = [x / crate::WORLD_SIZE + 0.5, z / crate::WORLD_SIZE + 0.5];
     let (h, _) = fbm.sample(crate::noise::Channel::Height, u);
-    (h * f64::from(params.height_scale)) as f32
+    h * f64::from(params.height_scale)
 }
 
 /// The adapter as messages name it: its name and backend, and for a software device (Mesa's
