@@ -318,3 +318,40 @@ pub(super) fn frustum_planes(m: &Mat4) -> [Vec4; 6] {
         r(3) - r(2),
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ripples_drift_downwind_with_the_clock() {
+        // A west wind (from 270 degrees) blows towards +x, east.
+        let mut params = WorldParams::default();
+        params.wind = crate::world::Wind {
+            speed: 4.0,
+            from_azimuth: 270.0,
+        };
+        let v = params.wind.velocity();
+        assert!((v.x - 4.0).abs() < 1e-9 && v.y.abs() < 1e-9, "{v}");
+        let eye = DVec3::new(100.0, 1500.0, 30.0);
+        let origin = |clock: f64| {
+            let p = WorldParams { clock, ..params };
+            let u = render_uniforms(
+                &p,
+                &Shading::default(),
+                (Mat4::IDENTITY, [-1e4, -1e4, 1e4, 1e4], eye),
+                false,
+            );
+            (u.water_origin[0], u.water_origin[1])
+        };
+        // The pattern's coordinate of a fixed point is its position less the drift: after 10 s
+        // at 4 m/s the pattern has moved 40 m east, so the eye sees it 40 m further west.
+        assert_eq!(origin(0.0), (100.0, 30.0));
+        assert_eq!(origin(10.0), (60.0, 30.0));
+        // Reduced in f64 modulo the ripples' period, whatever the clock.
+        let late = origin(1e9);
+        let want = (100.0 - 4e9f64).rem_euclid(f64::from(RIPPLE_PERIOD)) as f32;
+        assert_eq!(late.0, want);
+        assert!((0.0..RIPPLE_PERIOD).contains(&late.0));
+    }
+}
