@@ -326,10 +326,12 @@ mod tests {
     #[test]
     fn the_ripples_drift_downwind_with_the_clock() {
         // A west wind (from 270 degrees) blows towards +x, east.
-        let mut params = WorldParams::default();
-        params.wind = crate::world::Wind {
-            speed: 4.0,
-            from_azimuth: 270.0,
+        let params = WorldParams {
+            wind: crate::world::Wind {
+                speed: 4.0,
+                from_azimuth: 270.0,
+            },
+            ..Default::default()
         };
         let v = params.wind.velocity();
         assert!((v.x - 4.0).abs() < 1e-9 && v.y.abs() < 1e-9, "{v}");
