@@ -7,6 +7,7 @@ pub mod blog;
 #[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
 pub mod headless;
 pub mod landscape;
+pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
 pub mod raster;
@@ -15,6 +16,7 @@ mod region;
 pub(crate) mod render;
 pub mod shader;
 pub(crate) mod sky;
+pub mod test_box;
 pub mod timing;
 mod uniforms;
 mod util;

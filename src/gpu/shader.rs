@@ -35,6 +35,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     rays,
     shade,
     sky,
+    test_box,
     vis_common,
     visibility,
     world,

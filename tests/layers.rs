@@ -1,0 +1,93 @@
+//! The list of layers, proved by the test layer (a box standing on the terrain): every
+//! mesh-based method draws it where the others do, the terrain hides it where it is in front,
+//! and without a layer nothing changes.
+
+mod common;
+
+use glam::DVec3;
+use relief::gpu::headless::{self, render_samples, Offscreen};
+use relief::gpu::test_box::TestBox;
+use relief::{Method, MethodConfig, Raster, World, WorldParams, WorldView};
+
+const SIZE: (u32, u32) = (192, 108);
+
+/// Pixels whose colour differs by more than a few steps between two frames.
+fn changed(a: &[u8], b: &[u8]) -> usize {
+    a.chunks(4)
+        .zip(b.chunks(4))
+        .filter(|(p, q)| p.iter().zip(q.iter()).any(|(x, y)| x.abs_diff(*y) > 6))
+        .count()
+}
+
+/// A view from 1.5 km west of `foot` and 1.2 km above it, looking at the box's middle.
+fn view_of(foot: DVec3) -> WorldView {
+    let eye = foot + DVec3::new(-1500.0, 1200.0, 0.0);
+    WorldView::look_at(eye, foot + DVec3::new(0.0, 150.0, 0.0), 0.8, SIZE)
+}
+
+#[test]
+fn every_mesh_method_draws_the_test_box_and_the_terrain_hides_a_buried_one() {
+    let gpu = common::gpu();
+    let params = WorldParams::default();
+    // On dry land 50 m above the water, east of (2000, -3000).
+    let water = f64::from(params.water_level);
+    let foot = (0..200)
+        .map(|i| {
+            let (x, z) = (2000.0 + 50.0 * f64::from(i), -3000.0);
+            DVec3::new(x, params.land.height_at(x, z), z)
+        })
+        .find(|p| p.y > water + 50.0)
+        .expect("dry land within 10 km");
+    let view = view_of(foot);
+    let size = DVec3::new(150.0, 300.0, 150.0);
+    let configs = [
+        MethodConfig::MESH,
+        MethodConfig::new(Method::Visibility),
+        MethodConfig::new(Method::Visibility)
+            .with_samples(1)
+            .with_raster(Raster::Compute),
+        MethodConfig::new(Method::Hybrid).with_samples(1),
+    ];
+    let mut counts = Vec::new();
+    for config in configs {
+        let targets = Offscreen::targets(render_samples(config.method));
+        let mut world = World::new(&gpu.device, &gpu.queue, targets, params).unwrap();
+        world.set_method(&gpu.device, config).unwrap();
+        let draw = |world: &mut World| {
+            headless::render_world_image(&gpu, world, &view, SIZE, headless::TILE, None)
+                .unwrap()
+                .0
+        };
+        let bare = draw(&mut world);
+        assert!(world.layers().is_empty());
+        world.push_layer(Box::new(TestBox::standing(foot, size, [0.8, 0.1, 0.7])));
+        assert_eq!(world.layers(), ["test box"]);
+        let boxed = draw(&mut world);
+        let shown = changed(&bare, &boxed);
+        // The same box 1 km under the ground: the terrain in front hides all of it.
+        world.take_layers();
+        let under = foot - DVec3::new(0.0, 1000.0, 0.0);
+        world.push_layer(Box::new(TestBox::standing(under, size, [0.8, 0.1, 0.7])));
+        let buried = changed(&bare, &draw(&mut world));
+        // Taken away, the frame is the bare one again, byte for byte.
+        world.take_layers();
+        let again = draw(&mut world);
+        eprintln!(
+            "{config:?}: the box changed {shown} pixels, buried {buried}; bare again equal: {}",
+            again == bare
+        );
+        assert!(shown > 150, "{config:?}: the box drew {shown} pixels");
+        assert_eq!(buried, 0, "{config:?}: a buried box showed");
+        assert!(
+            again == bare,
+            "{config:?}: no layer, the frame is the bare one"
+        );
+        counts.push(shown);
+    }
+    // Every method covers about the same pixels (edges differ by antialiasing and samples).
+    let (lo, hi) = (counts.iter().min().unwrap(), counts.iter().max().unwrap());
+    assert!(
+        *hi as f64 <= 1.25 * *lo as f64,
+        "the methods drew the box over {counts:?} pixels"
+    );
+}
