@@ -27,7 +27,8 @@ pub struct TestBox {
     pub albedo: [f32; 3],
     uniforms: Option<wgpu::Buffer>,
     drawn: Option<(Targets, wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
-    bind_group: Option<wgpu::BindGroup>,
+    /// The bind group, with the render-uniforms buffer it binds.
+    bind_group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
 }
 
 impl TestBox {
@@ -75,6 +76,7 @@ impl Layer for TestBox {
                 (true, wgpu::CompareFunction::Less),
             );
             self.drawn = Some((*frame.targets, pipeline, layout));
+            self.bind_group = None;
         }
         let uniforms = self.uniforms.get_or_insert_with(|| {
             super::uniform_buffer::<BoxUniforms>(device, "relief:test-box:uniforms")
@@ -89,26 +91,35 @@ impl Layer for TestBox {
         frame
             .queue
             .write_buffer(uniforms, 0, bytemuck::bytes_of(&u));
-        let (_, _, layout) = self.drawn.as_ref().expect("made above");
-        // The frame's render uniforms may be a new buffer after the world rebuilt them.
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("relief:test-box:bind-group"),
-            layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.render_uniforms.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: uniforms.as_entire_binding(),
-                },
-            ],
-        }));
+        // Made again only when the world's render uniforms are a new buffer (it rebuilt them)
+        // or the pipeline is new.
+        if self
+            .bind_group
+            .as_ref()
+            .is_none_or(|(bound, _)| bound != frame.render_uniforms)
+        {
+            let (_, _, layout) = self.drawn.as_ref().expect("made above");
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:test-box:bind-group"),
+                layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: frame.render_uniforms.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: uniforms.as_entire_binding(),
+                    },
+                ],
+            });
+            self.bind_group = Some((frame.render_uniforms.clone(), group));
+        }
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let (Some((_, pipeline, _)), Some(bind_group)) = (&self.drawn, &self.bind_group) else {
+        let (Some((_, pipeline, _)), Some((_, bind_group))) = (&self.drawn, &self.bind_group)
+        else {
             return; // not prepared yet: nothing to draw
         };
         pass.push_debug_group("relief:test-box");
