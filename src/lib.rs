@@ -47,14 +47,14 @@
 //! - The same seed gives the same terrain on every GPU, in the browser and on the CPU twin
 //!   ([`noise`]): the hash is an integer PCG hash of integer lattice coordinates.
 //!
-//! ## Features
+//! ## Crates
 //!
-//! With `default-features = false` relief is the core alone (wgpu, glam, bytemuck, thiserror,
-//! log): [`Terrain`], the CPU twin ([`noise`]), the parameter table ([`params::PARAMS`]).
-//! Front ends are features: `headless` (device without a window, offscreen target, readback),
-//! `scene` (TOML scene files), `window` (the winit app, native and web), `metrics` (accuracy
-//! metrics, FLIP) and `cli` (the `relief` program with its benchmark; the default, and all of
-//! the above).
+//! This crate is the core alone (wgpu, glam, bytemuck, thiserror, log, and half natively): it
+//! has no features and names no front end. A device without a window, an offscreen target and
+//! readback are [`gpu::headless`] (native only). The front ends are their own crates in the
+//! repository's workspace: `relief-app` (the winit window, native and the web page),
+//! `relief-cli` (the `relief` program) and `relief-eval` (metrics, the CPU ray caster, the
+//! benchmarks and the stability map).
 //!
 //! ## Embedding
 //!
@@ -75,43 +75,20 @@
 //! # Ok(()) }
 //! ```
 
-#[cfg(feature = "window")]
-pub mod app;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod bench;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod bench_arrival;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod bench_look;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod bench_world;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod bench_world_chart;
+#![deny(missing_docs)]
+
 pub mod camera;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod chart;
 pub mod choice;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod cli;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod cli_options;
 pub mod clipmap;
 pub mod error;
 pub mod gpu;
 pub mod landscape;
 pub mod light;
 pub mod method;
-#[cfg(feature = "metrics")]
-pub mod metrics;
 pub mod noise;
 pub mod palette;
 pub mod params;
-pub mod raycast;
-#[cfg(feature = "scene")]
-pub mod scene;
 pub mod sky;
-#[cfg(all(feature = "cli", not(target_arch = "wasm32")))]
-pub mod stability;
 pub mod table;
 pub mod tile;
 pub mod world;
@@ -122,8 +99,6 @@ pub use gpu::world::{World, WorldStats, WorldView};
 pub use gpu::{height_at, Targets, Terrain, Textures};
 pub use method::{Method, MethodConfig, Raster};
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
-#[cfg(feature = "scene")]
-pub use scene::BakeInfo;
 pub use wgpu;
 pub use world::{Wind, WorldKind, WorldParams};
 
@@ -134,3 +109,14 @@ pub struct ReadmeDoctests;
 
 /// World width of one terrain tile: x and z span [-WORLD_SIZE/2, WORLD_SIZE/2].
 pub const WORLD_SIZE: f64 = 2.0;
+
+// A host may keep relief's renderers in a `Send + Sync` place (a render thread, an ECS
+// resource): checked at compile time, natively (on the web WebGPU's handles stay on their
+// thread).
+#[cfg(not(target_arch = "wasm32"))]
+const _: () = {
+    const fn send_sync<T: Send + Sync>() {}
+    send_sync::<Terrain>();
+    send_sync::<World>();
+    send_sync::<Targets>();
+};

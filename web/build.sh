@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the web page: relief's library for wasm32 plus its wasm-bindgen glue, into web/pkg/
+# Builds the web page: relief's window app (crates/app) for wasm32 plus its wasm-bindgen glue, into web/pkg/
 # where index.html's web/main.js loads it. Works from a fresh Debian machine:
 #   - the wasm32 standard library comes from rustup's target where that works (route A), else
 #     from Debian's rustc-web packages with build-std (route B; RELIEF_WASM_ROUTE=B forces it);
@@ -39,18 +39,19 @@ if ! command -v wasm-bindgen >/dev/null || [ "$(wasm-bindgen --version | awk '{p
 fi
 
 if [ "$route" = A ]; then
-    cargo build --locked --release --lib --target wasm32-unknown-unknown
-    wasm=target/wasm32-unknown-unknown/release/relief.wasm
+    cargo build --locked --release -p relief-app --lib --target wasm32-unknown-unknown
+    wasm=target/wasm32-unknown-unknown/release/relief_app.wasm
 else
-    RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 /usr/bin/cargo build --locked --release --lib \
+    RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 /usr/bin/cargo build --locked --release -p relief-app --lib \
         --target wasm32-unknown-unknown -Zbuild-std=std,panic_abort --target-dir target/wasm-debian
-    wasm=target/wasm-debian/wasm32-unknown-unknown/release/relief.wasm
+    wasm=target/wasm-debian/wasm32-unknown-unknown/release/relief_app.wasm
 fi
 
 mkdir -p target
 echo "$route" > target/wasm-route
 rm -rf web/pkg
-wasm-bindgen --target web --no-typescript --out-dir web/pkg "$wasm"
+# The window app (crates/app) is the page's module; its files keep the name relief.js.
+wasm-bindgen --target web --no-typescript --out-name relief --out-dir web/pkg "$wasm"
 # wasm-opt (binaryen, from npm: web/package.json) shrinks the module by about a third. Without
 # it the page works the same, from the larger module; the line below says which was shipped.
 opt=web/node_modules/.bin/wasm-opt

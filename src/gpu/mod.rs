@@ -4,7 +4,7 @@
 pub(crate) mod bake;
 pub mod blit;
 pub mod blog;
-#[cfg(all(feature = "headless", not(target_arch = "wasm32")))]
+#[cfg(not(target_arch = "wasm32"))]
 pub mod headless;
 pub mod landscape;
 pub mod layer;

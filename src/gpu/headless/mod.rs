@@ -41,7 +41,7 @@ impl Gpu {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter =
-            pollster::block_on(
+            block_on(
                 instance.request_adapter(&wgpu::RequestAdapterOptions {
                     power_preference: wgpu::PowerPreference::from_env()
                         .unwrap_or(wgpu::PowerPreference::HighPerformance),
@@ -51,7 +51,7 @@ impl Gpu {
                 }),
             )
             .map_err(|e| Error::NoAdapter(e.to_string()))?;
-        let (device, queue) = pollster::block_on(super::request_device_with(&adapter, wanted))?;
+        let (device, queue) = block_on(super::request_device_with(&adapter, wanted))?;
         Ok(Self {
             adapter,
             device,
@@ -277,6 +277,32 @@ fn read_or_wait(gpu: &Gpu, timer: Option<&GpuTimer>) -> Result<Option<Timings>> 
                 .poll(wgpu::PollType::wait_indefinitely())
                 .map_err(|e| Error::Readback(e.to_string()))?;
             Ok(None)
+        }
+    }
+}
+
+/// Runs `future` to completion on this thread, parking between polls (wgpu's native futures
+/// are ready at once or woken from the driver's thread). relief's own few lines instead of an
+/// executor crate, so that the core depends on no front end's runtime.
+pub fn block_on<F: std::future::Future>(future: F) -> F::Output {
+    use std::sync::Arc;
+    use std::task::{Context, Poll, Wake, Waker};
+    struct Unpark(std::thread::Thread);
+    impl Wake for Unpark {
+        fn wake(self: Arc<Self>) {
+            self.0.unpark();
+        }
+        fn wake_by_ref(self: &Arc<Self>) {
+            self.0.unpark();
+        }
+    }
+    let waker = Waker::from(Arc::new(Unpark(std::thread::current())));
+    let mut context = Context::from_waker(&waker);
+    let mut future = std::pin::pin!(future);
+    loop {
+        match future.as_mut().poll(&mut context) {
+            Poll::Ready(output) => return output,
+            Poll::Pending => std::thread::park(),
         }
     }
 }

@@ -1,0 +1,86 @@
+//! `relief bench --world endless`: the look's cost, the landscape sweep and the arrival.
+
+use super::*;
+
+/// `relief bench --world endless`: landscape views over the pixel-error knob and a flight.
+pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
+    use relief_eval::bench::Options;
+    check_out_dir(dir)?;
+    let gpu = Gpu::new()?;
+    let (options, knobs): (Options, &[f64]) = if quick {
+        (Options::QUICK, &[8.0, 16.0])
+    } else {
+        (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
+    };
+    println!(
+        "relief bench --world endless{} on {}: {} views x {} knobs{} and a flight at {}x{}",
+        if quick { " --quick" } else { "" },
+        gpu.describe(),
+        3,
+        knobs.len(),
+        if quick {
+            String::new()
+        } else {
+            format!(
+                ", {} random views (seed {:#x}) at the scene's knob",
+                relief_eval::bench_world::RANDOM_VIEWS.len(),
+                relief_eval::bench_world::RANDOM_VIEW_SEED
+            )
+        },
+        options.width,
+        options.height
+    );
+    let created = create_dirs(dir)?;
+    // Progress on stderr where a person watches it, never into a file.
+    let progress = |what: &str| {
+        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+            eprint!("\r\x1b[K{what}");
+        }
+    };
+    let done = || progress("");
+    let wrote = |name: &str, rows: usize| {
+        println!("{} rows in {}", rows, dir.join(name).display());
+    };
+    // The look's cost first (it is short), then the LOD sweep, then the arrival.
+    let look = || -> Result<()> {
+        let rows = relief_eval::bench_look::run(&gpu, params, &options, progress)?;
+        done();
+        let csv = relief_eval::bench_look::csv(&rows, &gpu.describe(), &options);
+        write_whole(&dir.join("look.csv"), &csv)?;
+        wrote("look.csv", rows.len());
+        Ok(())
+    };
+    let sweep = || -> Result<()> {
+        let rows = relief_eval::bench_world::run(&gpu, params, knobs, &options, progress)?;
+        done();
+        let csv = relief_eval::bench_world::csv(&rows, &gpu.describe(), &options);
+        let title = format!(
+            "relief: the endless world's LOD on {} (knob in px beside each point)",
+            gpu.describe()
+        );
+        write_whole(&dir.join("landscape.csv"), &csv)?;
+        wrote("landscape.csv", rows.len());
+        relief_eval::bench_world_chart::chart(&rows, &title, &dir.join("landscape"))
+    };
+    let arrival = || -> Result<()> {
+        progress("arrival");
+        let size = (options.width, options.height);
+        let frames =
+            relief_eval::bench_arrival::run(&gpu, params, size, if quick { 6 } else { 600 })?;
+        done();
+        let csv = relief_eval::bench_arrival::csv(&frames, &gpu.describe(), size);
+        write_whole(&dir.join("arrival.csv"), &csv)?;
+        wrote("arrival.csv", frames.len());
+        for line in relief_eval::bench_arrival::summary(&frames) {
+            println!("{line}");
+        }
+        Ok(())
+    };
+    let result = look().and_then(|()| sweep()).and_then(|()| arrival());
+    if result.is_err() {
+        if let Some(c) = created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+    }
+    result
+}
