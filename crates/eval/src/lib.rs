@@ -3,7 +3,7 @@
 //! - [`metrics`]: accuracy against the CPU f64 twin and the reference (FLIP, height errors).
 //! - [`raycast`]: the CPU f64 ray cast of the twin's continuous surface, the check on the GPU
 //!   reference renderer.
-//! - [`bench`], [`bench_world`], [`bench_look`], [`bench_arrival`]: the benchmarks of the tile
+//! - [`bench`](mod@bench), [`bench_world`], [`bench_look`], [`bench_arrival`]: the benchmarks of the tile
 //!   and the endless world, with their charts ([`chart`], [`bench_world_chart`]).
 //! - [`stability`]: where each method fails (the stability map).
 //!

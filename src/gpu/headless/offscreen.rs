@@ -588,7 +588,12 @@ pub enum BlogImage {
     Pipeline,
     /// Its exact surface on a `grid`-vertex grid, `supersample` x `supersample` per pixel (where
     /// the device allows).
-    Exact { grid: u32, supersample: u32 },
+    Exact {
+        /// Vertices along each side of the grid.
+        grid: u32,
+        /// Samples along each side of a pixel.
+        supersample: u32,
+    },
 }
 
 /// Draws the seed blog's terrain (the method `blog`, [`Blog`]) into a `size` image, sRGB RGBA8,
