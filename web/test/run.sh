@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The web page's tests, from a fresh Debian machine: installs Chromium and ChromeDriver if
 # missing, builds the page (web/build.sh), then in headless Chromium with WebGPU:
-#   - wasm-bindgen-test: the bake's heights match the CPU twin (tests/web.rs);
+#   - wasm-bindgen-test: the bake's heights match the CPU twin (crates/app/tests/web.rs);
 #   - Playwright: the page renders, controls and URL work, no console errors, and the page
 #     without WebGPU explains itself (web/test/page.mjs);
 #   - FLIP: the page's canvas against `relief render` of the same scene and size.
@@ -33,15 +33,15 @@ cat > "$out/webdriver.json" <<JSON
  "--disable-sync", "--disable-quic", "--enable-unsafe-webgpu", "--user-data-dir=$profile"]}}
 JSON
 
-echo "== wasm-bindgen-test in Chromium (tests/web.rs)"
+echo "== wasm-bindgen-test in Chromium (crates/app/tests/web.rs)"
 export CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner
 export CHROMEDRIVER=/usr/bin/chromedriver
 export WASM_BINDGEN_TEST_WEBDRIVER_JSON="$PWD/$out/webdriver.json"
 export WASM_BINDGEN_TEST_TIMEOUT=300
 if [ "$route" = A ]; then
-    cargo test --locked --release -p relief --target wasm32-unknown-unknown --test web
+    cargo test --locked --release -p relief-app --target wasm32-unknown-unknown --test web
 else
-    RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 /usr/bin/cargo test --locked --release -p relief \
+    RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 /usr/bin/cargo test --locked --release -p relief-app \
         --target wasm32-unknown-unknown -Zbuild-std=std,panic_abort --target-dir target/wasm-debian --test web
 fi
 

@@ -6,6 +6,7 @@ mod cli_common;
 use cli_common::*;
 
 #[test]
+#[ignore = "slow: a whole `--quick` sweep through the program (.ci/test runs it)"]
 fn bench_quick_writes_a_csv_and_a_chart() {
     let dir = scratch("bench");
     // Scene flags set the benchmark's scene (they were once silently ignored).
@@ -124,6 +125,7 @@ fn bench_quick_writes_a_csv_and_a_chart() {
 }
 
 #[test]
+#[ignore = "slow: a whole `--quick` sweep through the program (.ci/test runs it)"]
 fn bench_world_endless_quick_writes_landscape_csv() {
     let dir = scratch("bench-endless");
     let out = dir.join("out");
@@ -288,6 +290,7 @@ fn bench_world_endless_quick_writes_landscape_csv() {
 }
 
 #[test]
+#[ignore = "slow: a whole `--quick` sweep through the program (.ci/test runs it)"]
 fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
     let dir = scratch("stability");
     let (code, stdout, err) = relief(&[
@@ -400,6 +403,7 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
 }
 
 #[test]
+#[ignore = "slow: a whole `--quick` sweep through the program (.ci/test runs it)"]
 fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
     let dir = scratch("stability-axis");
     let (code, stdout, err) = relief(&[

@@ -36,6 +36,7 @@ fn frames_drawn(stdout: &str) -> u64 {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn timings_are_fresh_measurements() {
     let (code, stdout, err) = window(&["--timings", "--exit-after", "5", "--size", "128"]);
     assert_eq!(code, 0, "{err}");
@@ -66,6 +67,7 @@ fn timings_are_fresh_measurements() {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn a_paused_untouched_window_stops_drawing_and_says_so() {
     // A coarse mesh and small textures: the test counts frames, and on a slow software GPU a
     // default frame can take most of a second.
@@ -92,6 +94,7 @@ fn a_paused_untouched_window_stops_drawing_and_says_so() {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn a_lost_device_is_reported_and_recovered_once() {
     // The test hook destroys the device after its second frame, as a driver reset would: the
     // window reports it in one line, recovers on a new device, draws again, and when that
@@ -171,6 +174,7 @@ fn frames_baking(stdout: &str) -> u64 {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
     // Six octaves: few levels, so lavapipe bakes them in a few seconds.
     let args = [
@@ -233,6 +237,7 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn m_steps_the_window_to_the_next_method() {
     // Time for lavapipe to build each method's pipelines and draw its first frame: the
     // hybrid's march (four samples a pixel, landed by a secant) took the 12 s this test once
@@ -299,6 +304,7 @@ fn sky_in_title(line: &str) -> (f64, f64, String, String) {
 }
 
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     let args = [
         "--world",
@@ -356,6 +362,7 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
 /// `relief --method M --samples N --raster R` draws the window with that method, its samples a
 /// pixel and its raster, and the timings name all three.
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn the_window_draws_the_method_samples_and_raster_it_is_given() {
     let args = [
         "--world",
@@ -399,6 +406,7 @@ fn the_window_draws_the_method_samples_and_raster_it_is_given() {
 /// `relief --method auto` measures the world's candidates before the first frame, as `relief
 /// render` does, says so on stderr, prints the choice with `--timings`, and draws with it.
 #[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
 fn the_window_chooses_its_method_by_measurement_with_method_auto() {
     let args = [
         "--method",

@@ -8,6 +8,7 @@ use relief::{Method, TerrainParams};
 use relief_eval::stability::{grazing, Options};
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn grazing_rays_tunnel_through_the_seed_march_on_steep_terrain_and_never_through_the_reference() {
     let gpu = common::gpu();
     let options = Options::quick();
@@ -95,6 +96,7 @@ fn grazing_rays_tunnel_through_the_seed_march_on_steep_terrain_and_never_through
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn eight_bit_heights_terrace_and_the_blogs_normal_map_loses_directions() {
     let rows = relief_eval::stability::storage(&TerrainParams::default(), 256).unwrap();
     eprintln!("{}", relief_eval::stability::storage_table(&rows));
@@ -122,6 +124,7 @@ fn eight_bit_heights_terrace_and_the_blogs_normal_map_loses_directions() {
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn shadow_rays_at_a_low_sun_tunnel_through_the_seed_march_and_rarely_through_relief() {
     use relief::Method;
     use relief_eval::stability::shadow::{shadow_table, shadows, ShadowOptions};
@@ -184,6 +187,7 @@ fn small_world() -> relief::WorldParams {
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn far_from_the_origin_the_world_neither_jitters_nor_cracks_and_refuses_what_it_cannot_reach() {
     use relief_eval::stability::distance::{distance_table, distances, DistanceOptions};
     let gpu = common::gpu();
@@ -252,6 +256,7 @@ fn far_from_the_origin_the_world_neither_jitters_nor_cracks_and_refuses_what_it_
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn a_moving_eye_sees_no_pop_with_the_morph_and_a_fast_one_outruns_the_bake() {
     use relief_eval::stability::motion::{motion, motion_table, MotionOptions};
     let gpu = common::gpu();
@@ -287,6 +292,7 @@ fn a_moving_eye_sees_no_pop_with_the_morph_and_a_fast_one_outruns_the_bake() {
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
     use relief_eval::stability::detail::{detail, detail_table, DetailOptions};
     let options = DetailOptions::quick();
@@ -354,6 +360,7 @@ fn octaves_finer_than_the_texels_alias_and_tilt_the_normals() {
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn on_the_endless_world_no_mesh_method_nor_the_reference_loses_grazing_terrain() {
     use relief_eval::stability::world_grazing::{world_grazing, world_options};
     let gpu = common::gpu();
@@ -418,6 +425,7 @@ fn on_the_endless_world_no_mesh_method_nor_the_reference_loses_grazing_terrain()
 }
 
 #[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn scrolled_far_the_blogs_terrain_turns_to_stripes_and_reliefs_tile_holds_to_its_limit() {
     use relief_eval::stability::scroll::{scroll, scroll_table, ScrollOptions, Scroller};
     let gpu = common::gpu();

@@ -8,7 +8,7 @@ use wasm_bindgen_test::*;
 
 wasm_bindgen_test_configure!(run_in_browser);
 
-/// Same bound as native (tests/bake_vs_twin.rs): f32 rounding of a few ulps per octave; a
+/// Same bound as native (crates/eval/tests/bake_vs_twin.rs): f32 rounding of a few ulps per octave; a
 /// wrong hash, gradient or octave would be off by ~1e-2.
 const HEIGHT_TOL: f64 = 1e-5;
 
