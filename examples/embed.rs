@@ -1,5 +1,5 @@
 //! Embedding relief in a host app that draws its own geometry into the same render pass and
-//! depth buffer, using relief's core alone (`relief = { default-features = false }`): the host
+//! depth buffer, using relief's core crate alone (`relief = "0.1"`, no front end): the host
 //! makes its own device, target textures and readback, as any wgpu app does. Headless here (an
 //! offscreen target) so it runs anywhere; a windowed host does the same with its surface
 //! texture. The pillar stands on the terrain: its foot is placed with `Terrain::height_at`.
