@@ -13,13 +13,8 @@
 //! Lipschitz bound ([`Landscape::lipschitz`]) for conservative ray casting.
 
 use crate::noise::{
-    gradient, lattice_hash, noise_stream, Channel, NOISE_MAX_ABS, NOISE_MAX_GRADIENT,
+    noise_stream, periodic_noise, Channel, NOISE_MAX_ABS, NOISE_MAX_GRADIENT, NOISE_MAX_SECOND,
 };
-
-/// Bound on every second derivative (in lattice units) of one octave of the gradient noise:
-/// sampled over all corner-gradient combinations, the largest |d²n/dx²|, |d²n/dxdy| found is
-/// below 9 (tested below); 12 leaves a margin for what sampling misses.
-pub const NOISE_MAX_SECOND: f64 = 12.0;
 
 /// Largest of 2|D|/(1+|D|²)², the factor by which the damping of the eroded fBm can amplify
 /// the slope of the damped octave (reached at |D| = 1/sqrt(3)).
@@ -94,71 +89,6 @@ pub struct Sample {
     pub gradient: [f64; 2],
 }
 
-/// Gradient noise in one cell with the corner gradients `g` at offset `f`: value, gradient and
-/// Hessian (xx, xy, yy), all in lattice units.
-pub fn cell_noise_hessian(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64; 3]) {
-    let [ga, gb, gc, gd] = g;
-    let dot = |g: [f64; 2], x: f64, y: f64| g[0] * x + g[1] * y;
-    let a = dot(ga, f[0], f[1]);
-    let b = dot(gb, f[0] - 1.0, f[1]);
-    let c = dot(gc, f[0], f[1] - 1.0);
-    let d = dot(gd, f[0] - 1.0, f[1] - 1.0);
-    let (big_b, big_c, k) = (b - a, c - a, a - b - c + d);
-    // Their gradients (they are affine in f).
-    let db = [gb[0] - ga[0], gb[1] - ga[1]];
-    let dc = [gc[0] - ga[0], gc[1] - ga[1]];
-    let dk = [ga[0] - gb[0] - gc[0] + gd[0], ga[1] - gb[1] - gc[1] + gd[1]];
-    let fade = |t: f64| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
-    let fade1 = |t: f64| 30.0 * t * t * (t - 1.0) * (t - 1.0);
-    let fade2 = |t: f64| 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
-    let (ux, uy) = (fade(f[0]), fade(f[1]));
-    let (ux1, uy1) = (fade1(f[0]), fade1(f[1]));
-    let (ux2, uy2) = (fade2(f[0]), fade2(f[1]));
-    let value = a + ux * big_b + uy * big_c + ux * uy * k;
-    let gx = ga[0] + ux1 * (big_b + uy * k) + ux * db[0] + uy * dc[0] + ux * uy * dk[0];
-    let gy = ga[1] + uy1 * (big_c + ux * k) + ux * db[1] + uy * dc[1] + ux * uy * dk[1];
-    let hxx = ux2 * (big_b + uy * k) + 2.0 * ux1 * (db[0] + uy * dk[0]);
-    let hyy = uy2 * (big_c + ux * k) + 2.0 * uy1 * (dc[1] + ux * dk[1]);
-    let hxy = ux1 * db[1] + uy1 * dc[0] + ux1 * uy1 * k + ux1 * uy * dk[1] + ux * uy1 * dk[0];
-    (value, [gx, gy], [hxx, hxy, hyy])
-}
-
-/// Gradient noise at lattice position `p` (any real value; corners hashed as wrapping 32-bit
-/// integers): value, gradient and Hessian in lattice units.
-pub fn noise(p: [f64; 2], stream: u32) -> (f64, [f64; 2], [f64; 3]) {
-    periodic_noise(p, stream, 0)
-}
-
-/// [`noise`] on a lattice that wraps every `period` cells (0: at 2^32, as [`noise`]).
-pub fn periodic_noise(p: [f64; 2], stream: u32, period: u32) -> (f64, [f64; 2], [f64; 3]) {
-    let fl = [p[0].floor(), p[1].floor()];
-    let f = [p[0] - fl[0], p[1] - fl[1]];
-    // Wrapping to u32 exactly as the GPU's bitcast of an i32 cell does, or into the period.
-    let wrap = |c: f64| {
-        if period == 0 {
-            (c as i64) as u32
-        } else {
-            (c as i64).rem_euclid(i64::from(period)) as u32
-        }
-    };
-    let (x0, y0) = (wrap(fl[0]), wrap(fl[1]));
-    let next = |c: u32| {
-        if period == 0 {
-            c.wrapping_add(1)
-        } else {
-            (c + 1) % period
-        }
-    };
-    let (x1, y1) = (next(x0), next(y0));
-    let g = [
-        gradient(lattice_hash(x0, y0, stream)),
-        gradient(lattice_hash(x1, y0, stream)),
-        gradient(lattice_hash(x0, y1, stream)),
-        gradient(lattice_hash(x1, y1, stream)),
-    ];
-    cell_noise_hessian(g, f)
-}
-
 impl Landscape {
     /// Octave `o`'s lattice period in cells (0: endless).
     pub fn period_of(&self, o: u32) -> u32 {
@@ -216,8 +146,8 @@ impl Landscape {
             let freq = 1.0 / self.cell(o);
             let (n, g, h) = periodic_noise(
                 [x * freq, z * freq],
-                noise_stream(self.seed, channel, o),
                 self.period_of(o),
+                noise_stream(self.seed, channel, o),
             );
             if eroded {
                 acc = [acc[0] + g[0], acc[1] + g[1]];
@@ -360,6 +290,7 @@ impl Landscape {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::noise::{cell_noise, gradient};
 
     fn land(terrain: TerrainFn) -> Landscape {
         Landscape {
@@ -381,8 +312,8 @@ mod tests {
             .enumerate()
         {
             let stream = 11 + k as u32;
-            let (v, g, h) = noise(*p, stream);
-            let at = |dx: f64, dy: f64| noise([p[0] + dx, p[1] + dy], stream);
+            let (v, g, h) = periodic_noise(*p, 0, stream);
+            let at = |dx: f64, dy: f64| periodic_noise([p[0] + dx, p[1] + dy], 0, stream);
             let gx = (at(e, 0.0).0 - at(-e, 0.0).0) / (2.0 * e);
             let gy = (at(0.0, e).0 - at(0.0, -e).0) / (2.0 * e);
             // Far from the origin f64 keeps ~1e-10 of the position: differences lose digits.
@@ -419,7 +350,7 @@ mod tests {
             for i in 0..=16 {
                 for j in 0..=16 {
                     let f = [f64::from(i) / 16.0, f64::from(j) / 16.0];
-                    let (_, _, h) = cell_noise_hessian(corners, f);
+                    let (_, _, h) = cell_noise(corners, f);
                     worst = worst.max(h[0].abs()).max(h[1].abs()).max(h[2].abs());
                 }
             }

@@ -15,6 +15,11 @@ pub const NOISE_MAX_ABS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// finds a largest value of 1.998 (tested below); 2.2 adds a margin for what the grid misses.
 pub const NOISE_MAX_GRADIENT: f64 = 2.2;
 
+/// Bound on every second derivative (in lattice units) of one octave of the gradient noise:
+/// sampled over all corner-gradient combinations, the largest |d²n/dx²|, |d²n/dxdy| found is
+/// below 9 (tested in the landscape twin); 12 leaves a margin for what sampling misses.
+pub const NOISE_MAX_SECOND: f64 = 12.0;
+
 /// Which independent fBm stream a value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Channel {
@@ -55,24 +60,28 @@ pub fn gradient(h: u32) -> [f64; 2] {
     }
 }
 
-fn fade(t: f64) -> f64 {
-    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-}
-
-fn fade_derivative(t: f64) -> f64 {
-    30.0 * t * t * (t - 1.0) * (t - 1.0)
-}
-
-/// Periodic gradient noise at lattice position `p` (any real value) with `period` cells,
-/// returning the value and its derivative with respect to `p`.
-pub fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2]) {
+/// Gradient noise at lattice position `p` (any real value) on a lattice that wraps every
+/// `period` cells (0: corners hashed as wrapping 32-bit integers, exactly as the GPU's bitcast
+/// of an i32 cell): the value, gradient and Hessian (xx, xy, yy) in lattice units.
+pub fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2], [f64; 3]) {
     let fl = [p[0].floor(), p[1].floor()];
     let f = [p[0] - fl[0], p[1] - fl[1]];
-    let period_i = i64::from(period);
-    let x0 = (fl[0] as i64).rem_euclid(period_i) as u32;
-    let y0 = (fl[1] as i64).rem_euclid(period_i) as u32;
-    let x1 = (x0 + 1) % period;
-    let y1 = (y0 + 1) % period;
+    let wrap = |c: f64| {
+        if period == 0 {
+            (c as i64) as u32
+        } else {
+            (c as i64).rem_euclid(i64::from(period)) as u32
+        }
+    };
+    let (x0, y0) = (wrap(fl[0]), wrap(fl[1]));
+    let next = |c: u32| {
+        if period == 0 {
+            c.wrapping_add(1)
+        } else {
+            (c + 1) % period
+        }
+    };
+    let (x1, y1) = (next(x0), next(y0));
     let corners = [
         gradient(lattice_hash(x0, y0, stream)),
         gradient(lattice_hash(x1, y0, stream)),
@@ -83,25 +92,33 @@ pub fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2]) 
 }
 
 /// Gradient noise inside one cell with corner gradients `g` (in the order (0,0), (1,0), (0,1),
-/// (1,1)) at position `f` in [0,1)^2: the value and its derivative.
-pub fn cell_noise(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2]) {
+/// (1,1)) at position `f` in [0,1)^2: the value, gradient and Hessian (xx, xy, yy), all in
+/// lattice units.
+pub fn cell_noise(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64; 3]) {
     let [ga, gb, gc, gd] = g;
-    let a = ga[0] * f[0] + ga[1] * f[1];
-    let b = gb[0] * (f[0] - 1.0) + gb[1] * f[1];
-    let c = gc[0] * f[0] + gc[1] * (f[1] - 1.0);
-    let d = gd[0] * (f[0] - 1.0) + gd[1] * (f[1] - 1.0);
+    let dot = |g: [f64; 2], x: f64, y: f64| g[0] * x + g[1] * y;
+    let a = dot(ga, f[0], f[1]);
+    let b = dot(gb, f[0] - 1.0, f[1]);
+    let c = dot(gc, f[0], f[1] - 1.0);
+    let d = dot(gd, f[0] - 1.0, f[1] - 1.0);
+    let (big_b, big_c, k) = (b - a, c - a, a - b - c + d);
+    // Their gradients (they are affine in f).
+    let db = [gb[0] - ga[0], gb[1] - ga[1]];
+    let dc = [gc[0] - ga[0], gc[1] - ga[1]];
+    let dk = [ga[0] - gb[0] - gc[0] + gd[0], ga[1] - gb[1] - gc[1] + gd[1]];
+    let fade = |t: f64| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    let fade1 = |t: f64| 30.0 * t * t * (t - 1.0) * (t - 1.0);
+    let fade2 = |t: f64| 60.0 * t * (2.0 * t * t - 3.0 * t + 1.0);
     let (ux, uy) = (fade(f[0]), fade(f[1]));
-    let (dux, duy) = (fade_derivative(f[0]), fade_derivative(f[1]));
-    let k = a - b - c + d;
-    let value = a + ux * (b - a) + uy * (c - a) + ux * uy * k;
-    let mut grad = [0.0; 2];
-    for (i, g) in grad.iter_mut().enumerate() {
-        let gk = ga[i] - gb[i] - gc[i] + gd[i];
-        *g = ga[i] + ux * (gb[i] - ga[i]) + uy * (gc[i] - ga[i]) + ux * uy * gk;
-    }
-    grad[0] += dux * ((b - a) + uy * k);
-    grad[1] += duy * ((c - a) + ux * k);
-    (value, grad)
+    let (ux1, uy1) = (fade1(f[0]), fade1(f[1]));
+    let (ux2, uy2) = (fade2(f[0]), fade2(f[1]));
+    let value = a + ux * big_b + uy * big_c + ux * uy * k;
+    let gx = ga[0] + ux1 * (big_b + uy * k) + ux * db[0] + uy * dc[0] + ux * uy * dk[0];
+    let gy = ga[1] + uy1 * (big_c + ux * k) + ux * db[1] + uy * dc[1] + ux * uy * dk[1];
+    let hxx = ux2 * (big_b + uy * k) + 2.0 * ux1 * (db[0] + uy * dk[0]);
+    let hyy = uy2 * (big_c + ux * k) + 2.0 * uy1 * (dc[1] + ux * dk[1]);
+    let hxy = ux1 * db[1] + uy1 * dc[0] + ux1 * uy1 * k + ux1 * uy * dk[1] + ux * uy1 * dk[0];
+    (value, [gx, gy], [hxx, hxy, hyy])
 }
 
 /// The noise settings the bake uses, in the twin's own types.
@@ -142,7 +159,7 @@ impl Fbm {
         for o in 0..self.octaves {
             let period = self.frequency << o;
             let pf = f64::from(period);
-            let (n, g) = periodic_noise(
+            let (n, g, _) = periodic_noise(
                 [q[0] * pf, q[1] * pf],
                 period,
                 noise_stream(self.seed, channel, o),
@@ -253,10 +270,10 @@ mod tests {
     #[test]
     fn noise_is_zero_on_lattice_and_periodic() {
         for s in 0..16 {
-            let (v, _) = periodic_noise([3.0, 5.0], 8, s);
+            let (v, _, _) = periodic_noise([3.0, 5.0], 8, s);
             assert_eq!(v, 0.0);
-            let (a, _) = periodic_noise([1.3, 2.7], 8, s);
-            let (b, _) = periodic_noise([9.3, -5.3], 8, s);
+            let (a, _, _) = periodic_noise([1.3, 2.7], 8, s);
+            let (b, _, _) = periodic_noise([9.3, -5.3], 8, s);
             assert!((a - b).abs() < 1e-12, "period 8 must repeat: {a} vs {b}");
         }
     }
@@ -316,7 +333,7 @@ mod tests {
                                     (f64::from(i) + 0.5) / f64::from(n),
                                     (f64::from(j) + 0.5) / f64::from(n),
                                 ];
-                                let (_, g) = cell_noise([*ga, *gb, *gc, *gd], f);
+                                let (_, g, _) = cell_noise([*ga, *gb, *gc, *gd], f);
                                 max = max.max((g[0] * g[0] + g[1] * g[1]).sqrt());
                             }
                         }
