@@ -11,7 +11,7 @@ mod command;
 mod files;
 mod render;
 mod resolve;
-mod stability;
+pub mod stability;
 
 pub mod options;
 pub mod scene;
@@ -553,7 +553,15 @@ fn run(top: &ArgMatches) -> Result<()> {
             out_dir,
             quick,
             axes,
-        } => stability(&params, &out_dir, quick, &axes),
+        } => {
+            let world = WorldParams::default();
+            let sweeps = if quick {
+                relief_eval::stability::Sweeps::quick(&world)
+            } else {
+                relief_eval::stability::Sweeps::full(&world)
+            };
+            stability(&params, &out_dir, (&sweeps, quick), &axes)
+        }
         Run::Height { points } => {
             for [x, z] in points {
                 println!(

@@ -21,10 +21,13 @@ pub(super) fn stability_axes(m: &ArgMatches) -> Result<Vec<relief_eval::stabilit
         .collect())
 }
 
-pub(super) fn stability(
+/// Runs the stability `axes` with the options of `sweeps` (`--quick` names which in the report)
+/// on a fresh device over the scene `base` (the tile's axes) and the sweeps' endless world,
+/// printing each axis's table and writing its CSV and charts in `dir`.
+pub fn stability(
     base: &TerrainParams,
     dir: &Path,
-    quick: bool,
+    (sweeps, quick): (&relief_eval::stability::Sweeps, bool),
     axes: &[relief_eval::stability::Axis],
 ) -> Result<()> {
     use relief_eval::stability::{self, Axis};
@@ -55,14 +58,10 @@ pub(super) fn stability(
         bar.set_length(len as u64);
     };
     let start = std::time::Instant::now();
-    let world = WorldParams::default();
+    let world = sweeps.world;
     let mut outputs: Vec<AxisOutput<'_>> = Vec::new();
     if on(Axis::Grazing) {
-        let options = if quick {
-            stability::Options::quick()
-        } else {
-            stability::Options::full()
-        };
+        let options = sweeps.grazing.clone();
         println!(
             "grazing views of the scene's tile at {:?} degrees, height scales {:?}, {}x{} (every {} px compared with the CPU f64 ray cast)",
             options.elevations,
@@ -86,9 +85,9 @@ pub(super) fn stability(
         ));
     }
     if on(Axis::WorldGrazing) {
-        let options = stability::world_grazing::world_options(&world, quick);
+        let options = sweeps.world_grazing.clone();
         println!(
-            "grazing views of the default endless world at {:?} degrees, {}x{} (every {} px compared with the CPU f64 ray cast)",
+            "grazing views of the endless world at {:?} degrees, {}x{} (every {} px compared with the CPU f64 ray cast)",
             options.elevations, options.size.0, options.size.1, options.stride
         );
         restart(options.elevations.len());
@@ -106,13 +105,9 @@ pub(super) fn stability(
         ));
     }
     if on(Axis::Shadow) {
-        let options = if quick {
-            stability::shadow::ShadowOptions::quick()
-        } else {
-            stability::shadow::ShadowOptions::full()
-        };
+        let options = sweeps.shadow.clone();
         println!(
-            "shadow rays on the default endless world: sun at {:?} degrees (azimuth {}), every {} texel(s) each way of each level drawn, where it draws, compared with f64 rays",
+            "shadow rays on the endless world: sun at {:?} degrees (azimuth {}), every {} texel(s) each way of each level drawn, where it draws, compared with f64 rays",
             options.elevations, world.sky.sun_azimuth, options.stride
         );
         restart(options.elevations.len());
@@ -133,13 +128,9 @@ pub(super) fn stability(
         ));
     }
     if on(Axis::Distance) {
-        let options = if quick {
-            stability::distance::DistanceOptions::quick()
-        } else {
-            stability::distance::DistanceOptions::full()
-        };
+        let options = sweeps.distance.clone();
         println!(
-            "distance from the origin on the default endless world: the eye at {:?} m, {}x{}, a {} m step",
+            "distance from the origin on the endless world: the eye at {:?} m, {}x{}, a {} m step",
             options.distances, options.size.0, options.size.1, options.step
         );
         restart(options.distances.len());
@@ -159,11 +150,7 @@ pub(super) fn stability(
         ));
     }
     if on(Axis::Scroll) {
-        let options = if quick {
-            stability::scroll::ScrollOptions::quick()
-        } else {
-            stability::scroll::ScrollOptions::full()
-        };
+        let options = sweeps.scroll.clone();
         println!(
             "the tile scrolled from its origin: {:?} tiles, relief's tile at {}² texels (every {} each way against the twin) and the blog's bake",
             options.distances, options.size, options.stride
@@ -183,13 +170,9 @@ pub(super) fn stability(
         ));
     }
     if on(Axis::Motion) {
-        let options = if quick {
-            stability::motion::MotionOptions::quick()
-        } else {
-            stability::motion::MotionOptions::full()
-        };
+        let options = sweeps.motion.clone();
         println!(
-            "motion over the default endless world: {:?} m a frame, knobs {} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
+            "motion over the endless world: {:?} m a frame, knobs {} px, {} frames at {}x{}, {} m over the ground, the bake budget {} texels a frame",
             options.speeds,
             std::iter::once(world.pixel_error)
                 .chain(options.knobs.iter().copied())
@@ -221,11 +204,7 @@ pub(super) fn stability(
     }
     if on(Axis::Detail) {
         // Detail against resolution, on the CPU twin, then FLIP on the GPU.
-        let options = if quick {
-            stability::detail::DetailOptions::quick()
-        } else {
-            stability::detail::DetailOptions::full()
-        };
+        let options = sweeps.detail.clone();
         let mut rows = stability::detail::detail(base, &options)?;
         stability::detail::detail_flip(&gpu, base, &mut rows, options.image)?;
         println!(
@@ -248,7 +227,7 @@ pub(super) fn stability(
     }
     if on(Axis::Storage) {
         // Storage precision, on the CPU twin (no GPU involved), at the tile's texture side.
-        let side = if quick { 256 } else { stability::STORAGE_SIZE };
+        let side = sweeps.storage_side;
         let rows = stability::storage(base, side)?;
         println!("storage precision, {side}² texels of the scene's heights:");
         print!("{}", stability::storage_table(&rows));

@@ -1,5 +1,6 @@
-//! The `relief` program's long runs, each once: `bench --quick` in both worlds and
-//! `stability --quick` (every axis, then `--axis`): the files they write and what they refuse.
+//! The `relief` program's long runs, each once: `bench --quick` in both worlds, every
+//! stability axis at its smallest through the program's code, and `stability --quick --axis`
+//! through the program: the files they write and what they refuse.
 
 #[path = "common/cli.rs"]
 mod cli_common;
@@ -289,24 +290,48 @@ fn bench_world_endless_quick_writes_landscape_csv() {
     assert!(rows[35].starts_with("path,"), "{csv}");
 }
 
+/// Every axis at its smallest: one or two values each, at small sizes. What each axis finds
+/// is pinned by relief-eval's stability tests on the `--quick` sweeps; this runs the
+/// program's own code around them (tables, CSVs, charts) without sweeping twice.
+fn tiny_sweeps() -> relief_eval::stability::Sweeps {
+    // The default world drawn to 16 px of error: fewer levels to bake and light.
+    let world = relief::WorldParams {
+        pixel_error: 16.0,
+        ..Default::default()
+    };
+    let mut s = relief_eval::stability::Sweeps::quick(&world);
+    s.grazing.elevations = vec![5.0];
+    s.grazing.size = (48, 27);
+    s.world_grazing.elevations = vec![5.0];
+    s.world_grazing.size = (48, 27);
+    s.shadow.elevations = vec![3.0];
+    s.shadow.stride = 512;
+    s.distance.distances = vec![1.0, 1e9];
+    s.distance.size = (48, 27);
+    s.scroll.distances = vec![1.0, 1e13];
+    s.scroll.size = 64;
+    s.motion.speeds = vec![256.0];
+    s.motion.frames = 4;
+    s.motion.size = (48, 27);
+    s.detail.octaves = vec![4];
+    s.detail.sizes = vec![128];
+    s.detail.grids = vec![32];
+    s.detail.image = (48, 32);
+    s.storage_side = 64;
+    s
+}
+
 #[test]
-#[ignore = "slow: a whole `--quick` sweep through the program (.ci/test runs it)"]
-fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
+#[ignore = "slow: every stability axis through the program's code (.ci/test runs it)"]
+fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
+    use relief_eval::stability::Axis;
     let dir = scratch("stability");
-    let (code, stdout, err) = relief(&[
-        "stability",
-        "--quick",
-        "--octaves",
-        "6",
-        "--out-dir",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert_eq!(err, "", "a successful run keeps stderr clean");
-    assert!(
-        stdout.contains("octaves 6") && stdout.contains("height scale 2"),
-        "{stdout}"
-    );
+    let sweeps = tiny_sweeps();
+    let scene = relief::TerrainParams {
+        octaves: 6,
+        ..Default::default()
+    };
+    relief_cli::stability::stability(&scene, &dir, (&sweeps, true), &Axis::ALL).unwrap();
     assert_eq!(
         files_in(&dir),
         [
@@ -338,17 +363,17 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             "world-grazing.csv"
         ]
     );
-    // The world axes: the shadow rays' table (3 suns x 3 methods), the distance axis with the
-    // default world's refusal 10^9 m out, the flights (2 speeds: the mesh with the morph on
-    // and off, the visibility method, the hybrid).
+    // The world axes: the shadow rays' table (a sun x 3 methods), the distance axis with the
+    // default world's refusal 10^9 m out, the flights (the mesh with the morph on and off, the
+    // visibility method, the hybrid).
     let lines = |name: &str| {
         std::fs::read_to_string(dir.join(name))
             .unwrap()
             .lines()
             .count()
     };
-    assert_eq!(lines("shadow.csv"), 1 + 9);
-    assert_eq!(lines("motion.csv"), 1 + 8);
+    assert_eq!(lines("shadow.csv"), 1 + 3);
+    assert_eq!(lines("motion.csv"), 1 + 4);
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance
@@ -367,23 +392,24 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
             "distance.csv lacks {column}"
         );
     }
-    assert!(
-        stdout.contains("refused: the eye must be x and z within"),
-        "{stdout}"
-    );
     let csv = std::fs::read_to_string(dir.join("stability.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let rows: Vec<Vec<String>> = csv.lines().skip(1).map(csv_fields).collect();
-    // 3 elevations x 2 height scales x (2 step factors, the relaxation, the march in a
+    // An elevation x 2 height scales x (2 step factors, the relaxation, the march in a
     // fragment shader, the mesh, the reference).
-    assert_eq!(rows.len(), 36, "{csv}");
+    assert_eq!(rows.len(), 12, "{csv}");
     for row in &rows {
-        let tunnelled: usize = row[col("tunnelled")].parse().unwrap();
-        if row[col("method")] == "reference" {
-            assert_eq!(tunnelled, 0, "the reference tunnelled: {row:?}");
-        }
+        assert_eq!(row[col("width")], "48", "the sweep's own size: {row:?}");
     }
+    // The scroll axis: relief's tile and the blog's at each distance, relief refusing 10^13
+    // tiles in words.
+    let scroll = std::fs::read_to_string(dir.join("scroll.csv")).unwrap();
+    assert_eq!(scroll.lines().count(), 1 + 2 * 2, "{scroll}");
+    assert!(
+        scroll.lines().any(|l| l.starts_with("relief,1e13,\"")),
+        "{scroll}"
+    );
     for (flag, value) in [("--height-scale", "1"), ("--grid", "64"), ("--timings", "")] {
         let mut args = vec!["stability", "--quick", flag];
         if !value.is_empty() {
@@ -392,14 +418,6 @@ fn stability_quick_writes_a_csv_charts_and_refuses_what_it_sweeps() {
         rejects(&args, &[flag, "stability"]);
     }
     rejects(&["stability", "--world", "endless"], &["stability", "tile"]);
-    // The scroll axis: relief's tile and the blog's at each quick distance, relief refusing
-    // 10^13 tiles in words.
-    let scroll = std::fs::read_to_string(dir.join("scroll.csv")).unwrap();
-    assert_eq!(scroll.lines().count(), 1 + 2 * 4, "{scroll}");
-    assert!(
-        scroll.lines().any(|l| l.starts_with("relief,1e13,\"")),
-        "{scroll}"
-    );
 }
 
 #[test]
@@ -409,6 +427,8 @@ fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
     let (code, stdout, err) = relief(&[
         "stability",
         "--quick",
+        "--octaves",
+        "6",
         "--axis",
         "storage,scroll",
         "--out-dir",
@@ -427,8 +447,16 @@ fn stability_axis_runs_only_the_axes_named_and_writes_only_their_files() {
             "storage.svg"
         ]
     );
-    // In the order the full sweep runs them, whatever the order named.
+    // In the order the full sweep runs them, whatever the order named; the scene's flags reach
+    // the sweep.
     assert!(stdout.contains("2 axes (scroll, storage)"), "{stdout}");
+    assert!(stdout.contains("octaves 6"), "{stdout}");
+    let scroll = std::fs::read_to_string(dir.join("scroll.csv")).unwrap();
+    assert_eq!(scroll.lines().count(), 1 + 2 * 4, "{scroll}");
+    assert!(
+        scroll.lines().any(|l| l.starts_with("relief,1e13,\"")),
+        "{scroll}"
+    );
     assert!(!stdout.contains("grazing views"), "{stdout}");
     // Repeating the flag adds to the list.
     let again = scratch("stability-axis-again");

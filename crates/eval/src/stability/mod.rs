@@ -55,6 +55,62 @@ use std::fmt::Write as _;
 
 pub use self::precision::*;
 
+/// Every axis's options at one effort: what `relief stability` runs (`--quick` or not).
+#[derive(Clone, Debug)]
+pub struct Sweeps {
+    /// The endless world the world axes (world grazing, shadow, distance, motion) sweep over.
+    pub world: relief::WorldParams,
+    /// The grazing axis, over the scene's tile.
+    pub grazing: Options,
+    /// The grazing axis over the endless world.
+    pub world_grazing: Options,
+    /// Shadow rays at a low sun.
+    pub shadow: shadow::ShadowOptions,
+    /// Distance from the origin.
+    pub distance: distance::DistanceOptions,
+    /// The tile scrolled far.
+    pub scroll: scroll::ScrollOptions,
+    /// A moving eye.
+    pub motion: motion::MotionOptions,
+    /// Detail against resolution.
+    pub detail: detail::DetailOptions,
+    /// The side in texels of the storage-precision axis.
+    pub storage_side: u32,
+}
+
+impl Sweeps {
+    /// The whole sweeps (`relief stability`), over the endless world `world`.
+    pub fn full(world: &relief::WorldParams) -> Self {
+        Self {
+            world: *world,
+            grazing: Options::full(),
+            world_grazing: world_grazing::world_options(world, false),
+            shadow: shadow::ShadowOptions::full(),
+            distance: distance::DistanceOptions::full(),
+            scroll: scroll::ScrollOptions::full(),
+            motion: motion::MotionOptions::full(),
+            detail: detail::DetailOptions::full(),
+            storage_side: STORAGE_SIZE,
+        }
+    }
+
+    /// Fewer values on each axis at smaller sizes (`relief stability --quick`): minutes on a
+    /// software GPU.
+    pub fn quick(world: &relief::WorldParams) -> Self {
+        Self {
+            world: *world,
+            grazing: Options::quick(),
+            world_grazing: world_grazing::world_options(world, true),
+            shadow: shadow::ShadowOptions::quick(),
+            distance: distance::DistanceOptions::quick(),
+            scroll: scroll::ScrollOptions::quick(),
+            motion: motion::MotionOptions::quick(),
+            detail: detail::DetailOptions::quick(),
+            storage_side: 256,
+        }
+    }
+}
+
 /// An axis of `relief stability`: what it sweeps, and the files it writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Axis {
