@@ -260,39 +260,28 @@ fn the_compute_raster_refuses_what_it_cannot_draw_in_words() {
     );
 }
 
-/// The endless world drawn by `method` at one sample a pixel, rasterised by `raster`, from the
-/// default camera.
-fn world_rasterised(gpu: &Gpu, method: Method, raster: Raster) -> Vec<u8> {
-    let view = common::world_view(&WorldParams::default(), (W, H));
-    world_rasterised_from(gpu, method, raster, &view)
-}
-
-/// The same from `view`.
-fn world_rasterised_from(
-    gpu: &Gpu,
-    method: Method,
-    raster: Raster,
-    view: &relief::gpu::world::WorldView,
-) -> Vec<u8> {
-    world_rasterised_skipping(gpu, method, raster, view, true)
-}
-
-/// The same, the compute raster skipping hidden blocks or not.
-fn world_rasterised_skipping(
-    gpu: &Gpu,
-    method: Method,
-    raster: Raster,
-    view: &relief::gpu::world::WorldView,
-    skip: bool,
-) -> Vec<u8> {
-    let params = WorldParams::default();
-    let mut world = relief::World::new(
+/// The default endless world on `gpu`, baked once and drawn by [`draw`] with each method and
+/// raster a test compares (a bake on lavapipe takes seconds; the drawing does not change it).
+fn baked(gpu: &Gpu) -> relief::World {
+    relief::World::new(
         &gpu.device,
         &gpu.queue,
         Offscreen::targets(RENDER_SAMPLES),
-        params,
+        WorldParams::default(),
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// `world` drawn by `method` at one sample a pixel, rasterised by `raster` (the compute raster
+/// skipping hidden blocks or not), from `view` (the default camera without one).
+fn draw(
+    gpu: &Gpu,
+    world: &mut relief::World,
+    (method, raster): (Method, Raster),
+    view: Option<&relief::gpu::world::WorldView>,
+    skip: bool,
+) -> Vec<u8> {
+    let default = common::world_view(&WorldParams::default(), (W, H));
     world
         .set_method(
             &gpu.device,
@@ -304,9 +293,16 @@ fn world_rasterised_skipping(
         )
         .unwrap();
     world.set_raster_skips_hidden(skip);
-    headless::render_world_image(gpu, &mut world, view, (W, H), headless::TILE, None)
-        .unwrap()
-        .0
+    headless::render_world_image(
+        gpu,
+        world,
+        view.unwrap_or(&default),
+        (W, H),
+        headless::TILE,
+        None,
+    )
+    .unwrap()
+    .0
 }
 
 /// In the endless world the compute raster's second dispatch stores each pixel's attributes
@@ -316,9 +312,10 @@ fn world_rasterised_skipping(
 fn the_compute_raster_draws_the_endless_world_with_its_attributes() {
     let gpu = gpu();
     let mesh = world(&gpu, WorldParams::default(), Method::Mesh);
+    let mut baked = baked(&gpu);
     for method in [Method::Visibility, Method::Hybrid] {
-        let hardware = world_rasterised(&gpu, method, Raster::Hardware);
-        let compute = world_rasterised(&gpu, method, Raster::Compute);
+        let hardware = draw(&gpu, &mut baked, (method, Raster::Hardware), None, true);
+        let compute = draw(&gpu, &mut baked, (method, Raster::Compute), None, true);
         let (same, control) = (flip(&hardware, &compute), flip(&compute, &mesh));
         let off = differing(&hardware, &compute);
         eprintln!(
@@ -356,9 +353,16 @@ fn the_raster_with_ids_draws_what_the_second_raster_draws() {
         .device
         .features()
         .contains(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX));
+    let (mut with_world, mut without_world) = (baked(&gpu), baked(&without));
     for method in [Method::Visibility, Method::Hybrid] {
-        let ids = world_rasterised(&gpu, method, Raster::Compute);
-        let twice = world_rasterised(&without, method, Raster::Compute);
+        let ids = draw(&gpu, &mut with_world, (method, Raster::Compute), None, true);
+        let twice = draw(
+            &without,
+            &mut without_world,
+            (method, Raster::Compute),
+            None,
+            true,
+        );
         let (same, off) = (flip(&ids, &twice), differing(&ids, &twice));
         eprintln!(
             "{method}: raster with ids vs rastered twice: FLIP {same:.5}, {:.4}% of pixels differ",
@@ -372,7 +376,7 @@ fn the_raster_with_ids_draws_what_the_second_raster_draws() {
         // The same frame again: the ids settle ties the same way every time.
         assert_eq!(
             ids,
-            world_rasterised(&gpu, method, Raster::Compute),
+            draw(&gpu, &mut with_world, (method, Raster::Compute), None, true),
             "{method}"
         );
     }
@@ -393,17 +397,27 @@ fn the_compute_raster_skips_only_what_is_hidden() {
         (W, H),
     );
     let without_ids = Gpu::with_features(wgpu::Features::TIMESTAMP_QUERY).unwrap();
-    for (device, g) in [("with ids", &gpu), ("without ids", &without_ids)] {
-        let [skipping, drawing_all] = [true, false].map(|skip| {
-            world_rasterised_skipping(g, Method::Visibility, Raster::Compute, &view, skip)
-        });
+    let mut with_ids = baked(&gpu);
+    let compute = (Method::Visibility, Raster::Compute);
+    for (device, g, world) in [
+        ("with ids", &gpu, &mut with_ids),
+        ("without ids", &without_ids, &mut baked(&without_ids)),
+    ] {
+        let skipping = draw(g, world, compute, Some(&view), true);
+        let drawing_all = draw(g, world, compute, Some(&view), false);
         assert!(
             skipping == drawing_all,
             "{device}: skipping hidden blocks changed pixels"
         );
     }
-    let hardware = world_rasterised_from(&gpu, Method::Visibility, Raster::Hardware, &view);
-    let compute = world_rasterised_from(&gpu, Method::Visibility, Raster::Compute, &view);
+    let hardware = draw(
+        &gpu,
+        &mut with_ids,
+        (Method::Visibility, Raster::Hardware),
+        Some(&view),
+        true,
+    );
+    let compute = draw(&gpu, &mut with_ids, compute, Some(&view), true);
     let (same, off) = (flip(&hardware, &compute), differing(&hardware, &compute));
     eprintln!(
         "horizon: compute raster vs hardware FLIP {same:.4}, {:.3}% of pixels differ",
