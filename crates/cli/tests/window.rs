@@ -1,5 +1,7 @@
 //! The native window, driven for real under Xvfb (a virtual X display) on lavapipe: fresh
-//! timings, no drawing while idle, and recovery from a lost GPU device.
+//! timings, no drawing while idle, and recovery from a lost GPU device. A test that waits for
+//! something in the window's output presses Escape once it has come; `--exit-after` only caps
+//! how long a slow machine may take.
 
 use std::process::Command;
 
@@ -129,18 +131,27 @@ fn a_lost_device_is_reported_and_recovered_once() {
 }
 
 /// Runs `relief ARGS` in a window on a fresh virtual display while `keys` (an xdotool
-/// command line, run after the window has drawn) presses keys in it.
-fn window_with_keys(args: &[&str], keys: &str) -> (i32, String, String) {
+/// command line, run once the window has drawn; `$w` is the window) presses keys in it, then,
+/// once the shell condition `until` holds (`$OUT` is the window's standard output so far),
+/// presses Escape: the window ends as soon as what the test looks for has happened, and its
+/// `--exit-after` is only a cap for a slow machine. Returns (status, stdout, stderr); stdout
+/// holds what `keys` printed, then the window's.
+fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, String) {
     let relief = env!("CARGO_BIN_EXE_relief");
+    let out = tempfile_path();
+    let keys = if keys.is_empty() { ":" } else { keys };
     let script = format!(
-        "\"$0\" \"$@\" & pid=$!; \
+        "\"$0\" \"$@\" > \"$OUT\" & pid=$!; \
+         w=; while [ -z \"$w\" ] && kill -0 $pid 2>/dev/null; do \
+           w=$(xdotool search --name '^relief' 2>/dev/null | head -n 1); sleep 0.2; done; \
          sleep 2; \
-         w=$(xdotool search --sync --name '^relief' | head -n 1); \
          xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
-         wait $pid"
+         while kill -0 $pid 2>/dev/null && ! {{ {until}; }}; do sleep 0.2; done; \
+         xdotool windowfocus \"$w\" 2>/dev/null; xdotool key Escape 2>/dev/null; \
+         wait $pid; status=$?; cat \"$OUT\"; exit $status"
     );
     let _one = ONE_WINDOW.lock().unwrap_or_else(|e| e.into_inner());
-    let out = Command::new("xvfb-run")
+    let result = Command::new("xvfb-run")
         .args([
             "-a",
             "-s",
@@ -151,16 +162,28 @@ fn window_with_keys(args: &[&str], keys: &str) -> (i32, String, String) {
             relief,
         ])
         .args(args)
+        .env("OUT", &out)
         .env_remove("XDG_RUNTIME_DIR")
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .expect("the window tests need xvfb-run and xdotool; .ci/test installs them");
+    let _ = std::fs::remove_file(&out);
     (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
+        result.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&result.stdout).into_owned(),
+        String::from_utf8_lossy(&result.stderr).into_owned(),
     )
 }
+
+/// A fresh file path for one window's standard output.
+fn tempfile_path() -> std::path::PathBuf {
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    std::env::temp_dir().join(format!("relief-window-{}-{n}.txt", std::process::id()))
+}
+
+/// The window's last line says it is idle: it has stopped drawing.
+const IDLE: &str = "tail -n 1 \"$OUT\" | grep -q 'idle after frame'";
 
 /// "baked: every level and its light in T ms over N frames, ...": N.
 fn frames_baking(stdout: &str) -> u64 {
@@ -186,12 +209,12 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
         "6",
         "--timings",
         "--exit-after",
-        "20",
+        "60",
     ];
     // Untouched: frames while the levels and their light come in over the per-frame budgets
     // (the window never waits on a whole bake, and its title says "baking"), then, once
     // baked, idle.
-    let (code, stdout, err) = window(&args);
+    let (code, stdout, err) = window_with_keys(&args, "", IDLE);
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
     assert!(stdout.contains("idle after frame"), "{stdout}");
@@ -208,6 +231,7 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
         &args,
         "while xdotool getwindowname \"$w\" | grep -q baking; do sleep 0.2; done; \
          xdotool keydown w; sleep 2; xdotool keyup w",
+        IDLE,
     );
     assert_eq!(code, 0, "{err}");
     let flying = frames_drawn(&stdout) - frames_baking(&stdout);
@@ -249,12 +273,14 @@ fn m_steps_the_window_to_the_next_method() {
         "16",
         "--timings",
         "--exit-after",
-        "30",
+        "60",
     ];
     let (code, stdout, err) = window_with_keys(
         &args,
         "xdotool getwindowname \"$w\"; xdotool key m; sleep 3; xdotool getwindowname \"$w\"; \
          xdotool key m; sleep 3; xdotool getwindowname \"$w\"",
+        "grep -q ', visibility at 4 samples a pixel)' \"$OUT\" \
+         && grep -q ', hybrid at 4 samples a pixel)' \"$OUT\"",
     );
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
@@ -312,7 +338,7 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
         "--pixel-error",
         "16",
         "--exit-after",
-        "16",
+        "40",
     ];
     // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off, L the water; the title
     // shows it. Then F held for 1.5 s, past the X server's key repeat delay, turns the fog on
@@ -324,7 +350,7 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
                 xdotool getwindowname \"$w\"; xdotool keydown f; sleep 1.5; xdotool keyup f; \
                 xdotool keydown minus; sleep 1.5; xdotool keyup minus; sleep 1; \
                 xdotool getwindowname \"$w\"";
-    let (code, stdout, err) = window_with_keys(&args, keys);
+    let (code, stdout, err) = window_with_keys(&args, keys, "true");
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
     let titles: Vec<_> = stdout
@@ -377,9 +403,14 @@ fn the_window_draws_the_method_samples_and_raster_it_is_given() {
         "compute",
         "--timings",
         "--exit-after",
-        "20",
+        "60",
     ];
-    let (code, stdout, err) = window(&args);
+    // Until three frames' timings have come.
+    let (code, stdout, err) = window_with_keys(
+        &args,
+        "",
+        "[ \"$(grep -c 'rasterised in compute)' \"$OUT\")\" -ge 3 ]",
+    );
     assert_eq!(code, 0, "{err}");
     assert_eq!(
         err, "",
@@ -417,9 +448,14 @@ fn the_window_chooses_its_method_by_measurement_with_method_auto() {
         "16",
         "--timings",
         "--exit-after",
-        "30",
+        "60",
     ];
-    let (code, stdout, err) = window(&args);
+    // Until the choice and two frames' timings after it.
+    let (code, stdout, err) = window_with_keys(
+        &args,
+        "",
+        "awk '/^method /{m=1} m && /^timings/{n++} END{exit !(n >= 2)}' \"$OUT\"",
+    );
     assert_eq!(code, 0, "{err}");
     let candidates = relief::choice::Candidate::all(relief::WorldKind::Tile);
     assert!(
