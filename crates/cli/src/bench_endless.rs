@@ -12,10 +12,16 @@ pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Re
     } else {
         (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
     };
+    let land = &params.land;
     println!(
-        "relief bench --world endless{} on {}: {} views x {} knobs{} and a flight at {}x{}",
+        "relief bench --world endless{} on {}, world: seed {}, octaves {}, gain {}, feature size {} m, peak height {} m: {} views x {} knobs{} and a flight at {}x{}",
         if quick { " --quick" } else { "" },
         gpu.describe(),
+        land.seed,
+        land.octaves,
+        land.gain,
+        land.cell(0),
+        land.peak_height,
         3,
         knobs.len(),
         if quick {
