@@ -193,8 +193,9 @@ await withBrowser(webgpu, async (browser) => {
     `SwiftShader: wasm ${wasmKib.toFixed(0)} KiB, first frame at ${firstMs} ms, CPU ${cpuMs} ms a frame (in the readout)`);
   check(errors3.length === 0, `no console errors with the blog and the metrics (${errors3.join(" | ") || "none"})`);
 
-  // The picture for the README (not a check): the whole page, controls included.
-  try {
+  // The picture for the docs (not a check, and only when asked: PAGE_PICTURES=1): the whole
+  // page, controls included.
+  if (process.env.PAGE_PICTURES === "1") try {
     const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
     await full.goto(`${base}/index.html?paused=1`);
     await waitFrames(full, 3);
@@ -313,8 +314,9 @@ await withBrowser(webgpu, async (browser) => {
   check(runs, `the path's camera and time reach the URL and the time runs (${qp.slice(qp.indexOf("camera="))})`);
   check(errors.length === 0, `no console errors in the endless world (${errors.join(" | ") || "none"})`);
 
-  // The picture for the README (not a check): the whole page in the endless world.
-  try {
+  // The picture for the docs (not a check, and only when asked: PAGE_PICTURES=1; on SwiftShader
+  // it can take minutes): the whole page in the endless world.
+  if (process.env.PAGE_PICTURES === "1") try {
     const full = await browser.newPage({ viewport: { width: 960, height: 600 }, deviceScaleFactor: 1 });
     await full.goto(`${base}/index.html?world=endless&pixel_error=6`);
     await waitFrames(full, 2);

@@ -48,8 +48,15 @@ fi
 echo "== page tests in Chromium (web/test/page.mjs)"
 node web/test/page.mjs
 
+# The program and the FLIP tool, built as `cargo test --workspace` builds them (the workspace's
+# features): after the tests, nothing is built twice (`cargo run --bin relief` alone would unify
+# other features and rebuild wgpu, twice).
+cargo build --locked --quiet --workspace --bin relief --example flip
+relief=target/debug/relief
+flip=target/debug/examples/flip
+
 echo "== page against relief render (FLIP)"
-cargo run --locked --quiet --bin relief -- render --out "$out/native.png" --width 256 --height 192 \
+"$relief" render --out "$out/native.png" --width 256 --height 192 \
     --seed 7 --size 256 --grid 128 --method mesh
 # The page draws the mesh unless told: `--method mesh`, as relief render's default (auto)
 # measures which method is fastest on this machine's GPU.
@@ -58,46 +65,46 @@ cargo run --locked --quiet --bin relief -- render --out "$out/native.png" --widt
 # space) and rounding. Measured: mean 0.028 for the same scene, 0.25 for seed 8 against seed 7.
 # 0.05 accepts the first and rejects the second by a wide margin (checked below).
 max_mean=0.05
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native.png" "$out/page.png" \
+"$flip" "$out/native.png" "$out/page.png" \
     --max-mean "$max_mean" --diff "$out/page-vs-native.png"
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native.png" "$out/page-seed8.png" > "$out/control.txt"
+"$flip" "$out/native.png" "$out/page-seed8.png" > "$out/control.txt"
 cat "$out/control.txt"
 control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control.txt")
 awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell seed 8 from seed 7"; exit 1 } }'
 
 echo "== the page's visibility method against relief render --method visibility (FLIP)"
-cargo run --locked --quiet --bin relief -- render --out "$out/native-visibility.png" --width 256 \
+"$relief" render --out "$out/native-visibility.png" --width 256 \
     --height 192 --seed 7 --size 256 --grid 128 --method visibility
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-visibility.png" "$out/page-visibility.png" \
+"$flip" "$out/native-visibility.png" "$out/page-visibility.png" \
     --max-mean "$max_mean" --diff "$out/page-vs-native-visibility.png"
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-visibility.png" "$out/page-seed8.png" \
+"$flip" "$out/native-visibility.png" "$out/page-seed8.png" \
     > "$out/control-visibility.txt"
 cat "$out/control-visibility.txt"
 control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control-visibility.txt")
 awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell seed 8 from the visibility method'"'"'s seed 7"; exit 1 } }'
 
 echo "== the endless world's page against relief render (FLIP)"
-cargo run --locked --quiet --bin relief -- render --out "$out/native-endless.png" --width 256 \
+"$relief" render --out "$out/native-endless.png" --width 256 \
     --height 192 --world endless --seed 3 --pixel-error 16 --method mesh
 # The same tolerance: measured mean 0.021 for the same view; the control (the page after W was
 # held for 1.5 s, a view some 300 m on) scored 0.096.
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-endless.png" "$out/page-endless.png" \
+"$flip" "$out/native-endless.png" "$out/page-endless.png" \
     --max-mean "$max_mean" --diff "$out/page-vs-native-endless.png"
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-endless.png" "$out/page-endless-flown.png" > "$out/control-endless.txt"
+"$flip" "$out/native-endless.png" "$out/page-endless-flown.png" > "$out/control-endless.txt"
 cat "$out/control-endless.txt"
 control=$(sed -n 's/.*mean \([0-9.]*\),.*/\1/p' "$out/control-endless.txt")
 awk -v c="$control" -v m="$max_mean" 'BEGIN { if (c <= m) { print "the FLIP threshold cannot tell the flown view from the first"; exit 1 } }'
 echo "== the page's ray march against relief render --method raymarch (FLIP)"
-cargo run --locked --quiet --bin relief -- render --out "$out/native-endless-raymarch.png" --width 256 \
+"$relief" render --out "$out/native-endless-raymarch.png" --width 256 \
     --height 192 --world endless --seed 3 --pixel-error 16 --method raymarch
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-endless-raymarch.png" \
+"$flip" "$out/native-endless-raymarch.png" \
     "$out/page-endless-raymarch.png" --max-mean "$max_mean" --diff "$out/page-vs-native-raymarch.png"
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-endless.png" "$out/page-endless-raymarch.png" \
+"$flip" "$out/native-endless.png" "$out/page-endless-raymarch.png" \
     > "$out/control-raymarch.txt"
 cat "$out/control-raymarch.txt"
 echo "== the page's hybrid against relief render --method hybrid (FLIP)"
-cargo run --locked --quiet --bin relief -- render --out "$out/native-endless-hybrid.png" --width 256 \
+"$relief" render --out "$out/native-endless-hybrid.png" --width 256 \
     --height 192 --world endless --seed 3 --pixel-error 16 --method hybrid
-cargo run --locked --quiet -p relief-eval --example flip -- "$out/native-endless-hybrid.png" \
+"$flip" "$out/native-endless-hybrid.png" \
     "$out/page-endless-hybrid.png" --max-mean "$max_mean" --diff "$out/page-vs-native-hybrid.png"
 echo "web tests passed"

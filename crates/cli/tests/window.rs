@@ -144,10 +144,12 @@ fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, Str
         "\"$0\" \"$@\" > \"$OUT\" & pid=$!; \
          w=; while [ -z \"$w\" ] && kill -0 $pid 2>/dev/null; do \
            w=$(xdotool search --name '^relief' 2>/dev/null | head -n 1); sleep 0.2; done; \
-         sleep 2; \
-         xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
-         while kill -0 $pid 2>/dev/null && ! {{ {until}; }}; do sleep 0.2; done; \
-         xdotool windowfocus \"$w\" 2>/dev/null; xdotool key Escape 2>/dev/null; \
+         if [ -n \"$w\" ]; then \
+           sleep 2; \
+           xdotool windowfocus --sync \"$w\" 2>/dev/null; {keys}; \
+           while kill -0 $pid 2>/dev/null && ! {{ {until}; }}; do sleep 0.2; done; \
+           xdotool windowfocus \"$w\" 2>/dev/null; xdotool key Escape 2>/dev/null; \
+         fi; \
          wait $pid; status=$?; cat \"$OUT\"; exit $status"
     );
     let _one = ONE_WINDOW.lock().unwrap_or_else(|e| e.into_inner());
@@ -182,8 +184,10 @@ fn tempfile_path() -> std::path::PathBuf {
     std::env::temp_dir().join(format!("relief-window-{}-{n}.txt", std::process::id()))
 }
 
-/// The window's last line says it is idle: it has stopped drawing.
-const IDLE: &str = "tail -n 1 \"$OUT\" | grep -q 'idle after frame'";
+/// The window has stopped drawing and stays stopped: its last line says it is idle, and still
+/// does 5 s later (a window that woke again in between would have drawn, and said so).
+const IDLE: &str = "tail -n 1 \"$OUT\" | grep -q 'idle after frame' && sleep 5 \
+                    && tail -n 1 \"$OUT\" | grep -q 'idle after frame'";
 
 /// "baked: every level and its light in T ms over N frames, ...": N.
 fn frames_baking(stdout: &str) -> u64 {

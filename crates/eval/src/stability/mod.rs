@@ -56,6 +56,9 @@ use std::fmt::Write as _;
 pub use self::precision::*;
 
 /// Every axis's options at one effort: what `relief stability` runs (`--quick` or not).
+///
+/// The world grazing axis takes its height scale from `world` when the value is made: make a
+/// value for another world with [`Sweeps::quick`] or [`Sweeps::full`], not by changing `world`.
 #[derive(Clone, Debug)]
 pub struct Sweeps {
     /// The endless world the world axes (world grazing, shadow, distance, motion) sweep over.
