@@ -3,6 +3,9 @@
 //! something in the window's output presses Escape once it has come; `--exit-after` only caps
 //! how long a slow machine may take.
 
+#[path = "common/cli.rs"]
+mod cli_common;
+use cli_common::scratch;
 use std::process::Command;
 
 /// Runs `relief ARGS` in a window on a fresh virtual display; returns (status, stdout, stderr).
@@ -138,7 +141,11 @@ fn a_lost_device_is_reported_and_recovered_once() {
 /// holds what `keys` printed, then the window's.
 fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, String) {
     let relief = env!("CARGO_BIN_EXE_relief");
-    let out = tempfile_path();
+    // A scratch folder of its own for each window (the tests run side by side).
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = scratch(&format!("window-{n}"));
+    let out = dir.join("stdout.txt");
     let keys = if keys.is_empty() { ":" } else { keys };
     let script = format!(
         "\"$0\" \"$@\" > \"$OUT\" & pid=$!; \
@@ -169,19 +176,12 @@ fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, Str
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .expect("the window tests need xvfb-run and xdotool; .ci/test installs them");
-    let _ = std::fs::remove_file(&out);
+    let _ = std::fs::remove_dir_all(&dir);
     (
         result.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&result.stdout).into_owned(),
         String::from_utf8_lossy(&result.stderr).into_owned(),
     )
-}
-
-/// A fresh file path for one window's standard output.
-fn tempfile_path() -> std::path::PathBuf {
-    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
-    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    std::env::temp_dir().join(format!("relief-window-{}-{n}.txt", std::process::id()))
 }
 
 /// The window has stopped drawing and stays stopped: its last line says it is idle, and still
