@@ -153,6 +153,10 @@ pub struct Draw {
     pub method: relief::Method,
     /// Where the visibility method and the hybrid rasterise; `Compute` draws one sample a pixel.
     pub raster: relief::Raster,
+    /// In the endless world, relief's test layer too: a blue box standing behind the pillar,
+    /// which the pillar hides in part (how the embedding test checks that a layer of relief's
+    /// frame is depth-tested against the host's geometry).
+    pub layer: bool,
 }
 
 impl Draw {
@@ -223,6 +227,13 @@ pub fn render_frame(host: &Host, width: u32, height: u32, draw: Draw) -> Result<
         let eye = glam::DVec3::new(0.0, w.height_at(0.0, 0.0) + 150.0, 0.0);
         let spot = glam::DVec3::new(900.0, w.height_at(900.0, 0.0), 0.0);
         let view = WorldView::look_at(eye, spot + glam::DVec3::Y * 60.0, 0.8, (width, height));
+        if draw.layer {
+            let (x, z) = (1200.0, 25.0);
+            let foot = glam::DVec3::new(x, w.height_at(x, z) - 20.0, z);
+            let size = glam::DVec3::new(60.0, 240.0, 60.0);
+            let box_ = relief::gpu::test_box::TestBox::standing(foot, size, [0.05, 0.1, 0.9]);
+            w.push_layer(Box::new(box_));
+        }
         // One still frame: everything baked and lit first (a window would leave the budgets
         // as they are, and draw while the levels come in over a few frames).
         w.set_bake_budget(u64::MAX);
@@ -423,6 +434,7 @@ fn main() -> Result<(), String> {
             endless,
             method,
             raster: relief::Raster::Hardware,
+            layer: false,
         },
     )?;
     image::save_buffer(&out, &pixels, w, h, image::ColorType::Rgba8).map_err(|e| e.to_string())?;

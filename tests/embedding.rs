@@ -59,6 +59,7 @@ fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Rast
             endless,
             method,
             raster,
+            layer: false,
         },
     )
     .unwrap();
@@ -72,6 +73,7 @@ fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Rast
             endless,
             method,
             raster,
+            layer: false,
         },
     )
     .unwrap();
@@ -85,6 +87,7 @@ fn depth_tested_with(endless: bool, method: relief::Method, raster: relief::Rast
             endless,
             method,
             raster,
+            layer: false,
         },
     )
     .unwrap();
@@ -138,4 +141,60 @@ fn the_renderers_are_send_and_sync() {
     send_sync::<relief::WorldParams>();
     send_sync::<relief::TerrainParams>();
     send_sync::<relief::Error>();
+}
+
+fn is_blue(p: &[u8]) -> bool {
+    p[2] > 120 && p[0] < 60 && p[1] < 80
+}
+
+/// A layer of relief's frame (the test box, standing behind the host's pillar) is drawn into
+/// the host's pass against the host's depth: the pillar hides the part of the box behind it,
+/// with every mesh-based method.
+#[test]
+fn a_layer_is_depth_tested_against_host_geometry() {
+    let gpu = Host::new().expect("the embedding test needs a GPU adapter");
+    let (w, h) = (256, 192);
+    for (method, raster) in [
+        (relief::Method::Mesh, relief::Raster::Hardware),
+        (relief::Method::Visibility, relief::Raster::Compute),
+        (relief::Method::Hybrid, relief::Raster::Hardware),
+    ] {
+        let frame = |host| {
+            let draw = Draw {
+                host,
+                terrain: true,
+                endless: true,
+                method,
+                raster,
+                layer: true,
+            };
+            render_frame(&gpu, w, h, draw).unwrap()
+        };
+        let (alone, with_host) = (frame(false), frame(true));
+        let n = (w * h) as usize;
+        let px = |img: &[u8], i: usize| img[4 * i..4 * i + 4].to_vec();
+        let blue = |img: &[u8]| (0..n).filter(|&i| is_blue(&px(img, i))).count();
+        let hidden = (0..n)
+            .filter(|&i| is_blue(&px(&alone, i)) && is_red(&px(&with_host, i)))
+            .count();
+        let (b_alone, b_host) = (blue(&alone), blue(&with_host));
+        eprintln!(
+            "{method:?}: box pixels alone {b_alone}, with the pillar {b_host}, hidden by it {hidden}"
+        );
+        assert!(b_alone > 150, "{method:?}: the box must show ({b_alone})");
+        assert!(
+            hidden > 40,
+            "{method:?}: the pillar must hide the box behind it ({hidden})"
+        );
+        assert!(
+            b_host > 60,
+            "{method:?}: the box must show beside the pillar ({b_host})"
+        );
+        // Elsewhere the box is what it was, but for the pillar's blended edge pixels.
+        let elsewhere = b_alone - b_host - hidden;
+        assert!(
+            elsewhere * 8 < b_alone,
+            "{method:?}: {elsewhere} box pixels changed away from the pillar"
+        );
+    }
 }

@@ -1,13 +1,14 @@
 //! The list of layers, proved by the test layer (a box standing on the terrain): every
-//! mesh-based method draws it where the others do, the terrain hides it where it is in front,
-//! and without a layer nothing changes.
+//! mesh-based method and the reference draw it where the others do, the terrain hides it where
+//! it is in front, and without a layer nothing changes.
 
 mod common;
 
 use glam::DVec3;
 use relief::gpu::headless::{self, render_samples, Offscreen};
+use relief::gpu::layer::Layer;
 use relief::gpu::test_box::TestBox;
-use relief::{Method, MethodConfig, Raster, World, WorldParams, WorldView};
+use relief::{Method, MethodConfig, Raster, Shading, World, WorldParams, WorldView};
 
 const SIZE: (u32, u32) = (192, 108);
 
@@ -26,7 +27,7 @@ fn view_of(foot: DVec3) -> WorldView {
 }
 
 #[test]
-fn every_mesh_method_draws_the_test_box_and_the_terrain_hides_a_buried_one() {
+fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a_buried_one() {
     let gpu = common::gpu();
     let params = WorldParams::default();
     // On dry land 50 m above the water, east of (2000, -3000).
@@ -84,6 +85,35 @@ fn every_mesh_method_draws_the_test_box_and_the_terrain_hides_a_buried_one() {
         );
         counts.push(shown);
     }
+    // The reference: the box drawn over the cast at its 3x3 rays a pixel, depth-tested
+    // against the continuous surface the rays found.
+    let reference = |layers: &mut [Box<dyn Layer>]| {
+        let shading = Shading::default();
+        let (p, v) = (&params, &view);
+        headless::render_world_rays_with_layers(&gpu, p, &shading, v, Method::Reference, layers)
+            .unwrap()
+            .rgba
+    };
+    let bare = headless::render_world_rays(
+        &gpu,
+        &params,
+        &Shading::default(),
+        &view,
+        Method::Reference,
+        None,
+    )
+    .unwrap()
+    .rgba;
+    let standing =
+        |at: DVec3| -> Box<dyn Layer> { Box::new(TestBox::standing(at, size, [0.8, 0.1, 0.7])) };
+    let boxed = reference(&mut [standing(foot)]);
+    let shown = changed(&bare, &boxed);
+    let under = foot - DVec3::new(0.0, 1000.0, 0.0);
+    let buried = changed(&bare, &reference(&mut [standing(under)]));
+    eprintln!("reference: the box changed {shown} pixels, buried {buried}");
+    assert!(shown > 150, "reference: the box drew {shown} pixels");
+    assert_eq!(buried, 0, "reference: a buried box showed");
+    counts.push(shown);
     // Every method covers about the same pixels (edges differ by antialiasing and samples).
     let (lo, hi) = (counts.iter().min().unwrap(), counts.iter().max().unwrap());
     assert!(

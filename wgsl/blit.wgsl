@@ -1,3 +1,4 @@
+// import: fullscreen
 // Shows a ray-cast image in a window or on the page: one full-screen triangle whose fragments
 // average their `ss` x `ss` block of the cast (sRGB-encoded rgba8unorm, as the ray casters
 // store it) in linear light, and encode it again where the target is not an sRGB format.
@@ -26,8 +27,7 @@ fn blit_encode(c: vec3<f32>) -> vec3<f32> {
 
 @vertex
 fn blit_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(fullscreen_xy(i), 0.0, 1.0);
 }
 
 @fragment

@@ -168,9 +168,17 @@ struct Setup {
     hi: vec2<f32>,
     valid: bool,
     // The triangle's id: its cell's number (`cell_of`) times 4, plus 2 for the cell's second
-    // triangle, plus 1 for the second triangle of its cut to the near plane.
+    // triangle, plus 1 for the second triangle of its cut to the near plane. The terrain's
+    // layer is 0, so its ids are their primitives (`LAYER_SHIFT`).
     id: u32,
 }
+
+// A visibility-buffer id: the layer (0 the terrain, then the frame's list of layers) in the
+// bits from LAYER_SHIFT up, the layer's own primitive below them (PRIMITIVE_MASK): a terrain
+// triangle, later a blade or a prop instance. Rust's `raster::LAYER_SHIFT` agrees.
+const LAYER_SHIFT: u32 = 28u;
+const PRIMITIVE_MASK: u32 = 0x0fffffffu;
+const LAYER_TERRAIN: u32 = 0u;
 
 fn setup_triangle(v0: RasterVertex, v1_in: RasterVertex, v2_in: RasterVertex, id: u32) -> Setup {
     var t: Setup;

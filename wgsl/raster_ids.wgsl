@@ -65,7 +65,11 @@ fn raster_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     if kept.y == 0u {
         return;
     }
-    let triangle = kept.x;
+    // Each layer sets up its own primitives; the terrain's are its triangles.
+    if (kept.x >> LAYER_SHIFT) != LAYER_TERRAIN {
+        return;
+    }
+    let triangle = kept.x & PRIMITIVE_MASK;
     let cell = cell_of(triangle >> 2u);
     if !cell.valid {
         return;

@@ -1,4 +1,4 @@
-// import: march
+// import: march, fullscreen
 // part of: raymarch, world_rays_io (each defines the caster it calls)
 // The ray casters' entry points, shared by the tile's (raymarch.wgsl) and the endless world's
 // (world_rays.wgsl) casters, composed after either and march.wgsl: a compute shader writing
@@ -19,9 +19,7 @@ fn raymarch_cs(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @vertex
 fn fullscreen_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the viewport.
-    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(fullscreen_xy(i), 0.0, 1.0);
 }
 
 struct FragmentOut {

@@ -1,4 +1,4 @@
-// import: shade
+// import: shade, fullscreen
 // The sky pass: one full-screen triangle at the far plane (depth 1), drawn after the terrain
 // with a less-or-equal depth test, so it fills exactly the pixels nothing nearer covered (or
 // before the terrain where the host's pass has no depth). Each pixel shows `sky_pixel` (from
@@ -13,7 +13,7 @@ struct SkyOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> SkyOut {
-    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u)) * 2.0 - 1.0;
+    let xy = fullscreen_xy(i);
     var out: SkyOut;
     out.clip = vec4<f32>(xy, 1.0, 1.0);
     out.ndc = xy;

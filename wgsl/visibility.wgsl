@@ -1,4 +1,4 @@
-// import: world, vis_common
+// import: world, vis_common, fullscreen
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the
@@ -88,8 +88,7 @@ fn shade_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @vertex
 fn composite_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(fullscreen_xy(i), 0.0, 1.0);
 }
 
 struct CompositeOut {

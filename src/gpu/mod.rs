@@ -11,6 +11,7 @@ pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
 pub mod raster;
+pub(crate) mod ray_layers;
 pub mod raymarch;
 mod region;
 pub(crate) mod render;

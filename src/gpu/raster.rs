@@ -101,6 +101,11 @@ pub(crate) const PASSES: usize = 4;
 /// The levels the depth passes but the last end before, counted from the finest drawn.
 const PASS_LEVELS: [u32; PASSES - 1] = [2, 4, 7];
 
+/// Where a visibility-buffer id splits: the layer (0 the terrain) in the bits from here up,
+/// the layer's own primitive below (a terrain triangle: its cell's number times 4). As
+/// `LAYER_SHIFT` in `wgsl/raster.wgsl`.
+pub(crate) const LAYER_SHIFT: u32 = 28;
+
 /// The device features the raster with ids needs (64-bit integers and their atomic maximum).
 pub const ID_FEATURES: wgpu::Features =
     wgpu::Features::SHADER_INT64.union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
@@ -391,8 +396,11 @@ impl ComputeRaster {
         let [patch_cells, sub_cells] = patches.cells;
         let cells = u64::from(whole) * u64::from(patch_cells).pow(2)
             + u64::from(subs) * u64::from(sub_cells).pow(2);
-        // A triangle's id is its cell's number times 4, in 32 bits.
-        debug_assert!(cells < 1 << 30, "{cells} cells: past the ids' range");
+        // A triangle's id is its cell's number times 4, below the layer's bits.
+        debug_assert!(
+            cells < 1 << (LAYER_SHIFT - 2),
+            "{cells} cells: past the ids' range"
+        );
         // A workgroup a block of cells, blocks over a patch's edge included; the depth passes
         // split the whole patches at `patches.passes` (the last takes the sub-patches too).
         let blocks = |side: u32| side.div_ceil(BLOCK).pow(2);
@@ -517,6 +525,9 @@ mod tests {
         let wgsl = super::super::shader::file("raster").unwrap();
         assert!(wgsl.contains(&format!("const BLOCK: u32 = {BLOCK}u;")));
         assert!(wgsl.contains(&format!("const HIZ_TILE: u32 = {HIZ_TILE}u;")));
+        assert!(wgsl.contains(&format!("const LAYER_SHIFT: u32 = {LAYER_SHIFT}u;")));
+        let mask = (1u32 << LAYER_SHIFT) - 1;
+        assert!(wgsl.contains(&format!("const PRIMITIVE_MASK: u32 = {mask:#010x}u;")));
         assert!(wgsl.contains(&format!(
             "@workgroup_size({RESOLVE_SIDE}, {RESOLVE_SIDE})\nfn raster_hiz"
         )));

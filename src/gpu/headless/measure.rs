@@ -212,10 +212,11 @@ pub fn render_rays(
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
     let how = (method, method.supersample());
-    let image = cast(gpu, size, how, RayScene::Tile, timer, |caster, _| {
+    let prepare = |caster: &RayMarcher, _| {
         caster.prepare(&gpu.queue, params, shading, view, rays);
         Ok(())
-    })?;
+    };
+    let image = cast(gpu, size, how, RayScene::Tile, timer, prepare, |_, _| ())?;
     Ok((image.rgba, image.timings))
 }
 
@@ -244,10 +245,48 @@ pub fn render_world_rays_at(
     supersample: u32,
     timer: Option<&GpuTimer>,
 ) -> Result<RayImage> {
+    world_rays(
+        gpu,
+        (params, shading, view),
+        (method, supersample),
+        &mut [],
+        timer,
+    )
+}
+
+/// [`render_world_rays`] with the frame's `layers` ([`crate::gpu::layer`]) drawn over the cast
+/// at its samples, depth-tested against the surface it found: the reference of a frame with
+/// layers. The image's `distance` stays the terrain's.
+pub fn render_world_rays_with_layers(
+    gpu: &Gpu,
+    params: &crate::world::WorldParams,
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    layers: &mut [Box<dyn crate::gpu::layer::Layer>],
+) -> Result<RayImage> {
+    let how = (method, method.supersample());
+    world_rays(gpu, (params, shading, view), how, layers, None)
+}
+
+fn world_rays(
+    gpu: &Gpu,
+    (params, shading, view): (&crate::world::WorldParams, &crate::Shading, &WorldView),
+    (method, supersample): (crate::Method, u32),
+    layers: &mut [Box<dyn crate::gpu::layer::Layer>],
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
+    use crate::gpu::{ray_layers, world_rays};
     let Some(rays) = method.ray_method(params.land.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
-    let region = crate::gpu::world_rays::drawn_region(params, view);
+    let region = world_rays::drawn_region(params, view);
+    let ray_matrix = world_rays::ray_matrix(view);
+    let layer_matrix = ray_layers::layer_matrix(params, view, region);
+    let render = |matrix| {
+        crate::gpu::world::render_uniforms(params, shading, (matrix, region, view.eye), true)
+    };
+    let layer_render = render(layer_matrix);
     cast(
         gpu,
         view.size,
@@ -255,15 +294,18 @@ pub fn render_world_rays_at(
         RayScene::World,
         timer,
         |caster, size| {
-            let ray =
-                crate::gpu::world_rays::WorldRayUniforms::new(params, view, rays, size, region)?;
-            let render = crate::gpu::world::render_uniforms(
-                params,
-                shading,
-                (crate::gpu::world_rays::ray_matrix(view), region, view.eye),
-                true,
-            );
-            caster.prepare_world(&gpu.queue, &render, &ray)
+            let ray = world_rays::WorldRayUniforms::new(params, view, rays, size, region)?;
+            caster.prepare_world(&gpu.queue, &render(ray_matrix), &ray)
+        },
+        |caster, encoder| {
+            let frame = ray_layers::RayLayerFrame {
+                eye: view.eye,
+                ray_matrix,
+                layer_matrix,
+                render: &layer_render,
+                method,
+            };
+            ray_layers::encode(&gpu.device, &gpu.queue, encoder, caster, &frame, layers);
         },
     )
 }
@@ -430,7 +472,8 @@ pub fn world_light_horizons(
 }
 
 /// Casts `method`'s rays at `scene` into a `width` x `height` image, `ss` rays per pixel each
-/// way where the device allows; `prepare(caster, cast size)` writes the uniforms.
+/// way where the device allows; `prepare(caster, cast size)` writes the uniforms, and `after`
+/// records what is drawn over the cast before it is read (the frame's layers).
 pub(super) fn cast(
     gpu: &Gpu,
     (width, height): (u32, u32),
@@ -438,6 +481,7 @@ pub(super) fn cast(
     scene: RayScene,
     timer: Option<&GpuTimer>,
     prepare: impl FnOnce(&RayMarcher, (u32, u32)) -> Result<()>,
+    after: impl FnOnce(&RayMarcher, &mut wgpu::CommandEncoder),
 ) -> Result<RayImage> {
     let Some(path) = method.ray_path() else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
@@ -455,6 +499,7 @@ pub(super) fn cast(
     crate::gpu::scoped(&gpu.device, || {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         caster.encode(&mut encoder, path, timer);
+        after(&caster, &mut encoder);
         if let Some(t) = timer {
             t.resolve(&mut encoder);
         }
