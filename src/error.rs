@@ -81,7 +81,7 @@ impl Error {
     }
 }
 
-/// A path as an error line shows it: whole up to [`MAX_PATH_CHARS`] characters (an error line
+/// A path as an error line shows it: whole up to `MAX_PATH_CHARS` characters (an error line
 /// holds 200), else its start and its end around "...", so the file name and where the path
 /// starts both survive and a long path cannot push the reason off a one-line message.
 pub fn short_path(path: &std::path::Path) -> String {
@@ -98,7 +98,7 @@ pub fn short_path(path: &std::path::Path) -> String {
 }
 
 /// Longest path an error shows whole ([`short_path`]).
-pub const MAX_PATH_CHARS: usize = 120;
+pub(crate) const MAX_PATH_CHARS: usize = 120;
 
 /// relief's result type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

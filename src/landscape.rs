@@ -18,7 +18,7 @@ use crate::noise::{
 
 /// Largest of 2|D|/(1+|D|²)², the factor by which the damping of the eroded fBm can amplify
 /// the slope of the damped octave (reached at |D| = 1/sqrt(3)).
-pub const DAMPING_SLOPE: f64 = 0.649_519_052_838_329;
+pub(crate) const DAMPING_SLOPE: f64 = 0.649_519_052_838_329;
 
 /// How the octaves are summed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

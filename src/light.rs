@@ -20,7 +20,7 @@ use crate::sky::SUN_RADIUS;
 /// Steps per doubling of the distance in the horizon march: the step at distance `t` is
 /// `t / STEPS_PER_DOUBLING` (at least a level spacing), so a feature that subtends more than
 /// about that angle is not stepped over.
-pub const STEPS_PER_DOUBLING: f32 = 16.0;
+pub(crate) const STEPS_PER_DOUBLING: f32 = 16.0;
 /// Radius in metres of the ring whose mean height a point's valley depth is measured against.
 pub const VALLEY_RADIUS: f32 = 256.0;
 /// The valley depth (metres below the ring's mean) at which occlusion is full, as a fraction of
@@ -123,6 +123,19 @@ mod tests {
         assert_eq!(sun_visibility(0.1, 0.1 - w), 0.0);
         assert_eq!(valley_occlusion(100.0), 1.0);
         assert_eq!(valley_occlusion(-1000.0), f64::from(VALLEY_FLOOR));
+    }
+
+    #[test]
+    fn the_twins_constants_are_the_shadings() {
+        let wgsl = crate::gpu::shader::file("shade").unwrap();
+        for (name, value) in [
+            ("VALLEY_RADIUS", VALLEY_RADIUS),
+            ("VALLEY_DEPTH", VALLEY_DEPTH),
+            ("VALLEY_FLOOR", VALLEY_FLOOR),
+        ] {
+            let line = format!("const {name}: f32 = {value:?};");
+            assert!(wgsl.contains(&line), "shade.wgsl lacks `{line}`");
+        }
     }
 
     #[test]

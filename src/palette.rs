@@ -50,9 +50,9 @@ impl Palette {
 }
 
 /// Where the tone curve leaves the identity.
-pub const SHOULDER: f32 = 0.8;
+pub(crate) const SHOULDER: f32 = 0.8;
 
-/// The seed template's tone curve, per linear channel: the identity up to [`SHOULDER`], then a
+/// The seed template's tone curve, per linear channel: the identity up to `SHOULDER`, then a
 /// shoulder that rolls off smoothly (continuous in value and slope) towards 1, so bright snow
 /// and the sun's halo keep their gradations instead of clipping. The twin of `tone_map` in
 /// `wgsl/shade.wgsl`.

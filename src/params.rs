@@ -8,20 +8,20 @@ use crate::table::{self, Control, Kind, Param, Value};
 /// Largest texture side relief bakes; the device's own limit may be lower.
 pub const MAX_SIZE: u32 = 16384;
 /// Largest grid (vertices per side).
-pub const MAX_GRID: u32 = 4096;
+pub(crate) const MAX_GRID: u32 = 4096;
 /// Largest octave count.
-pub const MAX_OCTAVES: u32 = 16;
+pub(crate) const MAX_OCTAVES: u32 = 16;
 /// Largest base frequency (lattice cells across the tile).
 pub const MAX_FREQUENCY: u32 = 1024;
 /// Largest finest-octave period, `frequency << (octaves - 1)`: with `size` at most
 /// [`MAX_SIZE`], the shader's integer lattice arithmetic `(2x+1) * period` stays below 2^32.
-pub const MAX_PERIOD: u32 = 65536;
+pub(crate) const MAX_PERIOD: u32 = 65536;
 /// Largest height scale (world units; the tile is [`crate::WORLD_SIZE`] wide).
-pub const MAX_HEIGHT_SCALE: f32 = 10.0;
+pub(crate) const MAX_HEIGHT_SCALE: f32 = 10.0;
 /// Largest height-AO exponent.
-pub const MAX_AO_EXPONENT: f32 = 16.0;
+pub(crate) const MAX_AO_EXPONENT: f32 = 16.0;
 /// Largest |offset| in tiles: beyond 2^40 an f64 keeps too few fractional bits for a texel.
-pub const MAX_OFFSET: f64 = 1_099_511_627_776.0;
+pub(crate) const MAX_OFFSET: f64 = 1_099_511_627_776.0;
 
 /// Everything that decides what relief bakes and draws.
 ///

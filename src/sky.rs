@@ -20,13 +20,13 @@ use glam::Vec3;
 
 /// Extinction per kilometre of red, green and blue for one unit of `fog` (green's): half
 /// Rayleigh scattering ((550 nm / lambda)^4 at 680, 550 and 440 nm) and half neutral haze.
-pub const FOG_SPECTRUM: [f32; 3] = [0.714, 1.0, 1.721];
+pub(crate) const FOG_SPECTRUM: [f32; 3] = [0.714, 1.0, 1.721];
 /// Optical depth per air mass of red, green and blue beyond the zenith's, for the sun's colour.
-pub const SUN_TAU: [f32; 3] = [0.02, 0.05, 0.11];
+pub(crate) const SUN_TAU: [f32; 3] = [0.02, 0.05, 0.11];
 /// Angular radius of the drawn sun disc, radians (0.5 degrees).
 pub const SUN_RADIUS: f32 = 0.008_726_646;
 /// How fast the horizon's haze gives way to the zenith colour with the direction's height.
-pub const HAZE_FALLOFF: f32 = 8.0;
+pub(crate) const HAZE_FALLOFF: f32 = 8.0;
 
 /// The sun and the air: what the sky, the sun's light and the fog are made of.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -144,15 +144,6 @@ pub fn find<'a, T>(table: &'a [Param<T>], key: &str) -> Option<&'a Param<T>> {
     table.iter().find(|p| p.key == key)
 }
 
-/// "seed, size, ..." for errors about unknown keys.
-pub fn key_list<T>(tables: &[&[Param<T>]]) -> String {
-    tables
-        .iter()
-        .flat_map(|t| t.iter().map(|p| p.key))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 impl Kind {
     /// The allowed values in words (`0..=1`, `differences or analytic`).
     pub fn allowed(&self) -> String {
@@ -234,9 +225,9 @@ pub fn number(x: f64) -> String {
 }
 
 /// Most characters of a user's value an error line repeats.
-pub const MAX_VALUE_CHARS: usize = 32;
+pub(crate) const MAX_VALUE_CHARS: usize = 32;
 
-/// `text` cut to [`MAX_VALUE_CHARS`] characters (with `...` and the total length) and on one
+/// `text` cut to `MAX_VALUE_CHARS` characters (with `...` and the total length) and on one
 /// line, so an error about a megabyte value is still one short line.
 pub fn shorten(text: &str) -> String {
     shorten_to(text, MAX_VALUE_CHARS)

@@ -4,7 +4,7 @@
 //! The tile's fBm ([`crate::noise::Fbm`]) is a [`Landscape`] whose lattice wraps every
 //! `frequency << o` cells at octave `o` ([`Landscape::period`]): the same hash, gradients, fade
 //! and normalisation, so its heights are the tile's to rounding (tested below). One tile unit
-//! is [`TileFrame::unit`] metres, chosen so that octave 0's cell is a power of two of metres, as
+//! is `TileFrame::unit` metres, chosen so that octave 0's cell is a power of two of metres, as
 //! the landscape's integer lattice split needs. The image does not depend on that scale: a
 //! perspective view scaled with the scene is the same view.
 //!
@@ -19,11 +19,11 @@ use crate::params::TerrainParams;
 
 /// log2 of the period in metres the tile is laid out at (before the power-of-two rounding of
 /// octave 0's cell): about 4 km, the endless world's default ridge spacing.
-pub const PERIOD_LOG2: i32 = 12;
+pub(crate) const PERIOD_LOG2: i32 = 12;
 
 /// Where the tile lies in its periodic landscape.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TileFrame {
+pub(crate) struct TileFrame {
     /// The tile's terrain: periodic fBm in metres.
     pub land: Landscape,
     /// Metres per tile unit (the tile is 2 units wide, one period).
@@ -64,7 +64,7 @@ impl TileFrame {
     }
 
     /// A point in tile units as world metres.
-    pub fn to_world(&self, p: DVec3) -> DVec3 {
+    pub fn to_world(self, p: DVec3) -> DVec3 {
         DVec3::new(
             p.x * self.unit + self.origin[0],
             p.y * self.unit,

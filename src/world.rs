@@ -44,11 +44,11 @@ impl WorldKind {
 }
 
 /// Largest octave count of the endless world.
-pub const MAX_WORLD_OCTAVES: u32 = 20;
+pub(crate) const MAX_WORLD_OCTAVES: u32 = 20;
 /// Largest feature size (octave 0's lattice cell), metres.
-pub const MAX_FEATURE_SIZE: u32 = 1 << 20;
+pub(crate) const MAX_FEATURE_SIZE: u32 = 1 << 20;
 /// The finest octave's cell may not be under 2^-MIN_CELL_LOG2 metres.
-pub const MIN_CELL_LOG2: i32 = -7;
+pub(crate) const MIN_CELL_LOG2: i32 = -7;
 
 /// Everything that decides what the endless world looks like and how finely it is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -472,7 +472,7 @@ pub static WORLD_PARAMS: [WorldParam; 19] = [
 ];
 
 /// The latest `clock` the table takes, seconds (a day); a window runs on past it.
-pub const MAX_CLOCK: f32 = 86_400.0;
+pub(crate) const MAX_CLOCK: f32 = 86_400.0;
 
 /// The endless world's row for `key` (dashes accepted).
 pub fn world_param(key: &str) -> Option<&'static WorldParam> {

@@ -19,7 +19,7 @@
 //!
 //! The quality knob is the screen-space error in pixels. A level's mesh deviates vertically
 //! from the continuous surface by at most `error` metres (measured from the CPU twin, see
-//! [`level_error`]); a vertical deviation δ at distance d covers at most `K·δ/d` pixels, with
+//! `level_error`); a vertical deviation δ at distance d covers at most `K·δ/d` pixels, with
 //! `K = height_px / (2 tan(fov_y / 2))`. Level `l` is never drawn closer than `1.5 patch`
 //! of its cells from the camera (the finer level covers that), and its morph band (where the
 //! coarser level's error applies) no closer than `2.5 patch` cells, so the patch size follows
@@ -38,13 +38,13 @@ pub const MAX_LEVELS: usize = 24;
 pub const PATCH_RANGE: (u32, u32) = (4, 128);
 /// Levels finer than the finest octave needs (every octave is kept there): they bring the
 /// interpolation error of the finest octaves down where the eye is close to the ground.
-pub const EXTRA_FINE: i32 = 3;
+pub(crate) const EXTRA_FINE: i32 = 3;
 /// Largest extent of the clipmap in finest samples: camera-relative vertex positions stay exact
 /// integers in f32 (under 2^24, with a margin).
-pub const MAX_EXTENT_LOG2: i32 = 23;
+pub(crate) const MAX_EXTENT_LOG2: i32 = 23;
 /// How far the coarsest level reaches at least, in metres (past any horizon a camera a few
 /// kilometres up sees over the highest peaks of the default world).
-pub const REACH: f64 = 120_000.0;
+pub(crate) const REACH: f64 = 120_000.0;
 
 /// A level of the clipmap: where it is and what it costs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,7 +95,7 @@ pub struct Patch {
 }
 
 /// Sub-patches per patch side where a bounded world's edge crosses a patch ([`Clipmap::trim`]).
-pub const SUB_PATCHES: u32 = 8;
+pub(crate) const SUB_PATCHES: u32 = 8;
 
 /// The camera as the clipmap needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -160,10 +160,10 @@ pub fn max_eye(land: &Landscape) -> f64 {
 }
 
 /// The fade of the first level starts at this fraction of the height where it is dropped.
-pub const FADE_FROM: f64 = 0.7;
+pub(crate) const FADE_FROM: f64 = 0.7;
 
 /// log2 of the finest level's spacing for `land`: half the finest octave's cell, then
-/// [`EXTRA_FINE`] levels finer.
+/// `EXTRA_FINE` levels finer.
 pub fn finest_log2(land: &Landscape) -> i32 {
     land.feature_log2 - land.octaves as i32 - EXTRA_FINE
 }
@@ -173,7 +173,7 @@ pub fn finest_log2(land: &Landscape) -> i32 {
 /// metres: the largest deviation over 1024 scattered points, times 1.5 for what the sampling
 /// misses. The fBm is statistically the same everywhere, so this holds across the world; it is
 /// a measured bound, not a proof.
-pub fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
+pub(crate) fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
     1.5 * scattered_worst(land, spacing_log2, |x, z, mesh| {
         (land.height_at(x, z) - mesh).abs()
     })
@@ -181,7 +181,7 @@ pub fn level_error(land: &Landscape, spacing_log2: i32) -> f64 {
 
 /// How far the continuous surface can rise above the mesh of a grid spaced `2^spacing_log2`
 /// metres, in metres: what the hybrid method raises that level by, so the rasterised mesh lies
-/// on or above the surface. Twice the most it rises at [`level_error`]'s scattered points, plus
+/// on or above the surface. Twice the most it rises at `level_error`'s scattered points, plus
 /// a millionth of the peak for the levels' 24-bit heights: measured, as the level errors are,
 /// not proven (the proven bound on the octaves a coarse level drops is most of the peak, and a
 /// shell that thick would take the refinement hundreds of steps).

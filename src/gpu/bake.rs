@@ -44,7 +44,7 @@ impl BakeUniforms {
 /// Whether every 2x2 quad of texels from an even texel lies in one lattice cell of every octave
 /// of `p`: with no scroll offset, when each octave's cells span an even number of texels (the
 /// tile's side a multiple of twice the finest octave's cells across it).
-pub fn quads_share_cells(p: &TerrainParams) -> bool {
+pub(crate) fn quads_share_cells(p: &TerrainParams) -> bool {
     let finest = u64::from(p.frequency) << p.octaves.saturating_sub(1).min(32);
     p.reduced_offset() == [0.0, 0.0] && finest > 0 && u64::from(p.size) % (2 * finest) == 0
 }

@@ -7,7 +7,7 @@ use super::timing::{GpuTimer, Slot};
 /// Mirrors `BlitUniforms` in `wgsl/blit.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct BlitUniforms {
+pub(crate) struct BlitUniforms {
     /// Rays per pixel each way in the image shown.
     pub ss: u32,
     /// 1 where the target is not an sRGB format and the shader encodes.

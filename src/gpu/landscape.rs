@@ -81,7 +81,7 @@ pub struct LevelTarget {
 }
 
 /// Most rectangles one [`LandscapeBake::encode`] records.
-pub const MAX_RECTS: usize = 64;
+pub(crate) const MAX_RECTS: usize = 64;
 
 /// One in the height's 24-bit fixed point in a packed level texel (`wgsl/level_texel.wgsl`).
 const LEVEL_HEIGHT_ONE: f32 = 16_777_215.0;
@@ -115,7 +115,7 @@ fn f16_bits_to_f32(bits: u32) -> f32 {
     }
 }
 
-/// The pass: pipeline, layout and a uniform buffer of [`MAX_RECTS`] aligned slots.
+/// The pass: pipeline, layout and a uniform buffer of `MAX_RECTS` aligned slots.
 pub struct LandscapeBake {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
@@ -255,7 +255,7 @@ impl LandscapeBake {
         pass.dispatch_workgroups(x, y, 1);
     }
 
-    /// Writes the uniforms of up to [`MAX_RECTS`] rectangles and records one compute pass
+    /// Writes the uniforms of up to `MAX_RECTS` rectangles and records one compute pass
     /// baking them all (any more are left for the caller to record in another encoder).
     /// Returns how many were recorded.
     pub fn encode(

@@ -13,7 +13,7 @@
 use crate::clipmap::{Clipmap, Strip};
 
 /// [`LightQueue::light_from`] for a level drawn with no light yet (unshadowed).
-pub const NO_LIGHT: u32 = u32::MAX;
+pub(crate) const NO_LIGHT: u32 = u32::MAX;
 
 /// One level's light still to bake.
 #[derive(Clone, Debug, Default)]
@@ -43,7 +43,7 @@ impl LevelQueue {
 
 /// The levels' light still to bake: see the module docs.
 #[derive(Clone, Debug)]
-pub struct LightQueue {
+pub(crate) struct LightQueue {
     levels: Vec<LevelQueue>,
     /// The sun's azimuth the baked light is for (None: nothing lit yet).
     azimuth: Option<f32>,

@@ -11,6 +11,7 @@ pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
 pub mod raster;
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) mod ray_layers;
 pub mod raymarch;
 mod region;
@@ -612,7 +613,7 @@ pub async fn request_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wg
 }
 
 /// As [`request_device`], asking for only those of `wanted` the adapter has.
-pub async fn request_device_with(
+pub(crate) async fn request_device_with(
     adapter: &wgpu::Adapter,
     wanted: wgpu::Features,
 ) -> Result<(wgpu::Device, wgpu::Queue)> {
@@ -680,7 +681,7 @@ pub(crate) fn ready_now<F: std::future::Future>(f: F) -> Option<F::Output> {
 
 /// Maps a `MAP_READ` buffer, waits, and copies its contents out.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>> {
+pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>> {
     let slice = buffer.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {

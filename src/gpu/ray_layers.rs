@@ -8,6 +8,9 @@
 //! A layer drawn here is rasterised, not ray-cast: its own reference is its geometry drawn at
 //! the reference's samples. A layer whose exact image needs rays (a marched prop, a volume)
 //! brings its own pass here when it comes (docs/architecture.md, section 4).
+//!
+//! Native only, for now: `headless::render_world_rays_with_layers` is its one caller (the
+//! window's and the page's ray casters show no layers, as the window has none to show).
 
 use super::layer::{Layer, LayerFrame};
 use super::raymarch::RayMarcher;

@@ -40,7 +40,7 @@ pub struct LightUniforms {
     pub levels: u32,
     /// World height of normalised height 1.
     pub peak: f32,
-    /// [`STEPS_PER_DOUBLING`].
+    /// `STEPS_PER_DOUBLING`.
     pub steps: f32,
     /// [`VALLEY_RADIUS`].
     pub valley_radius: f32,
@@ -120,10 +120,10 @@ impl LightUniforms {
 }
 
 /// Most rectangles one [`LightBake::encode`] records.
-pub const MAX_LIGHT_RECTS: usize = 96;
+pub(crate) const MAX_LIGHT_RECTS: usize = 96;
 
 /// The pass: pipeline, layout, the level table and a buffer of rectangle slots.
-pub struct LightBake {
+pub(crate) struct LightBake {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     uniforms: wgpu::Buffer,

@@ -17,7 +17,7 @@ use crate::world::WorldParams;
 pub const MAX_STEPS: u32 = 16384;
 
 /// Octave bounds the uniforms carry (the most octaves a world has).
-pub const MAX_OCTAVES: usize = 24;
+pub(crate) const MAX_OCTAVES: usize = 24;
 
 /// Mirrors `WorldRayUniforms` in `wgsl/world_rays.wgsl` field by field.
 #[repr(C)]

@@ -65,12 +65,12 @@ impl Gpu {
     }
 }
 
-pub use super::map_read;
+pub(crate) use super::map_read;
 
 /// Records a copy of a whole 2-D texture into a new `MAP_READ` buffer; returns the buffer and
 /// its padded row pitch in bytes. The texture must fit one buffer (see [`read_texture_bands`]
 /// for any size).
-pub fn encode_texture_copy(
+pub(crate) fn encode_texture_copy(
     device: &wgpu::Device,
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,

@@ -148,7 +148,7 @@ pub(super) fn tiled(
 
 /// The clip-space transform that makes the `size` pixels at `origin` of a `full` image fill the
 /// viewport: drawing with `crop * view_proj` into a target of `size` draws exactly those pixels.
-pub fn crop_matrix(full: (u32, u32), origin: (u32, u32), size: (u32, u32)) -> glam::Mat4 {
+pub(crate) fn crop_matrix(full: (u32, u32), origin: (u32, u32), size: (u32, u32)) -> glam::Mat4 {
     let (w, h) = (f64::from(full.0), f64::from(full.1));
     let (x0, y0) = (f64::from(origin.0), f64::from(origin.1));
     let (tw, th) = (f64::from(size.0), f64::from(size.1));

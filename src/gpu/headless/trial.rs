@@ -104,12 +104,12 @@ impl TrialScene<'_> {
 
 /// Untimed frames of each candidate before [`choose_method`] times it: at least this many
 /// milliseconds (an H100 left idle while the next candidate is set up drops its clocks) ...
-pub const TRIAL_WARM_UP_MS: f64 = 300.0;
+pub(crate) const TRIAL_WARM_UP_MS: f64 = 300.0;
 /// ... and at least this many frames.
-pub const TRIAL_WARM_UP: u32 = 2;
+pub(crate) const TRIAL_WARM_UP: u32 = 2;
 /// The trial measures no further candidate once this long has passed (the first is always
 /// measured): on a software device a candidate can take tens of seconds.
-pub const TRIAL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+pub(crate) const TRIAL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
 
 /// Timed frames of each candidate; their median decides.
 pub const TRIAL_FRAMES: u32 = 5;

@@ -205,7 +205,7 @@ pub fn horizon(region: [f64; 4], eye: DVec3) -> f64 {
 }
 
 /// Where terrain begins fading into the sky, as a fraction of [`horizon`].
-pub const FADE_START: f64 = 0.7;
+pub(crate) const FADE_START: f64 = 0.7;
 
 /// The shading uniforms of the endless world for a camera-relative `matrix` (the camera at the
 /// origin), the square drawn (`region`, [`Clipmap::drawn_region`]) and the `eye`, shared by the

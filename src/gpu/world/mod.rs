@@ -11,9 +11,7 @@ mod resources;
 
 use self::draw::draw_patches;
 
-pub use self::frame::{
-    horizon, render_uniforms, CLOCK_PERIOD, FADE_START, RIPPLE_PERIOD, SAND_BAND,
-};
+pub use self::frame::{horizon, render_uniforms, CLOCK_PERIOD, RIPPLE_PERIOD, SAND_BAND};
 use self::resources::*;
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
