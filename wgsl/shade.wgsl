@@ -179,7 +179,7 @@ const CLOCK_PERIOD: f32 = 4096.0;
 const RIPPLES: array<vec4<f32>, 4> = array<vec4<f32>, 4>(
     // Cycles per RIPPLE_PERIOD in x and z, the wave's amplitude in metres, and its cycles per
     // CLOCK_PERIOD: a deep-water wave's angular frequency sqrt(g k) rounded to whole cycles
-    // (tests/wgsl.rs checks them).
+    // (src/gpu/wgsl_tests.rs checks them).
     vec4<f32>(37.0, 11.0, 0.020, 1987.0),
     vec4<f32>(-19.0, 41.0, 0.016, 2150.0),
     vec4<f32>(53.0, -29.0, 0.011, 2486.0),

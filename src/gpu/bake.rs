@@ -8,7 +8,7 @@ use crate::params::TerrainParams;
 /// Mirrors `BakeUniforms` in `wgsl/bake.wgsl` field by field.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct BakeUniforms {
+pub(crate) struct BakeUniforms {
     /// Texture side in texels.
     pub size: u32,
     /// Lattice cells across the tile at octave 0.

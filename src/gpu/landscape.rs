@@ -10,7 +10,7 @@ use crate::landscape::Landscape;
 /// Mirrors `LandscapeUniforms` in `wgsl/landscape.wgsl` field by field.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LandscapeUniforms {
+pub(crate) struct LandscapeUniforms {
     /// World sample coordinates of the rectangle's first texel.
     pub origin: [i32; 2],
     /// Rectangle size in samples.

@@ -16,13 +16,15 @@ pub(crate) mod ray_layers;
 pub mod raymarch;
 mod region;
 pub(crate) mod render;
-pub mod shader;
+pub(crate) mod shader;
 pub(crate) mod sky;
 pub mod test_box;
 pub mod timing;
 mod uniforms;
 mod util;
 pub mod visibility;
+#[cfg(test)]
+mod wgsl_tests;
 pub mod world;
 pub mod world_light;
 pub mod world_rays;
@@ -43,9 +45,6 @@ pub fn render_samples(method: crate::Method) -> u32 {
     }
 }
 
-pub use bake::BakeUniforms;
-pub use landscape::LandscapeUniforms;
-pub use normals::NormalUniforms;
 pub use render::RenderUniforms;
 pub use util::clear_color;
 pub(crate) use util::{

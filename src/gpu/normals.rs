@@ -6,7 +6,7 @@ use crate::params::TerrainParams;
 /// Mirrors `NormalUniforms` in `wgsl/normals.wgsl` field by field.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct NormalUniforms {
+pub(crate) struct NormalUniforms {
     /// Texture side in texels.
     pub size: u32,
     /// 0: central differences, 1: analytic gradient.

@@ -15,7 +15,7 @@ use crate::params::{Shading, TerrainParams};
 /// Mirrors `RayUniforms` in `wgsl/raymarch.wgsl` field by field.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct RayUniforms {
+pub(crate) struct RayUniforms {
     /// Inverse of projection times view.
     pub inv_view_proj: [[f32; 4]; 4],
     /// Hash seed.
@@ -92,7 +92,7 @@ impl RayUniforms {
 /// What a [`RayMarcher`] casts rays at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RayScene {
-    /// The 2-unit tile (`wgsl/raymarch.wgsl`, [`RayUniforms`]).
+    /// The 2-unit tile (`wgsl/raymarch.wgsl`, `RayUniforms`).
     Tile,
     /// The endless world (`wgsl/world_rays.wgsl`, [`super::world_rays::WorldRayUniforms`]).
     World,

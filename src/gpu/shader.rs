@@ -66,12 +66,14 @@ fn header<'a>(text: &'a str, key: &str) -> Vec<&'a str> {
 }
 
 /// The files `name` imports (its `// import:` line).
+#[cfg(test)]
 pub fn imports(name: &str) -> Vec<&'static str> {
     file(name).map_or_else(Vec::new, |text| header(text, "import"))
 }
 
 /// The files whose modules `name` is composed into, when it is only a part of them (its
 /// `// part of:` line); empty for a module of its own.
+#[cfg(test)]
 pub fn part_of(name: &str) -> Vec<&'static str> {
     file(name).map_or_else(Vec::new, |text| header(text, "part of"))
 }
@@ -109,6 +111,7 @@ pub fn source(name: &str) -> String {
 
 /// Every shader module relief can build: each file that is not only a part of others, by
 /// name, composed ([`source`]). What the tests validate.
+#[cfg(test)]
 pub fn modules() -> Vec<(&'static str, String)> {
     FILES
         .iter()

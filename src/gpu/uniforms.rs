@@ -6,7 +6,7 @@ use crate::clipmap::MAX_LEVELS;
 /// Mirrors `Level` in `wgsl/world.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LevelUniforms {
+pub(crate) struct LevelUniforms {
     /// Level origin in finest samples relative to the camera's reference sample.
     pub origin_rel: [i32; 2],
     /// Origin less twice the coarser level's, in this level's samples.
@@ -39,7 +39,7 @@ pub struct LevelUniforms {
 /// Mirrors `WorldUniforms` in `wgsl/world.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct WorldUniforms {
+pub(crate) struct WorldUniforms {
     /// xz: eye less the reference sample, metres; y: eye height; w: finest spacing.
     pub eye: [f32; 4],
     /// Cells per level side.

@@ -11,7 +11,7 @@ use crate::light::{STEPS_PER_DOUBLING, VALLEY_RADIUS};
 /// Mirrors `LightLevel` in `wgsl/world_light.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LightLevel {
+pub(crate) struct LightLevel {
     /// The level's first sample, in its samples.
     pub origin: [i32; 2],
     /// That sample's texel.
@@ -29,7 +29,7 @@ pub struct LightLevel {
 /// Mirrors `LightUniforms` in `wgsl/world_light.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LightUniforms {
+pub(crate) struct LightUniforms {
     /// Unit horizontal direction towards the sun (x, z).
     pub sun: [f32; 2],
     /// Cells per level side.
@@ -66,7 +66,7 @@ pub struct LightUniforms {
 /// Mirrors `LightRect` in `wgsl/world_light.wgsl`: a rectangle of one level's samples.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LightRect {
+pub(crate) struct LightRect {
     /// First sample, in the level's samples.
     pub origin: [i32; 2],
     /// Size in samples.

@@ -49,7 +49,7 @@ const SHADED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// Mirrors `VisUniforms` in `wgsl/visibility.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct VisUniforms {
+pub(crate) struct VisUniforms {
     /// Inverse of the camera-relative projection times view.
     pub inv: [[f32; 4]; 4],
     /// Row 3 of the projection times view (clip w).

@@ -11,7 +11,9 @@ mod resources;
 
 use self::draw::draw_patches;
 
-pub use self::frame::{horizon, render_uniforms, CLOCK_PERIOD, RIPPLE_PERIOD, SAND_BAND};
+#[cfg(test)]
+pub(crate) use self::frame::RIPPLE_PERIOD;
+pub use self::frame::{horizon, render_uniforms, CLOCK_PERIOD, SAND_BAND};
 use self::resources::*;
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
@@ -20,7 +22,7 @@ use super::light_queue::LightQueue;
 use super::region::{crop, crop_exact, subtract};
 use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
-pub use super::uniforms::{LevelUniforms, WorldUniforms};
+pub(crate) use super::uniforms::{LevelUniforms, WorldUniforms};
 use super::visibility::{Visibility, WorldBindings};
 pub use super::world_stats::{mib, WorldStats};
 use super::{scoped, shader, Targets};

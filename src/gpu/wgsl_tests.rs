@@ -1,7 +1,10 @@
 //! Every WGSL module relief builds is valid (naga), and the Rust uniform structs have the
-//! WGSL layouts.
+//! WGSL layouts. Unit tests, so the uniform mirrors stay private to the crate.
 
-use relief::gpu::{shader, BakeUniforms, LandscapeUniforms, NormalUniforms, RenderUniforms};
+use super::bake::BakeUniforms;
+use super::landscape::LandscapeUniforms;
+use super::normals::NormalUniforms;
+use super::{shader, RenderUniforms};
 use std::mem::{offset_of, size_of};
 
 fn parse(name: &str, source: &str) -> naga::Module {
@@ -162,7 +165,7 @@ fn landscape_uniforms_match_wgsl() {
 
 #[test]
 fn visibility_uniforms_match_wgsl() {
-    use relief::gpu::visibility::VisUniforms;
+    use crate::gpu::visibility::VisUniforms;
     let m = parse("visibility", &shader::source("visibility"));
     let (size, members) = layout(&m, "VisUniforms");
     assert_eq!(size as usize, size_of::<VisUniforms>());
@@ -223,8 +226,8 @@ fn uniform_structs_match_wgsl() {
 fn the_water_periods_agree_with_shade_wgsl() {
     let shade = shader::file("shade").unwrap();
     for (name, value) in [
-        ("RIPPLE_PERIOD", relief::gpu::world::RIPPLE_PERIOD),
-        ("CLOCK_PERIOD", relief::gpu::world::CLOCK_PERIOD),
+        ("RIPPLE_PERIOD", crate::gpu::world::RIPPLE_PERIOD),
+        ("CLOCK_PERIOD", crate::gpu::world::CLOCK_PERIOD),
     ] {
         let line = format!("const {name}: f32 = {value:.1};");
         assert!(shade.contains(&line), "shade.wgsl lacks `{line}`");
@@ -255,8 +258,8 @@ fn each_ripple_makes_whole_cycles_in_a_clock_period_at_its_deep_water_frequency(
     assert_eq!(waves.len(), 4, "{body}");
     let tau = std::f64::consts::TAU;
     for [x, z, _, cycles] in waves {
-        let k = x.hypot(z) * tau / f64::from(relief::gpu::world::RIPPLE_PERIOD);
-        let exact = (9.81 * k).sqrt() * f64::from(relief::gpu::world::CLOCK_PERIOD) / tau;
+        let k = x.hypot(z) * tau / f64::from(crate::gpu::world::RIPPLE_PERIOD);
+        let exact = (9.81 * k).sqrt() * f64::from(crate::gpu::world::CLOCK_PERIOD) / tau;
         assert_eq!(cycles, exact.round(), "({x}, {z}): {exact} cycles");
     }
 }
@@ -266,15 +269,15 @@ fn world_size_agrees_with_render_wgsl() {
     assert!(
         shader::file("shade").unwrap().contains(&format!(
             "const WORLD_SIZE: f32 = {:.1};",
-            relief::WORLD_SIZE
+            crate::WORLD_SIZE
         )),
-        "shade.wgsl's WORLD_SIZE must equal relief::WORLD_SIZE"
+        "shade.wgsl's WORLD_SIZE must equal crate::WORLD_SIZE"
     );
 }
 
 #[test]
 fn world_uniforms_match_wgsl() {
-    use relief::gpu::world::{LevelUniforms, WorldUniforms};
+    use crate::gpu::world::{LevelUniforms, WorldUniforms};
     let m = parse("world", &shader::source("world"));
     let (size, members) = layout(&m, "WorldUniforms");
     assert_eq!(size as usize, size_of::<WorldUniforms>());
@@ -312,13 +315,13 @@ fn world_uniforms_match_wgsl() {
     assert_eq!(
         std::mem::size_of_val(&<WorldUniforms as bytemuck::Zeroable>::zeroed().levels)
             / size_of::<LevelUniforms>(),
-        relief::clipmap::MAX_LEVELS
+        crate::clipmap::MAX_LEVELS
     );
 }
 
 #[test]
 fn light_uniforms_match_wgsl() {
-    use relief::gpu::world_light::{LightLevel, LightRect, LightUniforms};
+    use crate::gpu::world_light::{LightLevel, LightRect, LightUniforms};
     let m = parse("world_light", &shader::source("world_light"));
     let (size, members) = layout(&m, "LightUniforms");
     assert_eq!(size as usize, size_of::<LightUniforms>());
@@ -363,7 +366,7 @@ fn light_uniforms_match_wgsl() {
 
 #[test]
 fn world_ray_uniforms_match_wgsl() {
-    use relief::gpu::world_rays::WorldRayUniforms;
+    use crate::gpu::world_rays::WorldRayUniforms;
     let m = parse("world_rays", &shader::source("world_rays_io"));
     let (size, members) = layout(&m, "WorldRayUniforms");
     assert_eq!(size as usize, size_of::<WorldRayUniforms>());
@@ -385,7 +388,7 @@ fn world_ray_uniforms_match_wgsl() {
 
 #[test]
 fn tile_ray_uniforms_match_wgsl() {
-    use relief::gpu::raymarch::RayUniforms;
+    use crate::gpu::raymarch::RayUniforms;
     let m = parse("raymarch", &shader::source("raymarch"));
     let (size, members) = layout(&m, "RayUniforms");
     assert_eq!(size as usize, size_of::<RayUniforms>());
