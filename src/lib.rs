@@ -4,7 +4,7 @@
 //! derives a wrap-around normal map, and draws a mesh displaced by the heights, with levels of
 //! detail from the screen-space error, with Blinn-Phong shading, a noise-jittered snow line and
 //! height ambient occlusion. One renderer ([`World`]) draws both the seed blog's tile
-//! ([`Terrain`], a bounded square of a periodic landscape: [`tile`]) and the endless world.
+//! ([`Terrain`], a bounded square of a periodic landscape) and the endless world.
 //!
 //! ## Shape
 //!
@@ -90,12 +90,14 @@ pub mod palette;
 pub mod params;
 pub mod sky;
 pub mod table;
-pub mod tile;
+pub(crate) mod tile;
 pub mod world;
 
+pub use camera::WorldView;
 pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};
 pub use error::{Error, Result};
-pub use gpu::world::{World, WorldStats, WorldView};
+pub use gpu::world::World;
+pub use gpu::world_stats::WorldStats;
 pub use gpu::{height_at, Targets, Terrain, Textures};
 pub use method::{Method, MethodConfig, Raster};
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};

@@ -18,7 +18,7 @@ pub(crate) const NOISE_MAX_GRADIENT: f64 = 2.2;
 /// Bound on every second derivative (in lattice units) of one octave of the gradient noise:
 /// sampled over all corner-gradient combinations, the largest |d²n/dx²|, |d²n/dxdy| found is
 /// below 9 (tested in the landscape twin); 12 leaves a margin for what sampling misses.
-pub(crate) const NOISE_MAX_SECOND: f64 = 12.0;
+pub const NOISE_MAX_SECOND: f64 = 12.0;
 
 /// Which independent fBm stream a value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,7 +37,7 @@ pub fn pcg(v: u32) -> u32 {
 }
 
 /// The hash stream of one (seed, channel, octave).
-pub(crate) fn noise_stream(seed: u32, channel: Channel, octave: u32) -> u32 {
+pub fn noise_stream(seed: u32, channel: Channel, octave: u32) -> u32 {
     pcg(seed ^ pcg((channel as u32).wrapping_mul(64).wrapping_add(octave)))
 }
 
@@ -63,7 +63,7 @@ pub fn gradient(h: u32) -> [f64; 2] {
 /// Gradient noise at lattice position `p` (any real value) on a lattice that wraps every
 /// `period` cells (0: corners hashed as wrapping 32-bit integers, exactly as the GPU's bitcast
 /// of an i32 cell): the value, gradient and Hessian (xx, xy, yy) in lattice units.
-pub(crate) fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2], [f64; 3]) {
+pub fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f64; 2], [f64; 3]) {
     let fl = [p[0].floor(), p[1].floor()];
     let f = [p[0] - fl[0], p[1] - fl[1]];
     let wrap = |c: f64| {
@@ -94,7 +94,7 @@ pub(crate) fn periodic_noise(p: [f64; 2], period: u32, stream: u32) -> (f64, [f6
 /// Gradient noise inside one cell with corner gradients `g` (in the order (0,0), (1,0), (0,1),
 /// (1,1)) at position `f` in [0,1)^2: the value, gradient and Hessian (xx, xy, yy), all in
 /// lattice units.
-pub(crate) fn cell_noise(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64; 3]) {
+pub fn cell_noise(g: [[f64; 2]; 4], f: [f64; 2]) -> (f64, [f64; 2], [f64; 3]) {
     let [ga, gb, gc, gd] = g;
     let dot = |g: [f64; 2], x: f64, y: f64| g[0] * x + g[1] * y;
     let a = dot(ga, f[0], f[1]);

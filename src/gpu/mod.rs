@@ -26,9 +26,9 @@ pub mod visibility;
 #[cfg(test)]
 mod wgsl_tests;
 pub mod world;
-pub mod world_light;
+pub(crate) mod world_light;
 pub mod world_rays;
-mod world_stats;
+pub(crate) mod world_stats;
 
 /// MSAA samples of the target `relief render` and the window draw the mesh into.
 pub const RENDER_SAMPLES: u32 = 4;
@@ -143,7 +143,7 @@ impl Textures {
 /// It never creates a surface, submits or presents.
 ///
 /// The seed blog's tile. Its mesh is drawn by the clipmap renderer of the endless world
-/// ([`world::World`]) on the tile's periodic landscape ([`crate::tile`]), bounded to the tile's
+/// ([`world::World`]) on the tile's periodic landscape (`src/tile.rs`), bounded to the tile's
 /// square: levels of detail from the screen-space error, never finer than the `grid`. The
 /// tile's own textures (`size` texels a side: heights, colour channel, normals) are baked beside
 /// it for [`Terrain::textures`], `relief bake` and the ray-march methods.

@@ -36,7 +36,7 @@
 //! triangles span much of the screen, and one thread looping over all their pixels held up the
 //! whole pass.
 
-pub use crate::method::Raster;
+pub(crate) use crate::method::Raster;
 
 /// Mirrors `RasterUniforms` in `wgsl/raster.wgsl`.
 #[repr(C)]

@@ -50,7 +50,7 @@ pub(crate) struct RayUniforms {
     pub offset: [f32; 2],
 }
 
-pub use crate::method::{RayMethod, RayPath, SeedMarch};
+pub(crate) use crate::method::{RayMethod, RayPath, SeedMarch};
 
 /// Largest number of steps a ray may take before it is marked unresolved.
 pub const MAX_STEPS: u32 = 4096;

@@ -263,11 +263,7 @@ pub(super) type AxisOutput<'a> = (&'static str, String, Box<dyn FnOnce() -> Resu
 /// in `--stats`) is over `--pixel-error`, because the patches are at their largest side
 /// ([`relief::clipmap::PATCH_RANGE`]) or the finest level is coarse for the eye's height over
 /// the ground. None where the knob is honoured.
-pub(super) fn knob_warning(
-    s: &relief::gpu::world::WorldStats,
-    knob: f64,
-    size: (u32, u32),
-) -> Option<String> {
+pub(super) fn knob_warning(s: &relief::WorldStats, knob: f64, size: (u32, u32)) -> Option<String> {
     (s.error_bound_px > knob * (1.0 + 1e-9)).then(|| {
         format!(
             "relief: --pixel-error {knob} is finer than the levels can give this view at {}x{} ({}-cell patches, {} m finest spacing): its screen error is bounded by {:.2} px",

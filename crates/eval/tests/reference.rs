@@ -5,7 +5,8 @@
 mod common;
 
 use relief::gpu::headless::read_texture;
-use relief::gpu::raymarch::{RayMarcher, RayMethod, RayPath, SeedMarch};
+use relief::gpu::raymarch::RayMarcher;
+use relief::method::{RayMethod, RayPath, SeedMarch};
 use relief::{OrbitCamera, Shading, TerrainParams};
 use relief_eval::raycast::{pixel_ray, Surface};
 

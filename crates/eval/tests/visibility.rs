@@ -278,7 +278,7 @@ fn draw(
     gpu: &Gpu,
     world: &mut relief::World,
     (method, raster): (Method, Raster),
-    view: Option<&relief::gpu::world::WorldView>,
+    view: Option<&relief::WorldView>,
     skip: bool,
 ) -> Vec<u8> {
     let default = common::world_view(&WorldParams::default(), (W, H));
@@ -390,7 +390,7 @@ fn the_raster_with_ids_draws_what_the_second_raster_draws() {
 #[test]
 fn the_compute_raster_skips_only_what_is_hidden() {
     let gpu = gpu();
-    let view = relief::gpu::world::WorldView::look_at(
+    let view = relief::WorldView::look_at(
         glam::DVec3::new(0.0, 1202.0, 0.0),
         glam::DVec3::new(1.0, 1201.99, 0.2),
         0.8,

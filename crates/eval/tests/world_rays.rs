@@ -8,9 +8,10 @@ mod common;
 
 use glam::{DVec3, DVec4};
 use relief::gpu::headless::{self, Gpu, Offscreen};
-use relief::gpu::raymarch::{RayMarcher, RayMethod, RayScene};
+use relief::gpu::raymarch::{RayMarcher, RayScene};
 use relief::gpu::world_rays::{drawn_region, WorldRayUniforms};
 use relief::landscape::{Landscape, TerrainFn};
+use relief::method::RayMethod;
 use relief::{Method, Shading, World, WorldParams, WorldView};
 use relief_eval::metrics;
 
@@ -60,7 +61,7 @@ fn cast(
     );
     caster.prepare_world(&gpu.queue, &render, &ray).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    caster.encode(&mut encoder, relief::gpu::raymarch::RayPath::Compute, None);
+    caster.encode(&mut encoder, relief::method::RayPath::Compute, None);
     gpu.queue.submit([encoder.finish()]);
     let color = headless::read_texture(&gpu.device, &gpu.queue, &caster.color).unwrap();
     let distance = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance).unwrap();

@@ -24,10 +24,11 @@ use super::render::RenderUniforms;
 use super::timing::{GpuTimer, Slot};
 pub(crate) use super::uniforms::{LevelUniforms, WorldUniforms};
 use super::visibility::{Visibility, WorldBindings};
-pub use super::world_stats::{mib, WorldStats};
+pub use super::world_stats::mib;
+pub(crate) use super::world_stats::WorldStats;
 use super::{scoped, shader, Targets};
 use crate::camera::View;
-pub use crate::camera::WorldView;
+pub(crate) use crate::camera::WorldView;
 use crate::clipmap::{Clipmap, Eye, Patch, MAX_LEVELS, PATCHES};
 use crate::error::{Error, Result};
 use crate::gpu::landscape::{LandscapeBake, LevelTarget, Rect};
@@ -37,7 +38,7 @@ use crate::landscape::Landscape;
 use crate::method::{Method, MethodConfig};
 use crate::params::{Shading, TerrainParams};
 use crate::sky::SkyLight;
-pub use crate::world::WorldParams;
+pub(crate) use crate::world::WorldParams;
 
 /// The endless world's default camera (chosen by eye): 1200 m above the ground at
 /// (2000, -3000), looking east-north-east and a little down over ridges running out to the

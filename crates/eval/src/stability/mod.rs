@@ -48,8 +48,9 @@ use crate::raycast::{pixel_ray, Surface};
 use relief::camera::OrbitCamera;
 use relief::error::Result;
 use relief::gpu::headless::{self, Gpu};
-use relief::gpu::raymarch::{RayMarcher, RayMethod, RayPath, SeedMarch};
+use relief::gpu::raymarch::RayMarcher;
 use relief::method::Method;
+use relief::method::{RayMethod, RayPath, SeedMarch};
 use relief::params::{Shading, TerrainParams};
 use std::fmt::Write as _;
 

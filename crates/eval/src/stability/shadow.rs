@@ -23,10 +23,10 @@
 
 use relief::error::Result;
 use relief::gpu::headless::{self, Gpu};
-use relief::gpu::raymarch::{RayMethod, SeedMarch};
 use relief::gpu::world::World;
 use relief::light::lit_beyond;
 use relief::method::Method;
+use relief::method::{RayMethod, SeedMarch};
 use relief::sky::SUN_RADIUS;
 use relief::world::WorldParams;
 use relief::WorldView;

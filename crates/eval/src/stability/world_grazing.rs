@@ -11,10 +11,11 @@ use super::{judge, GrazingRow, Marcher, Options};
 use glam::{DVec3, DVec4};
 use relief::error::Result;
 use relief::gpu::headless::{self, Gpu, Offscreen};
-use relief::gpu::raymarch::{RayMarcher, RayMethod, RayPath, RayScene, SeedMarch};
+use relief::gpu::raymarch::{RayMarcher, RayScene};
 use relief::gpu::world::World;
 use relief::gpu::world_rays::{drawn_region, ray_matrix, WorldRayUniforms};
 use relief::method::Method;
+use relief::method::{RayMethod, RayPath, SeedMarch};
 use relief::world::WorldParams;
 use relief::WorldView;
 
