@@ -40,11 +40,12 @@ impl Palette {
         Self::ALL.into_iter().find(|p| p.name() == name)
     }
 
-    /// What `RenderUniforms::look[2]` carries.
-    pub fn code(self) -> f32 {
+    /// What `RenderUniforms::palette` carries (`PALETTE_BLOG` and `PALETTE_TEMPLATE` in
+    /// `wgsl/shade.wgsl`).
+    pub fn code(self) -> u32 {
         match self {
-            Palette::Blog => 0.0,
-            Palette::SeedTemplate => 1.0,
+            Palette::Blog => 0,
+            Palette::SeedTemplate => 1,
         }
     }
 }

@@ -41,18 +41,27 @@ struct RenderUniforms {
     sky_sunset: vec4<f32>,
     // rgb: extinction per world unit (0: clear air).
     fog: vec4<f32>,
-    // x, y: horizontal distance where terrain begins and finishes fading into the sky (y = 0:
-    // no fade).
-    fade: vec4<f32>,
-    // Water: level in normalised height, its plane's y here, the clock (s) modulo
+    // Horizontal distances where terrain begins and finishes fading into the sky (fade_end =
+    // 0: no fade).
+    fade_start: f32,
+    fade_end: f32,
+    // The sun's elevation, radians.
+    sun_elevation: f32,
+    // 1 when the caller's horizon casts shadows.
+    shadows: u32,
+    // Water: its level in normalised height, its plane's y here, the clock (s) modulo
     // CLOCK_PERIOD, 1 when there is water.
-    water: vec4<f32>,
-    // xy: the eye's xz less the wind's drift, modulo RIPPLE_PERIOD (ripples stay put in the
-    // world but for the wind); z: the sand band above the water, normalised height.
-    water_origin: vec4<f32>,
-    // x: 1 when the caller's horizon casts shadows; y: the sun's elevation (radians); z: the
-    // palette (src/palette.rs: 0 the blog's, 1 the seed template's).
-    look: vec4<f32>,
+    water_level: f32,
+    water_plane: f32,
+    clock: f32,
+    water_on: u32,
+    // The eye's xz less the wind's drift, modulo RIPPLE_PERIOD (ripples stay put in the world
+    // but for the wind).
+    ripple_origin: vec2<f32>,
+    // The sand band above the water, normalised height.
+    sand_band: f32,
+    // The palette: PALETTE_BLOG or PALETTE_TEMPLATE (src/palette.rs).
+    palette: u32,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.
@@ -115,7 +124,7 @@ fn tone_map(c: vec3<f32>) -> vec3<f32> {
 // Tone-mapped (seed template), clamped and encoded for the target.
 fn to_target(r: RenderUniforms, linear: vec3<f32>) -> vec3<f32> {
     var color = linear;
-    if r.look.z != PALETTE_BLOG {
+    if r.palette != PALETTE_BLOG {
         color = tone_map(max(color, vec3<f32>(0.0)));
     }
     color = clamp(color, vec3<f32>(0.0), vec3<f32>(1.0));
@@ -145,7 +154,7 @@ fn air_at(r: RenderUniforms, world: vec3<f32>) -> Air {
     var out: Air;
     out.keep = vec3<f32>(1.0);
     out.light = vec3<f32>(0.0);
-    if r.fade.y <= 0.0 && all(r.fog.rgb == vec3<f32>(0.0)) {
+    if r.fade_end <= 0.0 && all(r.fog.rgb == vec3<f32>(0.0)) {
         return out;
     }
     let rel = world - r.camera_pos.xyz;
@@ -153,8 +162,8 @@ fn air_at(r: RenderUniforms, world: vec3<f32>) -> Air {
     let dir = rel / max(d, 1e-30);
     let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
     var keep = exp(-r.fog.rgb * d);
-    if r.fade.y > 0.0 {
-        keep *= 1.0 - smoothstep(r.fade.x, r.fade.y, length(rel.xz));
+    if r.fade_end > 0.0 {
+        keep *= 1.0 - smoothstep(r.fade_start, r.fade_end, length(rel.xz));
     }
     out.keep = keep;
     out.light = air * (1.0 - keep);
@@ -196,7 +205,7 @@ fn ripple_normal(r: RenderUniforms, xz: vec2<f32>, d: f32) -> vec3<f32> {
         let k = w.xy * (6.2831853 / RIPPLE_PERIOD);
         let wavelength = 6.2831853 / length(k);
         let fade = 1.0 - smoothstep(25.0 * wavelength, 100.0 * wavelength, d);
-        let phase = dot(k, xz) - w.w * (6.2831853 / CLOCK_PERIOD) * r.water.z;
+        let phase = dot(k, xz) - w.w * (6.2831853 / CLOCK_PERIOD) * r.clock;
         slope += w.z * fade * cos(phase) * k;
     }
     return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
@@ -210,11 +219,11 @@ fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, sunlit: f3
     let eye = r.camera_pos.xyz;
     let rel = world - eye;
     // The fraction of the way to the terrain where the ray meets the plane.
-    let t = clamp((r.water.y - eye.y) / min(rel.y, -1e-30), 0.0, 1.0);
+    let t = clamp((r.water_plane - eye.y) / min(rel.y, -1e-30), 0.0, 1.0);
     let surface = eye + rel * t;
     let dist = length(rel);
     let view = rel / max(dist, 1e-30);
-    let n = ripple_normal(r, surface.xz + r.water_origin.xy, dist * t);
+    let n = ripple_normal(r, surface.xz + r.ripple_origin, dist * t);
     // The bottom, through the water it crosses (deeper looks darker and bluer).
     let through = exp(-WATER_EXTINCTION * dist * (1.0 - t));
     let light = r.ambient_color.rgb + r.sun_color.rgb * (max(r.sun_dir.y, 0.0) * sunlit);
@@ -234,17 +243,17 @@ fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, sunlit: f3
 const VALLEY_RADIUS: f32 = 256.0;
 const VALLEY_DEPTH: f32 = 0.5;
 const VALLEY_FLOOR: f32 = 0.35;
-const PALETTE_BLOG: f32 = 0.0;
+const PALETTE_BLOG: u32 = 0u;
 
 // What reaches a point (x: of the sun, y: of the ambient light), where the terrain's horizon
 // towards the sun stands at `horizon` radians and the point lies `valley` metres above its
 // surroundings. The blog's palette darkens low ground by h^k instead of valleys.
 fn occlusion(r: RenderUniforms, h: f32, horizon: f32, valley: f32) -> vec2<f32> {
     var sun = 1.0;
-    if r.look.x != 0.0 {
-        sun = smoothstep(-SUN_RADIUS, SUN_RADIUS, r.look.y - horizon);
+    if r.shadows != 0u {
+        sun = smoothstep(-SUN_RADIUS, SUN_RADIUS, r.sun_elevation - horizon);
     }
-    if r.look.z == PALETTE_BLOG {
+    if r.palette == PALETTE_BLOG {
         return vec2<f32>(sun, pow(max(h, 1e-4), r.ao_exponent));
     }
     let open = smoothstep(-VALLEY_DEPTH * VALLEY_RADIUS, 0.1 * VALLEY_RADIUS, valley);
@@ -317,7 +326,7 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, o
 // `shade` with the air between the eye and `world` given (`air_at` there, or interpolated from
 // the vertices around it).
 fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl: vec2<f32>, air: Air) -> vec3<f32> {
-    let blog = r.look.z == PALETTE_BLOG;
+    let blog = r.palette == PALETTE_BLOG;
     var albedo: vec3<f32>;
     if blog {
         albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
@@ -330,9 +339,9 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     let snow = smoothstep(line - SNOW_EDGE, line + SNOW_EDGE, h) * smoothstep(0.45, 0.75, n.y);
     albedo = mix(albedo, r.snow_color.rgb, snow);
     // Sand along the shore, its upper edge jittered by the colour noise as the snow line is.
-    if r.water.w != 0.0 {
-        let top = r.water.x + r.water_origin.z * (0.6 + tint);
-        albedo = mix(albedo, SAND, 1.0 - smoothstep(top - 0.5 * r.water_origin.z, top, h));
+    if r.water_on != 0u {
+        let top = r.water_level + r.sand_band * (0.6 + tint);
+        albedo = mix(albedo, SAND, 1.0 - smoothstep(top - 0.5 * r.sand_band, top, h));
     }
 
     let ao = occl.y;
@@ -358,7 +367,7 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     }
 
     // Terrain under water, seen from above it: the water's surface is what the ray meets.
-    if r.water.w != 0.0 && h < r.water.x && r.camera_pos.y > r.water.y {
+    if r.water_on != 0u && h < r.water_level && r.camera_pos.y > r.water_plane {
         let w = water_surface(r, world, lit, occl.x);
         return to_target(r, fog(r, w[0], w[1]));
     }

@@ -212,7 +212,7 @@ fn world_intersect(ro: vec3<f32>, rd: vec3<f32>) -> f32 {
 const SHADOW_STEPS: u32 = 64u;
 
 fn world_horizon(p: vec3<f32>, h0: f32) -> f32 {
-    let e = r.look.y;
+    let e = r.sun_elevation;
     let flat = length(r.sun_dir.xz);
     if e + SUN_RADIUS <= 0.0 || flat < 1e-6 {
         return -1.5;
@@ -292,11 +292,11 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR, footprint).x;
     let h0 = h * ray.peak;
     var horizon = -1.5;
-    if r.look.x != 0.0 {
+    if r.shadows != 0u {
         horizon = world_horizon(p, h0);
     }
     var valley = 0.0;
-    if r.look.z != PALETTE_BLOG {
+    if r.palette != PALETTE_BLOG {
         valley = world_valley(p.xz, h0);
     }
     let occl = occlusion(r, h, horizon, valley);

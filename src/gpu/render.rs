@@ -57,21 +57,30 @@ pub struct RenderUniforms {
     pub sky_sunset: [f32; 4],
     /// Extinction per world unit of red, green and blue: aerial perspective (0: clear air).
     pub fog: [f32; 4],
-    /// x, y: the horizontal distances from the eye where terrain begins and finishes fading into
-    /// the sky (y = 0: no fade). z, w unused.
-    pub fade: [f32; 4],
-    /// Water: x, its level in normalised height; y, its plane's y in the shading's space; z,
-    /// the clock in seconds modulo `CLOCK_PERIOD` (the ripples); w, 1 when there is water.
-    pub water: [f32; 4],
-    /// xy: the eye's x and z less the wind's drift, reduced modulo the ripples' period (so
-    /// ripples stay put in the world, but for the wind, while positions are camera-relative);
-    /// z: the sand band above the water, in
-    /// normalised height; w unused.
-    pub water_origin: [f32; 4],
-    /// The look: x, 1 when the terrain casts shadows (`shade`'s caller passes the horizon);
-    /// y, the sun's elevation in radians; z, the palette ([`crate::palette::Palette::code`]: 0
-    /// the blog's, 1 the seed template's materials and lighting, tone-mapped); w unused.
-    pub look: [f32; 4],
+    /// The horizontal distance from the eye where terrain begins fading into the sky, metres.
+    pub fade_start: f32,
+    /// Where the fade into the sky is whole, metres (0: no fade).
+    pub fade_end: f32,
+    /// The sun's elevation, radians.
+    pub sun_elevation: f32,
+    /// 1 when the terrain casts shadows (`shade`'s caller passes the horizon).
+    pub shadows: u32,
+    /// The water's level, normalised height.
+    pub water_level: f32,
+    /// The water plane's y in the shading's space.
+    pub water_plane: f32,
+    /// The clock in seconds modulo `CLOCK_PERIOD`: what moves the ripples.
+    pub clock: f32,
+    /// 1 when there is water.
+    pub water_on: u32,
+    /// The eye's x and z less the wind's drift, reduced modulo the ripples' period (so ripples
+    /// stay put in the world, but for the wind, while positions are camera-relative).
+    pub ripple_origin: [f32; 2],
+    /// The sand band above the water, normalised height.
+    pub sand_band: f32,
+    /// The palette ([`crate::palette::Palette::code`]: 0 the blog's, 1 the seed template's
+    /// materials and lighting, tone-mapped).
+    pub palette: u32,
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -113,10 +122,17 @@ impl RenderUniforms {
             sky_horizon: [0.0; 4],
             sky_sunset: [0.0; 4],
             fog: [0.0; 4],
-            fade: [0.0; 4],
-            water: [0.0; 4],
-            water_origin: [0.0; 4],
-            look: [0.0, sun.y.clamp(-1.0, 1.0).asin(), 0.0, 0.0],
+            fade_start: 0.0,
+            fade_end: 0.0,
+            sun_elevation: sun.y.clamp(-1.0, 1.0).asin(),
+            shadows: 0,
+            water_level: 0.0,
+            water_plane: 0.0,
+            clock: 0.0,
+            water_on: 0,
+            ripple_origin: [0.0; 2],
+            sand_band: 0.0,
+            palette: 0,
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(
@@ -134,7 +150,7 @@ impl RenderUniforms {
     pub fn set_sky(&mut self, s: &Shading, light: &SkyLight) {
         let w = |c: [f32; 3], w: f32| [c[0], c[1], c[2], w];
         self.sun_dir = w(light.sun_dir.to_array(), 0.0);
-        self.look[1] = light.sun_dir.y.clamp(-1.0, 1.0).asin();
+        self.sun_elevation = light.sun_dir.y.clamp(-1.0, 1.0).asin();
         self.sun_color = w(light.sun, 1.0);
         if s.sky {
             self.sky_zenith = w(light.zenith, 0.0);

@@ -219,7 +219,22 @@ fn uniform_structs_match_wgsl() {
     );
     assert_eq!(offset(&m, "grid"), offset_of!(RenderUniforms, grid));
     assert_eq!(offset(&m, "specular"), offset_of!(RenderUniforms, specular));
-    assert_eq!(offset(&m, "look"), offset_of!(RenderUniforms, look));
+    for (name, rust) in [
+        ("fog", offset_of!(RenderUniforms, fog)),
+        ("fade_start", offset_of!(RenderUniforms, fade_start)),
+        ("fade_end", offset_of!(RenderUniforms, fade_end)),
+        ("sun_elevation", offset_of!(RenderUniforms, sun_elevation)),
+        ("shadows", offset_of!(RenderUniforms, shadows)),
+        ("water_level", offset_of!(RenderUniforms, water_level)),
+        ("water_plane", offset_of!(RenderUniforms, water_plane)),
+        ("clock", offset_of!(RenderUniforms, clock)),
+        ("water_on", offset_of!(RenderUniforms, water_on)),
+        ("ripple_origin", offset_of!(RenderUniforms, ripple_origin)),
+        ("sand_band", offset_of!(RenderUniforms, sand_band)),
+        ("palette", offset_of!(RenderUniforms, palette)),
+    ] {
+        assert_eq!(offset(&m, name), rust, "RenderUniforms.{name}");
+    }
 }
 
 #[test]

@@ -225,12 +225,13 @@ pub fn render_uniforms(
     u.ambient_color = u.ambient_color.map(|c| c * light.day);
     u.ambient_color[3] = 1.0;
     // The world casts shadows (its callers pass the horizon) in its palette.
-    u.look[0] = if params.no_shadows { 0.0 } else { 1.0 };
-    u.look[2] = params.palette.code();
+    u.shadows = u32::from(!params.no_shadows);
+    u.palette = params.palette.code();
     if params.sky.fog > 0.0 {
         let e = params.sky.extinction();
         u.fog = [e[0], e[1], e[2], 0.0];
-        u.fade = [(FADE_START * horizon) as f32, horizon as f32, 0.0, 0.0];
+        u.fade_start = (FADE_START * horizon) as f32;
+        u.fade_end = horizon as f32;
     }
     if !params.no_water {
         let peak = params.land.peak_height;
@@ -238,18 +239,15 @@ pub fn render_uniforms(
         // The clock and the wind's drift reduced in f64 before they become f32: the waves
         // repeat every CLOCK_PERIOD seconds and every RIPPLE_PERIOD metres.
         let drift = params.wind.velocity() * params.clock;
-        u.water = [
-            (f64::from(params.water_level) / peak) as f32,
-            (f64::from(params.water_level) - eye.y) as f32,
-            params.clock.rem_euclid(f64::from(CLOCK_PERIOD)) as f32,
-            1.0,
-        ];
-        u.water_origin = [
+        u.water_level = (f64::from(params.water_level) / peak) as f32;
+        u.water_plane = (f64::from(params.water_level) - eye.y) as f32;
+        u.clock = params.clock.rem_euclid(f64::from(CLOCK_PERIOD)) as f32;
+        u.water_on = 1;
+        u.ripple_origin = [
             (eye.x - drift.x).rem_euclid(period) as f32,
             (eye.z - drift.y).rem_euclid(period) as f32,
-            (SAND_BAND / peak) as f32,
-            0.0,
         ];
+        u.sand_band = (SAND_BAND / peak) as f32;
     }
     u
 }
@@ -264,7 +262,7 @@ pub(super) fn tile_uniforms(
     setup: &TileSetup,
 ) -> RenderUniforms {
     let mut u = base_uniforms(params, shading, matrix, encode_srgb, setup.tex_size);
-    u.look[2] = crate::palette::Palette::Blog.code();
+    u.palette = crate::palette::Palette::Blog.code();
     u.shift = setup.shift;
     u
 }
@@ -344,7 +342,7 @@ mod tests {
                 (Mat4::IDENTITY, [-1e4, -1e4, 1e4, 1e4], eye),
                 false,
             );
-            (u.water_origin[0], u.water_origin[1])
+            (u.ripple_origin[0], u.ripple_origin[1])
         };
         // The pattern's coordinate of a fixed point is its position less the drift: after 10 s
         // at 4 m/s the pattern has moved 40 m east, so the eye sees it 40 m further west.
