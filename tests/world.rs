@@ -482,3 +482,38 @@ fn a_slow_dolly_does_not_pop_where_levels_move_and_without_the_morph_it_does() {
         "the control saw no pop without the morph"
     );
 }
+
+/// Switching between targets and back (the window's methods draw with 4 samples or 1) makes
+/// the mesh's and the sky's pipelines once per target: a switch back reuses them.
+#[test]
+fn a_switch_back_to_earlier_targets_makes_no_pipeline() {
+    let gpu = common::gpu();
+    let mut w = world(&gpu, params());
+    let four = *w.targets();
+    let one = relief::Targets {
+        sample_count: if four.sample_count == 1 { 4 } else { 1 },
+        ..four
+    };
+    // Live pipelines: the first switch makes the mesh's and the sky's for `one` and keeps
+    // `four`'s; a switch that made them again (keeping the old) would add two each time.
+    let pipelines = || {
+        gpu.device
+            .get_internal_counters()
+            .hal
+            .render_pipelines
+            .read()
+    };
+    let before = pipelines();
+    w.set_targets(&gpu.device, one).unwrap();
+    let made = pipelines();
+    assert_eq!(
+        made,
+        before + 2,
+        "the first switch keeps the old targets' pipelines"
+    );
+    for targets in [four, one, four, one] {
+        w.set_targets(&gpu.device, targets).unwrap();
+        assert_eq!(*w.targets(), targets);
+    }
+    assert_eq!(pipelines(), made, "a switch back made pipelines");
+}

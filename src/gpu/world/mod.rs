@@ -55,6 +55,9 @@ fn level_bytes(map: &Clipmap) -> u64 {
             + super::texel_bytes(LightBake::FORMAT))
 }
 
+/// How many other targets' mesh and sky pipelines a [`World`] keeps (`World::set_targets`).
+const KEPT_TARGETS: usize = 3;
+
 /// The endless world on the host's device: see the module docs.
 pub struct World {
     /// The layers drawn after the terrain ([`World::push_layer`]).
@@ -78,6 +81,9 @@ pub struct World {
     layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
     sky: super::sky::SkyPass,
+    /// The mesh's and the sky's pipelines for the targets drawn into before, kept for a switch
+    /// back (the window's methods draw with 4 samples or 1): at most [`KEPT_TARGETS`].
+    kept: Vec<(Targets, wgpu::RenderPipeline, super::sky::SkyPass)>,
     render_uniforms: wgpu::Buffer,
     world_uniforms: wgpu::Buffer,
     indices: wgpu::Buffer,
@@ -276,6 +282,7 @@ impl World {
                 layout,
                 bind_group,
                 sky: super::sky::SkyPass::new(device, &targets, &render_uniforms),
+                kept: Vec::new(),
                 render_uniforms,
                 world_uniforms,
                 indices,
@@ -316,13 +323,23 @@ impl World {
             return Ok(());
         }
         let tile = self.tile.is_some();
-        let (pipeline, sky) = scoped(device, || {
-            let pipeline = mesh_pipeline(device, (&self.layout, &self.module), &targets, tile);
-            let sky = super::sky::SkyPass::new(device, &targets, &self.render_uniforms);
-            (pipeline, sky)
-        })?;
-        self.pipeline = pipeline;
-        self.sky = sky;
+        let (pipeline, sky) = match self.kept.iter().position(|(t, ..)| *t == targets) {
+            Some(i) => {
+                let (_, pipeline, sky) = self.kept.remove(i);
+                (pipeline, sky)
+            }
+            None => scoped(device, || {
+                let pipeline = mesh_pipeline(device, (&self.layout, &self.module), &targets, tile);
+                let sky = super::sky::SkyPass::new(device, &targets, &self.render_uniforms);
+                (pipeline, sky)
+            })?,
+        };
+        let pipeline = std::mem::replace(&mut self.pipeline, pipeline);
+        let sky = std::mem::replace(&mut self.sky, sky);
+        self.kept.push((self.targets, pipeline, sky));
+        if self.kept.len() > KEPT_TARGETS {
+            self.kept.remove(0);
+        }
         self.targets = targets;
         // The visibility method's composite draws into the host's pass: built again for these.
         self.visibility = None;
