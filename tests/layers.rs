@@ -20,10 +20,11 @@ fn changed(a: &[u8], b: &[u8]) -> usize {
         .count()
 }
 
-/// A view from 1.5 km west of `foot` and 1.2 km above it, looking at the box's middle.
-fn view_of(foot: DVec3) -> WorldView {
+/// A view from 1.5 km west of `foot` and 1.2 km above it, looking at the box's middle, `size`
+/// pixels.
+fn view_of(foot: DVec3, size: (u32, u32)) -> WorldView {
     let eye = foot + DVec3::new(-1500.0, 1200.0, 0.0);
-    WorldView::look_at(eye, foot + DVec3::new(0.0, 150.0, 0.0), 0.8, SIZE)
+    WorldView::look_at(eye, foot + DVec3::new(0.0, 150.0, 0.0), 0.8, size)
 }
 
 #[test]
@@ -39,7 +40,7 @@ fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a
         })
         .find(|p| p.y > water + 50.0)
         .expect("dry land within 10 km");
-    let view = view_of(foot);
+    let view = view_of(foot, SIZE);
     let size = DVec3::new(150.0, 300.0, 150.0);
     let configs = [
         MethodConfig::MESH,
@@ -86,7 +87,9 @@ fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a
         counts.push(shown);
     }
     // The reference: the box drawn over the cast at its 3x3 rays a pixel, depth-tested
-    // against the continuous surface the rays found.
+    // against the continuous surface the rays found. At half the size each way (the cast is
+    // the slowest part of this test on a software GPU): its pixels count four times.
+    let view = view_of(foot, (SIZE.0 / 2, SIZE.1 / 2));
     let reference = |layers: &mut [Box<dyn Layer>]| {
         let shading = Shading::default();
         let (p, v) = (&params, &view);
@@ -111,9 +114,9 @@ fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a
     let under = foot - DVec3::new(0.0, 1000.0, 0.0);
     let buried = changed(&bare, &reference(&mut [standing(under)]));
     eprintln!("reference: the box changed {shown} pixels, buried {buried}");
-    assert!(shown > 150, "reference: the box drew {shown} pixels");
+    assert!(shown > 40, "reference: the box drew {shown} pixels");
     assert_eq!(buried, 0, "reference: a buried box showed");
-    counts.push(shown);
+    counts.push(4 * shown);
     // Every method covers about the same pixels (edges differ by antialiasing and samples).
     let (lo, hi) = (counts.iter().min().unwrap(), counts.iter().max().unwrap());
     assert!(

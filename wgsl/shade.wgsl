@@ -244,6 +244,7 @@ const VALLEY_RADIUS: f32 = 256.0;
 const VALLEY_DEPTH: f32 = 0.5;
 const VALLEY_FLOOR: f32 = 0.35;
 const PALETTE_BLOG: u32 = 0u;
+const PALETTE_TEMPLATE: u32 = 1u;
 
 // What reaches a point (x: of the sun, y: of the ambient light), where the terrain's horizon
 // towards the sun stands at `horizon` radians and the point lies `valley` metres above its

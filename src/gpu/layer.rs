@@ -15,7 +15,8 @@ pub struct LayerFrame<'a> {
     pub device: &'a wgpu::Device,
     /// The host's queue.
     pub queue: &'a wgpu::Queue,
-    /// The host's pass: colour format, depth and samples (a layer's pipelines match them).
+    /// The pass the layer draws into (the host's, or a ray cast's image): colour format, depth
+    /// and samples (a layer's pipelines match them).
     pub targets: &'a Targets,
     /// The eye, in world metres: a layer's positions reach the GPU relative to it, as the
     /// terrain's do (f32 far from the origin loses metres, not the eye's offset).
@@ -34,7 +35,10 @@ pub trait Layer: wgpu::WasmNotSendSync {
     /// Its name, for labels and [`crate::World::layers`].
     fn name(&self) -> &str;
     /// Writes what the layer needs before the host's pass (its uniforms, any bake), into the
-    /// host's `encoder` or its queue. Called by every [`crate::World::prepare`].
+    /// host's `encoder` or its queue. Called by every [`crate::World::prepare`], and by the
+    /// reference's cast with layers (`headless::render_world_rays_with_layers`), whose targets
+    /// are its own (1 sample, `Depth32Float`) and whose render-uniforms buffer is new each
+    /// cast: a layer keys what it builds on the [`LayerFrame`] it is given.
     fn prepare(&mut self, frame: &LayerFrame<'_>, encoder: &mut wgpu::CommandEncoder);
     /// Draws into the host's pass, after the terrain, with the depth test on.
     fn render(&self, pass: &mut wgpu::RenderPass<'_>);

@@ -207,9 +207,10 @@ pub(crate) fn encode(
     }
 }
 
-/// The layers' camera-relative matrix for a cast of `params` through `view`: near and far
-/// planes as the mesh's frame chooses them (a tenth of the eye's height over the ground, and
-/// the far corner of the drawn `region`), so a layer's depth has the mesh's precision.
+/// The layers' camera-relative matrix for a cast of `params` through `view`: the near plane as
+/// the mesh's frame chooses it (a tenth of the eye's height over the ground, within 5 cm and
+/// 20 m), the far plane past every point of the drawn `region` (its far corner, with the peak
+/// and the eye's height), so nothing the cast finds is clipped.
 pub(crate) fn layer_matrix(
     params: &crate::world::WorldParams,
     view: &crate::WorldView,

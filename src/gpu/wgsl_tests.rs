@@ -418,3 +418,16 @@ fn tile_ray_uniforms_match_wgsl() {
         assert_eq!(offset(&members, name), at, "{name}");
     }
 }
+
+#[test]
+fn the_palette_codes_agree_with_shade_wgsl() {
+    use crate::palette::Palette;
+    let wgsl = shader::file("shade").unwrap();
+    for (name, palette) in [
+        ("PALETTE_BLOG", Palette::Blog),
+        ("PALETTE_TEMPLATE", Palette::SeedTemplate),
+    ] {
+        let line = format!("const {name}: u32 = {}u;", palette.code());
+        assert!(wgsl.contains(&line), "shade.wgsl lacks `{line}`");
+    }
+}

@@ -219,13 +219,34 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
         }
         Err(e) => return clap_error(e),
     };
-    match run(&matches) {
+    match run(&matches, Go::Run) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("{}", error_line(&e.to_string()));
             2
         }
     }
+}
+
+/// Resolves `args` (the program's name first) as [`main_with_args`] would, through clap and
+/// the refusals the program makes of its arguments, but runs nothing: no window, no GPU, no file
+/// read but a `--scene` file, none written. What a command decides later (the output's
+/// extension, an eye under the ground, what the GPU allows) is not checked. `Err` holds what the
+/// program would print. What checks that every command the docs show is still accepted.
+pub fn check_args(
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> std::result::Result<(), String> {
+    let matches = command()
+        .try_get_matches_from(args)
+        .map_err(|e| e.to_string())?;
+    run(&matches, Go::Check).map_err(|e| error_line(&e.to_string()))
+}
+
+/// How far [`run`] goes: the whole command, or its arguments alone ([`check_args`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Go {
+    Run,
+    Check,
 }
 
 /// `error: ` and the message on one line of at most [`MAX_ERROR_CHARS`] characters. A longer
@@ -283,7 +304,7 @@ fn resolve_app(m: &ArgMatches, params: TerrainParams) -> Result<AppOptions> {
     Ok(o)
 }
 
-fn run(top: &ArgMatches) -> Result<()> {
+fn run(top: &ArgMatches, go: Go) -> Result<()> {
     let (name, m) = top.subcommand().unwrap_or(("window", top));
     let window_only: Vec<&str> = OPTIONS
         .iter()
@@ -492,7 +513,11 @@ fn run(top: &ArgMatches) -> Result<()> {
                 if let Some(d) = window_drawn {
                     draw_window_with(&mut options, d);
                 }
-                return relief_app::run_native(options, script(m)?);
+                let script = script(m)?;
+                if go == Go::Check {
+                    return Ok(());
+                }
+                return relief_app::run_native(options, script);
             }
             // A region bake's --size is its samples per side.
             let tile_only: Vec<&str> = TILE_ONLY
@@ -517,13 +542,28 @@ fn run(top: &ArgMatches) -> Result<()> {
             }
             if let Run::Bake { out_dir } = &run {
                 let region = region(m)?;
-                return bake_endless(&resolve_world(m)?, &region, out_dir, m.get_flag("timings"));
+                let params = resolve_world(m)?;
+                if go == Go::Check {
+                    return Ok(());
+                }
+                return bake_endless(&params, &region, out_dir, m.get_flag("timings"));
             }
-            return run_endless(run, resolve_world(m)?, m.get_flag("timings"));
+            let params = resolve_world(m)?;
+            if go == Go::Check {
+                return Ok(());
+            }
+            return run_endless(run, params, m.get_flag("timings"));
         }
     }
     let params = resolve_scene(m)?;
     let timings = m.get_flag("timings");
+    if go == Go::Check {
+        if matches!(run, Run::Window) {
+            resolve_app(m, params)?;
+            script(m)?;
+        }
+        return Ok(());
+    }
     match run {
         Run::Window => {
             let mut options = resolve_app(m, params)?;

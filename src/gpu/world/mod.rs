@@ -315,8 +315,9 @@ impl World {
     }
 
     /// Draws into `targets` from now on (the host's pass changed its formats or MSAA
-    /// samples): rebuilds what draws into the host's pass (the mesh's and the sky's pipelines,
-    /// the visibility method's composite); nothing is re-baked.
+    /// samples): what draws into the host's pass follows. The mesh's and the sky's pipelines of
+    /// up to three earlier targets are kept, and taken back on a switch back; the visibility
+    /// method's composite is built again. Nothing is re-baked.
     pub fn set_targets(&mut self, device: &wgpu::Device, targets: Targets) -> Result<()> {
         targets.validate()?;
         if targets == self.targets {
