@@ -229,12 +229,24 @@ impl Choice {
 
 /// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
 /// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
-/// hybrid's) raster and shading passes before it. `None` where neither was timed.
+/// hybrid's) raster, shading and temporal resolve passes before it. `None` where neither was
+/// timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade] =
-        [Slot::Render, Slot::Present, Slot::Raster, Slot::Shade].map(|s| t[s as usize]);
+    let [render, present, raster, shade, resolve] = [
+        Slot::Render,
+        Slot::Present,
+        Slot::Raster,
+        Slot::Shade,
+        Slot::Resolve,
+    ]
+    .map(|s| t[s as usize]);
     render.or(present)?;
-    Some([render, present, raster, shade].iter().flatten().sum())
+    Some(
+        [render, present, raster, shade, resolve]
+            .iter()
+            .flatten()
+            .sum(),
+    )
 }
 
 #[cfg(test)]

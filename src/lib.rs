@@ -90,6 +90,7 @@ pub mod palette;
 pub mod params;
 pub mod sky;
 pub mod table;
+pub mod temporal;
 pub(crate) mod tile;
 pub mod world;
 
@@ -101,6 +102,7 @@ pub use gpu::world_stats::WorldStats;
 pub use gpu::{height_at, Targets, Terrain, Textures};
 pub use method::{Method, MethodConfig, Raster};
 pub use params::{Dirty, NormalMethod, Redo, Shading, TerrainParams, PARAMS};
+pub use temporal::Temporal;
 pub use wgpu;
 pub use world::{Wind, WorldKind, WorldParams};
 

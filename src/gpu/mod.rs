@@ -18,6 +18,7 @@ mod region;
 pub(crate) mod render;
 pub(crate) mod shader;
 pub(crate) mod sky;
+pub(crate) mod temporal;
 pub mod test_box;
 pub mod timing;
 mod uniforms;

@@ -37,6 +37,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     rays,
     shade,
     sky,
+    temporal,
     test_box,
     vis_common,
     visibility,

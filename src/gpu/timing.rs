@@ -23,11 +23,13 @@ pub enum Slot {
     /// The visibility method's image written into the target without a render pass: one
     /// compute pass storing it, or a compute pass packing it and a copy.
     Present = 7,
+    /// The temporal service's resolve of the frame into its history.
+    Resolve = 8,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 8] = [
+    pub const ALL: [Slot; 9] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -36,6 +38,7 @@ impl Slot {
         Slot::Shade,
         Slot::Show,
         Slot::Present,
+        Slot::Resolve,
     ];
 
     /// The slot's name as printed.
@@ -49,6 +52,7 @@ impl Slot {
             Slot::Shade => "shade",
             Slot::Show => "show",
             Slot::Present => "present",
+            Slot::Resolve => "resolve",
         }
     }
 }

@@ -31,6 +31,13 @@ pub struct WorldStats {
     pub light_pending: u64,
     /// GPU memory of one level's textures (its samples and its light), bytes.
     pub level_bytes: u64,
+    /// Frames the shown image accumulates with the temporal service
+    /// ([`crate::World::set_temporal`]): 1 for a frame without history, up to the service's
+    /// frames; 0 where the service is off or the method draws unaccumulated.
+    pub history_frames: u32,
+    /// Why the frame has no history (the first frame, a cut, a resize, new parameters, ...),
+    /// where the service is on; `None` where it carried one.
+    pub history_fresh: Option<&'static str>,
 }
 
 impl WorldStats {
@@ -40,9 +47,10 @@ impl WorldStats {
         self.level_bytes * u64::from(self.levels_total)
     }
 
-    /// `key value` lines.
+    /// `key value` lines, and with the temporal service `history_frames` (and
+    /// `history_fresh` with the reason where the frame has no history).
     pub fn lines(&self) -> Vec<String> {
-        vec![
+        let mut lines = vec![
             format!("triangles {}", self.triangles),
             format!("patches {}", self.patches),
             format!("texels_baked {}", self.texels_baked),
@@ -56,7 +64,14 @@ impl WorldStats {
             format!("error_bound_px {:.3}", self.error_bound_px),
             format!("texture_mib_per_level {:.2}", mib(self.level_bytes)),
             format!("texture_mib {:.1}", mib(self.texture_bytes())),
-        ]
+        ];
+        if self.history_frames > 0 {
+            lines.push(format!("history_frames {}", self.history_frames));
+            if let Some(why) = self.history_fresh {
+                lines.push(format!("history_fresh {}", why.replace(' ', "_")));
+            }
+        }
+        lines
     }
 }
 

@@ -3,7 +3,12 @@
 use super::*;
 
 /// `relief bench --world endless`: landscape views over the pixel-error knob and a flight.
-pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Result<()> {
+pub(super) fn bench_endless(
+    params: &WorldParams,
+    dir: &Path,
+    quick: bool,
+    only: Option<&str>,
+) -> Result<()> {
     use relief_eval::bench::Options;
     check_out_dir(dir)?;
     let gpu = Gpu::new()?;
@@ -13,7 +18,16 @@ pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Re
         (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
     };
     let land = &params.land;
-    println!(
+    if let Some(part) = only {
+        println!(
+            "relief bench --world endless{} --only {part} on {} at {}x{}",
+            if quick { " --quick" } else { "" },
+            gpu.describe(),
+            options.width,
+            options.height
+        );
+    } else {
+        println!(
         "relief bench --world endless{} on {}, world: seed {}, octaves {}, gain {}, feature size {} m, peak height {} m: {} views x {} knobs{} and a flight at {}x{}",
         if quick { " --quick" } else { "" },
         gpu.describe(),
@@ -36,6 +50,7 @@ pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Re
         options.width,
         options.height
     );
+    }
     let created = create_dirs(dir)?;
     // Progress on stderr where a person watches it, never into a file.
     let progress = |what: &str| {
@@ -84,7 +99,45 @@ pub(super) fn bench_endless(params: &WorldParams, dir: &Path, quick: bool) -> Re
         }
         Ok(())
     };
-    let result = look().and_then(|()| sweep()).and_then(|()| arrival());
+    let size = (options.width, options.height);
+    let device = gpu.describe();
+    let temporal = || -> Result<()> {
+        use relief_eval::bench_temporal as t;
+        let run = t::run_temporal(&gpu, params, &options, quick, progress)?;
+        done();
+        write_whole(
+            &dir.join("temporal.csv"),
+            &t::still_csv(&run, &device, size),
+        )?;
+        wrote("temporal.csv", run.still.len());
+        let moving = t::moving_csv(&run.moving, &device, size);
+        write_whole(&dir.join("temporal-moving.csv"), &moving)?;
+        wrote("temporal-moving.csv", run.moving.len());
+        t::chart(&run.still, &dir.join("temporal"))?;
+        for line in t::summary(&run) {
+            println!("{line}");
+        }
+        Ok(())
+    };
+    let reference = || -> Result<()> {
+        use relief_eval::bench_temporal as t;
+        let rows = t::run_reference(&gpu, params, &options, quick, progress)?;
+        done();
+        write_whole(
+            &dir.join("reference.csv"),
+            &t::reference_csv(&rows, &device, size),
+        )?;
+        wrote("reference.csv", rows.len());
+        Ok(())
+    };
+    let result = match only {
+        Some("look") => look(),
+        Some("landscape") => sweep(),
+        Some("arrival") => arrival(),
+        Some("temporal") => temporal(),
+        Some("reference") => reference(),
+        _ => look().and_then(|()| sweep()).and_then(|()| arrival()),
+    };
     if result.is_err() {
         if let Some(c) = created {
             let _ = std::fs::remove_dir_all(c);

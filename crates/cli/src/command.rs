@@ -92,7 +92,20 @@ pub fn command() -> Command {
                      give; write bench.csv, bench.png and bench.svg",
                 )
                 .arg(out_dir_arg("bench-out"))
-                .arg(quick_arg("about a minute on a software GPU")),
+                .arg(quick_arg("about a minute on a software GPU"))
+                .arg(
+                    Arg::new("only")
+                        .long("only")
+                        .value_name("PART")
+                        .help(format!(
+                            "--world endless: run one part: look (the look's cost), landscape \
+                             (the LOD sweep), arrival, temporal (the temporal service: still \
+                             views converging, moving frames, its cost) or reference (the \
+                             reference's rays a pixel) [default: look, landscape and arrival] \
+                             [allowed: {}]",
+                            BENCH_PARTS.allowed()
+                        )),
+                ),
         )
         .subcommand(
             Command::new("stability")
@@ -271,6 +284,19 @@ pub fn command() -> Command {
             .global(true)
             .action(ArgAction::SetTrue)
             .help("render: print what the frame drew as `key value` lines (triangles, texels baked, levels, screen-error bound, texture memory)"),
+    )
+    .arg(
+        Arg::new("frames")
+            .long("frames")
+            .global(true)
+            .value_name("N")
+            .help(format!(
+                "render --world endless: draw N frames of the still view through the temporal \
+                 service, each jittered within its pixels, and write their mean (the \
+                 visibility method and the hybrid; 1: one frame, unjittered) [default: 1] \
+                 [allowed: {}]",
+                FRAMES.allowed()
+            )),
     )
     .arg(
         Arg::new("scene")

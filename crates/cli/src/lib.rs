@@ -75,6 +75,15 @@ const METHOD_NAMES: [&str; relief::Method::NAMES.len() + 1] = {
 /// `--samples`: samples a pixel of the visibility method and the hybrid.
 const SAMPLES: Kind = Kind::Choice(&["1", "4"]);
 
+/// `--frames`: frames `relief render` accumulates with the temporal service.
+const FRAMES: Kind = Kind::Int {
+    min: 1,
+    max: relief::temporal::MAX_FRAMES,
+};
+
+/// `relief bench --world endless --only`'s parts.
+const BENCH_PARTS: Kind = Kind::Choice(&["look", "landscape", "arrival", "temporal", "reference"]);
+
 /// `--raster`: where the visibility method rasterises.
 const RASTERS: Kind = Kind::Choice(&["hardware", "compute"]);
 
@@ -319,6 +328,7 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
             method: drawn(m, Drawn::Auto)?,
             camera: camera(m)?,
             stats: m.get_flag("stats"),
+            frames: frames(m)?,
         },
         "bake" => Run::Bake {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
@@ -326,6 +336,7 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
         "bench" => Run::Bench {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
             quick: m.get_flag("quick"),
+            only: bench_part(m)?,
         },
         "stability" => Run::Stability {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
@@ -381,7 +392,12 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
         drawn_in(method, world_kind(m)?)?;
     }
     if !matches!(run, Run::Render { .. }) {
-        refuse_flags(m, name, &["stats"], "it applies to relief render only")?;
+        refuse_flags(
+            m,
+            name,
+            &["stats", "frames"],
+            "it applies to relief render only",
+        )?;
     }
     let endless_window = matches!(run, Run::Window) && world_kind(m)? == WorldKind::Endless;
     if !endless_window && !matches!(run, Run::Render { .. }) {
@@ -579,16 +595,34 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
             method,
             camera,
             stats,
+            frames,
         } => render(
             &params,
             &out,
             (width, height),
             method,
             &camera,
-            Flags { timings, stats },
+            Flags {
+                timings,
+                stats,
+                frames,
+            },
         ),
         Run::Bake { out_dir } => bake(&params, &out_dir, timings),
-        Run::Bench { out_dir, quick } => bench(&params, &out_dir, quick),
+        Run::Bench {
+            out_dir,
+            quick,
+            only,
+        } => {
+            if only.is_some() {
+                return Err(Error::Usage(
+                    "--only picks a part of relief bench --world endless (the tile's benchmark \
+                     is one sweep)"
+                        .into(),
+                ));
+            }
+            bench(&params, &out_dir, quick)
+        }
         Run::Stability {
             out_dir,
             quick,
@@ -617,6 +651,8 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
 /// What `relief render` prints besides the image.
 #[derive(Clone, Copy, Debug)]
 struct Flags {
+    /// `--frames` (the endless world's: the tile draws one).
+    frames: u32,
     timings: bool,
     stats: bool,
 }

@@ -68,6 +68,7 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             camera,
             stats,
             method,
+            frames,
         } => {
             check_png_path(&out)?;
             let view = world_view(&camera, &params, (width, height));
@@ -113,11 +114,20 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let mut world = World::new(&gpu.device, &gpu.queue, targets, params)?;
             let scene = headless::TrialScene::Endless(&mut world, &view);
             resolve_drawn(&gpu, method, scene, timings)?;
-            let (pixels, t) = headless::render_world_image(
+            if frames > 1 {
+                let drawn = world.method();
+                if !matches!(drawn, relief::Method::Visibility | relief::Method::Hybrid) {
+                    return Err(Error::Usage(format!(
+                        "--frames {frames}: the temporal service accumulates the visibility                          method and the hybrid, and this frame is drawn by the {drawn}: give                          --method visibility or hybrid (or --frames 1)"
+                    )));
+                }
+                world.set_temporal(&gpu.device, relief::Temporal { frames })?;
+            }
+            let (pixels, t) = headless::render_world_frames(
                 &gpu,
                 &mut world,
                 &view,
-                (width, height),
+                ((width, height), frames),
                 TILE,
                 timer.as_ref(),
             )?;
@@ -142,7 +152,11 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             }
             write_png(&out, width, height, image::ColorType::Rgba8, &pixels)
         }
-        Run::Bench { out_dir, quick } => bench_endless(&params, &out_dir, quick),
+        Run::Bench {
+            out_dir,
+            quick,
+            only,
+        } => bench_endless(&params, &out_dir, quick, only),
         _ => Err(Error::Usage(
             "--world endless applies to relief render, height and bench only".into(),
         )),
@@ -158,7 +172,16 @@ pub(super) fn render(
     flags: Flags,
 ) -> Result<()> {
     check_png_path(out)?;
-    let Flags { timings, stats } = flags;
+    let Flags {
+        timings,
+        stats,
+        frames,
+    } = flags;
+    if frames > 1 {
+        return Err(Error::Usage(format!(
+            "--frames {frames}: the tile world draws one frame (the temporal service              accumulates the endless world's: --world endless)"
+        )));
+    }
     let gpu = Gpu::new()?;
     let timer = timer_if(timings, &gpu);
     let view = tile_view(camera, (width, height));

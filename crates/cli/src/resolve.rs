@@ -186,6 +186,8 @@ pub(super) enum Run {
         method: Drawn,
         camera: Camera,
         stats: bool,
+        /// Frames the temporal service accumulates (`--frames`; 1: one frame, unjittered).
+        frames: u32,
     },
     Bake {
         out_dir: PathBuf,
@@ -193,6 +195,8 @@ pub(super) enum Run {
     Bench {
         out_dir: PathBuf,
         quick: bool,
+        /// `--only`: one part of the endless world's benchmark.
+        only: Option<&'static str>,
     },
     Height {
         points: Vec<[f64; 2]>,
@@ -438,6 +442,36 @@ pub(super) fn flag_text<T>(m: &ArgMatches, row: &Param<T>) -> String {
 pub(super) fn flag_value<T>(p: &Param<T>, text: &str) -> Result<Value> {
     p.parse(text)
         .map_err(|_| Error::invalid(format!("--{}", p.flag()), table::shorten(text), p.allowed()))
+}
+
+/// `--only`: a part of `relief bench --world endless`.
+pub(super) fn bench_part(m: &ArgMatches) -> Result<Option<&'static str>> {
+    let Some(text) = string(m, "only") else {
+        return Ok(None);
+    };
+    match BENCH_PARTS.parse(&text) {
+        Some(Value::Choice(part)) => Ok(Some(part)),
+        _ => Err(Error::invalid(
+            "--only",
+            table::shorten(&text),
+            BENCH_PARTS.allowed(),
+        )),
+    }
+}
+
+/// `--frames`: 1 unless given.
+pub(super) fn frames(m: &ArgMatches) -> Result<u32> {
+    let Some(text) = string(m, "frames") else {
+        return Ok(1);
+    };
+    match FRAMES.parse(&text) {
+        Some(Value::Int(v)) => Ok(v),
+        _ => Err(Error::invalid(
+            "--frames",
+            table::shorten(&text),
+            FRAMES.allowed(),
+        )),
+    }
 }
 
 pub(super) fn image_side(m: &ArgMatches, id: &str) -> Result<u32> {

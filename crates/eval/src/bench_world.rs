@@ -18,101 +18,7 @@ use relief::gpu::timing::{GpuTimer, Slot};
 use relief::world::WorldParams;
 use relief::{Method, World, WorldView};
 
-/// A named landscape view.
-#[derive(Clone, Copy, Debug)]
-pub struct LandscapeView {
-    /// Its name in the CSV.
-    pub name: &'static str,
-    /// The camera (size filled in per run).
-    pub view: WorldView,
-}
-
-/// The benchmark's views of `params`' world at `size`.
-pub fn views(params: &WorldParams, size: (u32, u32)) -> Vec<LandscapeView> {
-    let land = params.land;
-    let fov = 45f32.to_radians();
-    let ground = |x: f64, z: f64| land.height_at(x, z);
-    // Along the ground: 2 m above it, looking level, to the horizon.
-    let eye = DVec3::new(0.0, ground(0.0, 0.0) + 2.0, 0.0);
-    let horizon = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.01, 0.2), fov, size);
-    // Grazing over a ridge: the highest point on a 4 km line, 5 m above it, looking level.
-    let (mut best, mut top) = (0.0, f64::MIN);
-    for i in 0..400 {
-        let x = 3000.0 + f64::from(i) * 10.0;
-        let h = ground(x, 1000.0);
-        if h > top {
-            (best, top) = (x, h);
-        }
-    }
-    let eye = DVec3::new(best, top + 5.0, 1000.0);
-    let ridge = WorldView::look_at(eye, eye + DVec3::new(0.3, -0.02, 1.0), fov, size);
-    // High and oblique: 3 km above the ground, 30 degrees down.
-    let eye = DVec3::new(-5000.0, ground(-5000.0, 2000.0) + 3000.0, 2000.0);
-    let oblique = WorldView::look_at(eye, eye + DVec3::new(0.8, -0.5, 0.33), fov, size);
-    vec![
-        LandscapeView {
-            name: "horizon",
-            view: horizon,
-        },
-        LandscapeView {
-            name: "ridge",
-            view: ridge,
-        },
-        LandscapeView {
-            name: "oblique",
-            view: oblique,
-        },
-    ]
-}
-
-/// The names of the random views, in order ([`random_views`]).
-pub const RANDOM_VIEWS: [&str; 5] = ["random-1", "random-2", "random-3", "random-4", "random-5"];
-
-/// The seed the random views are drawn from: fixed, so that every run measures the same views
-/// and a change tuned on the named views is also measured where nobody tuned it.
-pub const RANDOM_VIEW_SEED: u64 = 0x7e11_2a1e_5eed;
-
-/// [`RANDOM_VIEWS`] of `params`' world at `size`, drawn from [`RANDOM_VIEW_SEED`]: each eye
-/// somewhere in a 40 km square around the origin, between 2 m and 3 km above the ground or
-/// the water (log-uniform), looking along a random bearing from level to 35 degrees down.
-pub fn random_views(params: &WorldParams, size: (u32, u32)) -> Vec<LandscapeView> {
-    let mut state = RANDOM_VIEW_SEED;
-    // splitmix64: a uniform f64 in [0, 1) per call.
-    let mut uniform = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let floor = |x: f64, z: f64| {
-        let ground = params.land.height_at(x, z);
-        if params.no_water {
-            ground
-        } else {
-            ground.max(f64::from(params.water_level))
-        }
-    };
-    RANDOM_VIEWS
-        .iter()
-        .map(|&name| {
-            let (x, z) = (40_000.0 * (uniform() - 0.5), 40_000.0 * (uniform() - 0.5));
-            let above = 2.0 * 1500f64.powf(uniform());
-            let bearing = std::f64::consts::TAU * uniform();
-            let down = 35f64.to_radians() * uniform();
-            let eye = DVec3::new(x, floor(x, z) + above, z);
-            let ahead = DVec3::new(
-                bearing.sin() * down.cos(),
-                -down.sin(),
-                -bearing.cos() * down.cos(),
-            );
-            LandscapeView {
-                name,
-                view: WorldView::look_at(eye, eye + ahead, 45f32.to_radians(), size),
-            }
-        })
-        .collect()
-}
+pub use crate::views::{random_views, views, LandscapeView, RANDOM_VIEWS, RANDOM_VIEW_SEED};
 
 /// One measured configuration.
 #[derive(Clone, Debug)]
@@ -349,6 +255,8 @@ pub fn run(
             (Method::Hybrid, 1, Hardware),
         ];
         for v in here {
+            // The random views look at landscapes of their own seeds.
+            let p = v.params(&p);
             let methods = if RANDOM_VIEWS.contains(&v.name) {
                 &random[..]
             } else {
@@ -676,41 +584,4 @@ pub fn csv(rows: &[WorldRow], device: &str, options: &Options) -> String {
         out.push('\n');
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_random_views_are_the_same_every_run_and_stand_above_the_ground() {
-        let params = WorldParams::default();
-        let (a, b) = (
-            random_views(&params, (64, 36)),
-            random_views(&params, (64, 36)),
-        );
-        assert_eq!(a.len(), RANDOM_VIEWS.len());
-        for (x, y) in a.iter().zip(&b) {
-            assert_eq!(
-                x.view.eye, y.view.eye,
-                "{}: drawn from a fixed seed",
-                x.name
-            );
-            let e = x.view.eye;
-            let floor = params
-                .land
-                .height_at(e.x, e.z)
-                .max(f64::from(params.water_level));
-            assert!(
-                e.y >= floor + 1.99 && e.y <= floor + 3000.01,
-                "{}: {e}",
-                x.name
-            );
-        }
-        // Spread over the square, not bunched.
-        let xs: Vec<f64> = a.iter().map(|v| v.view.eye.x).collect();
-        let spread = xs.iter().cloned().fold(f64::MIN, f64::max)
-            - xs.iter().cloned().fold(f64::MAX, f64::min);
-        assert!(spread > 5_000.0, "{xs:?}");
-    }
 }

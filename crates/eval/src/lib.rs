@@ -14,9 +14,11 @@
 pub mod bench;
 pub mod bench_arrival;
 pub mod bench_look;
+pub mod bench_temporal;
 pub mod bench_world;
 pub mod bench_world_chart;
 pub mod chart;
 pub mod metrics;
 pub mod raycast;
 pub mod stability;
+pub mod views;

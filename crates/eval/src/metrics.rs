@@ -286,6 +286,17 @@ pub fn image_error(reference: &[u8], test: &[u8], width: u32, height: u32) -> (f
     )
 }
 
+/// FLIP of each pixel of `test` against `reference` (tightly packed RGB8, sRGB), row by row.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn flip_map(reference: &[u8], test: &[u8], width: u32, height: u32) -> Vec<f32> {
+    nv_flip::flip(
+        nv_flip::FlipImageRgb8::with_data(width, height, reference),
+        nv_flip::FlipImageRgb8::with_data(width, height, test),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    )
+    .to_vec()
+}
+
 /// RGBA8 to RGB8.
 pub fn rgb(rgba: &[u8]) -> Vec<u8> {
     rgba.chunks_exact(4)

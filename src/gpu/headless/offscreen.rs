@@ -82,12 +82,33 @@ pub fn render_world_image(
     tile: u32,
     timer: Option<&GpuTimer>,
 ) -> Result<(Vec<u8>, Option<Timings>)> {
+    render_world_frames(gpu, world, view, (size, 1), tile, timer)
+}
+
+/// [`render_world_image`] after `frames` frames of the still `view` (each tile's, for an
+/// image drawn in tiles), accumulated by the world's temporal service
+/// ([`World::set_temporal`]; with it off the frames are alike and the last is the image).
+/// A new history starts with the first of them; `timer` times the last.
+pub fn render_world_frames(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    (size, frames): ((u32, u32), u32),
+    tile: u32,
+    timer: Option<&GpuTimer>,
+) -> Result<(Vec<u8>, Option<Timings>)> {
     let samples = world.targets().sample_count;
     tiled(gpu, size, tile, samples, |target, crop| {
         let tile_view = WorldView {
             crop: crop * view.crop,
             ..*view
         };
+        if frames > 1 {
+            target.accumulate_world(gpu, world, &tile_view, frames - 1)?;
+        } else if world.temporal().on() {
+            // One frame: the history's first.
+            world.cut();
+        }
         target.render_world(gpu, world, &tile_view, timer)
     })
 }
@@ -123,7 +144,13 @@ pub(super) fn tiled(
                 (None, t) => total = t,
                 (Some(sum), Some(t)) => {
                     // Each tile draws again: its draw's passes add up (the bake ran once).
-                    for s in [Slot::Render, Slot::Present, Slot::Raster, Slot::Shade] {
+                    for s in [
+                        Slot::Render,
+                        Slot::Present,
+                        Slot::Raster,
+                        Slot::Shade,
+                        Slot::Resolve,
+                    ] {
                         let i = s as usize;
                         if t[i].is_some() {
                             sum[i] = Some(sum[i].unwrap_or(0.0) + t[i].unwrap_or(0.0));
@@ -473,6 +500,47 @@ impl Offscreen {
         self.world_frame(gpu, world, view, None, false)
     }
 
+    /// Bakes everything `view` needs, then starts a new history ([`World::cut`]) and
+    /// draws `frames` frames of `view` into it, reading nothing back: what a still image
+    /// accumulated over frames draws before its last.
+    pub fn accumulate_world(
+        &self,
+        gpu: &Gpu,
+        world: &mut World,
+        view: &WorldView,
+        frames: u32,
+    ) -> Result<()> {
+        self.check_targets(world.targets())?;
+        world.set_target_size(Some((self.width, self.height)));
+        bake_world_whole(gpu, world, view, None)?;
+        world.cut();
+        self.advance_world(gpu, world, view, frames)
+    }
+
+    /// Draws `frames` frames of `view` into the world's history (after what it holds), reading
+    /// nothing back.
+    pub fn advance_world(
+        &self,
+        gpu: &Gpu,
+        world: &mut World,
+        view: &WorldView,
+        frames: u32,
+    ) -> Result<()> {
+        for _ in 0..frames {
+            crate::gpu::scoped(&gpu.device, || -> Result<()> {
+                let mut encoder =
+                    gpu.device
+                        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                            label: Some("relief:offscreen:accumulate"),
+                        });
+                world.prepare(&gpu.device, &gpu.queue, &mut encoder, view)?;
+                gpu.queue.submit([encoder.finish()]);
+                Ok(())
+            })??;
+        }
+        Ok(())
+    }
+
     fn world_frame(
         &self,
         gpu: &Gpu,
@@ -486,18 +554,7 @@ impl Offscreen {
         // A tile of a larger image is drawn through the view's crop into this target.
         world.set_target_size(Some((self.width, self.height)));
         if whole {
-            // A still frame is drawn whole: everything the view uncovered is baked and lit
-            // first.
-            let budgets = (world.bake_budget(), world.light_budget());
-            world.set_bake_budget(u64::MAX);
-            world.set_light_budget(u64::MAX);
-            let baked = bake_in_passes(gpu, timer, |encoder, timer| {
-                world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
-                Ok(world.pending_texels())
-            });
-            world.set_bake_budget(budgets.0);
-            world.set_light_budget(budgets.1);
-            baked?;
+            bake_world_whole(gpu, world, view, timer)?;
         }
         let world = std::cell::RefCell::new(world);
         self.frame(
@@ -649,4 +706,23 @@ impl Offscreen {
         let bytes = read_texture(&gpu.device, &gpu.queue, &self.depth_texture)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
+}
+
+/// A still frame is drawn whole: everything `view` uncovered is baked and lit first.
+fn bake_world_whole(
+    gpu: &Gpu,
+    world: &mut World,
+    view: &WorldView,
+    timer: Option<&GpuTimer>,
+) -> Result<()> {
+    let budgets = (world.bake_budget(), world.light_budget());
+    world.set_bake_budget(u64::MAX);
+    world.set_light_budget(u64::MAX);
+    let baked = bake_in_passes(gpu, timer, |encoder, timer| {
+        world.encode_bake_timed(&gpu.device, &gpu.queue, encoder, view, timer)?;
+        Ok(world.pending_texels())
+    });
+    world.set_bake_budget(budgets.0);
+    world.set_light_budget(budgets.1);
+    baked
 }

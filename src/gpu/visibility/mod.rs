@@ -26,6 +26,7 @@ mod targets;
 use self::targets::*;
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
+use super::temporal::{Resolve, TemporalUniforms};
 use super::timing::{GpuTimer, Slot};
 use super::uniforms::WorldUniforms;
 use super::world_rays::WorldRayUniforms;
@@ -120,12 +121,15 @@ struct Images {
     surface: wgpu::TextureView,
     valley: wgpu::TextureView,
     compute_group: wgpu::BindGroup,
-    composite_group: wgpu::BindGroup,
-    /// The frame as the target's bytes, rows padded for the copy, and its bind group
-    /// ([`Visibility::present`]); `None` where the buffer would pass the device's limits.
-    presented: Option<(wgpu::Buffer, wgpu::BindGroup)>,
-    /// The shaded image, for a present stored straight into a target.
-    shown: wgpu::TextureView,
+    /// The composite's bind group for each image it may show ([`Images::shown`]).
+    composite_groups: Vec<wgpu::BindGroup>,
+    /// The frame as the target's bytes, rows padded for the copy, and its bind group for each
+    /// image shown ([`Visibility::present`]); `None` where the buffer would pass the device's
+    /// limits.
+    presented: Option<(wgpu::Buffer, Vec<wgpu::BindGroup>)>,
+    /// The images a frame may show: the shaded one, then the temporal service's two
+    /// histories where it is on.
+    shown: Vec<wgpu::TextureView>,
 }
 
 /// The visibility method's pipelines and targets for one world (see the module docs).
@@ -158,6 +162,12 @@ pub struct Visibility {
     uniforms: wgpu::Buffer,
     images: Option<Images>,
     encode_srgb: bool,
+    /// The temporal service's resolve, where it is on.
+    resolve: Option<Resolve>,
+    /// Which of [`Images::shown`] the last frame shows.
+    shown: usize,
+    /// Clip w from depth (`VisUniforms::depth`) of the last frame.
+    depth_w: [f32; 2],
 }
 
 impl Visibility {
@@ -337,7 +347,39 @@ impl Visibility {
             uniforms: super::uniform_buffer::<VisUniforms>(device, "relief:visibility:uniforms"),
             images: None,
             encode_srgb: !targets.color_format.is_srgb(),
+            resolve: None,
+            shown: 0,
+            depth_w: [0.0; 2],
         }
+    }
+
+    /// Turns the temporal service's resolve on or off: its histories are made with the next
+    /// frame's images, or dropped.
+    pub(crate) fn set_temporal(&mut self, device: &wgpu::Device, on: bool) {
+        if on == self.resolve.is_some() {
+            return;
+        }
+        self.resolve = on.then(|| Resolve::new(device));
+        self.images = None;
+        self.shown = 0;
+    }
+
+    /// Records the temporal service's resolve of the frame [`Visibility::encode`] shaded,
+    /// as `step` plans, into the history the frame then shows (nothing where the service is
+    /// off).
+    pub(crate) fn resolve(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        (step, cap): (&crate::temporal::Step, u32),
+        timer: Option<&GpuTimer>,
+    ) {
+        let (Some(resolve), Some(images)) = (&mut self.resolve, &self.images) else {
+            return;
+        };
+        let u = TemporalUniforms::new(step, self.depth_w, images.size, cap);
+        resolve.encode(queue, encoder, &u, timer);
+        self.shown = 1 + resolve.written();
     }
 
     /// Forgets the bind groups (the world's textures were made again).
@@ -402,7 +444,12 @@ impl Visibility {
             };
             per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(valley));
         }
-        pixels * per_pixel + raster_bytes
+        let history = if self.resolve.is_some() {
+            Resolve::bytes(size)
+        } else {
+            0
+        };
+        pixels * per_pixel + raster_bytes + history
     }
 
     fn images(&mut self, device: &wgpu::Device, size: (u32, u32), world: &WorldBindings<'_>) {
@@ -495,15 +542,25 @@ impl Visibility {
             layout: &self.compute_layout,
             entries: &entries,
         });
-        let composite_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("relief:visibility:composite-group"),
-            layout: &self.composite_layout,
-            entries: &[
-                entry(12, self.uniforms.as_entire_binding()),
-                entry(13, TextureView(&shaded)),
-                entry(14, TextureView(&shaded_depth)),
-            ],
-        });
+        let mut shown = vec![shaded.clone()];
+        if let Some(resolve) = &mut self.resolve {
+            resolve.bind(device, size, (&shaded, &shaded_depth));
+            shown.extend(resolve.colors().into_iter().flatten().cloned());
+        }
+        let composite_groups = shown
+            .iter()
+            .map(|view| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("relief:visibility:composite-group"),
+                    layout: &self.composite_layout,
+                    entries: &[
+                        entry(12, self.uniforms.as_entire_binding()),
+                        entry(13, TextureView(view)),
+                        entry(14, TextureView(&shaded_depth)),
+                    ],
+                })
+            })
+            .collect();
         let bytes = u64::from(present_pitch(size.0)) * u64::from(size.1);
         let limits = device.limits();
         let fits =
@@ -515,16 +572,21 @@ impl Visibility {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("relief:visibility:present-group"),
-                layout: &self.present_layout,
-                entries: &[
-                    entry(12, self.uniforms.as_entire_binding()),
-                    entry(13, TextureView(&shaded)),
-                    entry(20, buffer.as_entire_binding()),
-                ],
-            });
-            (buffer, group)
+            let groups = shown
+                .iter()
+                .map(|view| {
+                    device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("relief:visibility:present-group"),
+                        layout: &self.present_layout,
+                        entries: &[
+                            entry(12, self.uniforms.as_entire_binding()),
+                            entry(13, TextureView(view)),
+                            entry(20, buffer.as_entire_binding()),
+                        ],
+                    })
+                })
+                .collect();
+            (buffer, groups)
         });
         self.images = Some(Images {
             size,
@@ -532,9 +594,9 @@ impl Visibility {
             surface,
             valley,
             compute_group,
-            composite_group,
+            composite_groups,
             presented,
-            shown: shaded,
+            shown,
         });
     }
 
@@ -567,6 +629,8 @@ impl Visibility {
             u.depth_stride = raster.depth_stride();
         }
         self.opaque = sky;
+        self.shown = 0;
+        self.depth_w = [u.depth[0], u.depth[1]];
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(rays));
@@ -666,9 +730,10 @@ impl Visibility {
             self.store_into(encoder, target, images, timer);
             return true;
         }
-        let Some((presented, present_group)) = &images.presented else {
+        let Some((presented, present_groups)) = &images.presented else {
             return false;
         };
+        let present_group = &present_groups[self.shown];
         let copies = target.usage().contains(wgpu::TextureUsages::COPY_DST);
         let Some(bgra) = present_order(target.format()).filter(|_| copies) else {
             return false;
@@ -729,7 +794,10 @@ impl Visibility {
             layout: &self.store_layout,
             entries: &[
                 entry(12, self.uniforms.as_entire_binding()),
-                entry(13, wgpu::BindingResource::TextureView(&images.shown)),
+                entry(
+                    13,
+                    wgpu::BindingResource::TextureView(&images.shown[self.shown]),
+                ),
                 entry(21, wgpu::BindingResource::TextureView(&view)),
             ],
         });
@@ -755,7 +823,7 @@ impl Visibility {
         };
         pass.push_debug_group("relief:visibility:composite");
         pass.set_pipeline(&self.composite[usize::from(self.opaque)]);
-        pass.set_bind_group(0, &images.composite_group, &[]);
+        pass.set_bind_group(0, &images.composite_groups[self.shown], &[]);
         pass.draw(0..3, 0..1);
         pass.pop_debug_group();
     }

@@ -20,6 +20,7 @@ impl World {
         let near = (altitude as f32 * 0.1).clamp(0.05, 20.0);
         let matrix = view.relative_matrix(near, far);
         self.matrix = matrix;
+        self.near_far = (near, far);
         let planes = frustum_planes(&matrix);
         let eye = view.eye;
         let bounds = self.tile.map_or(
@@ -183,6 +184,9 @@ impl World {
             light_texels: self.stats.light_texels,
             light_pending: self.light_pending(),
             level_bytes: level_bytes(&self.map),
+            // The resolve (after the shading) says.
+            history_frames: 0,
+            history_fresh: None,
         };
         self.frame_prepared = true;
     }

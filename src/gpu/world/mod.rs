@@ -8,6 +8,7 @@ mod bake;
 mod draw;
 mod frame;
 mod resources;
+mod temporal;
 
 use self::draw::draw_patches;
 
@@ -133,6 +134,11 @@ pub struct World {
     /// The hybrid method's raise per level spacing (log2 metres, metres), measured when the
     /// method is first chosen and again when the landscape changes under it.
     raises: Vec<(i32, f64)>,
+    /// The temporal service ([`World::set_temporal`]) and the history it keeps.
+    temporal: crate::temporal::Temporal,
+    history: crate::temporal::History,
+    /// The near and far planes of the last `prepare`'s matrix.
+    near_far: (f32, f32),
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -310,6 +316,9 @@ impl World {
                 target_size: None,
                 vis_size: (0, 0),
                 raises: Vec::new(),
+                temporal: crate::temporal::Temporal::OFF,
+                history: Default::default(),
+                near_far: (0.0, 0.0),
             }
         })
     }
@@ -375,6 +384,9 @@ impl World {
 
     /// Replaces the shading; nothing is re-baked.
     pub fn set_shading(&mut self, shading: Shading) {
+        if shading != self.shading {
+            self.history.reset("shading");
+        }
         self.shading = shading;
     }
 
@@ -422,6 +434,9 @@ impl World {
                     })?;
                     self.visibility = Some(vis);
                 }
+                if let Some(vis) = &mut self.visibility {
+                    vis.set_temporal(device, self.temporal.on());
+                }
                 if hybrid && self.raises.is_empty() {
                     self.raises = level_raises(&self.params.land);
                 }
@@ -431,6 +446,9 @@ impl World {
                 other,
                 "mesh, visibility or hybrid (the ray casters and the blog draw through their own passes)",
             )),
+        }
+        if config != self.method_config() {
+            self.history.reset("method");
         }
         self.method = method;
         self.vis_samples = config.samples;
@@ -560,6 +578,10 @@ impl World {
         tile: TileSetup,
     ) -> Result<()> {
         let floor_moved = self.tile.map(|t| t.finest_log2) != Some(tile.finest_log2);
+        if self.tile != Some(tile) {
+            // The tile scrolled under the camera: what the history holds moved.
+            self.history.reset("tile");
+        }
         self.tile = Some(tile);
         if floor_moved && params.land == self.params.land {
             self.errors = level_errors(&params.land, Some(tile.finest_log2));
@@ -589,6 +611,9 @@ impl World {
     }
 
     fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
+        if params != self.params {
+            self.history.reset("parameters");
+        }
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =
             params.land != self.params.land || params.pixel_error != self.params.pixel_error;
@@ -638,10 +663,15 @@ impl World {
         view: &WorldView,
         timer: Option<&GpuTimer>,
     ) -> Result<u64> {
+        // With the temporal service the frame is drawn through a jittered view.
+        let unjittered = *view;
+        let jittered = self.jittered(view);
+        let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
+            self.encode_resolve(queue, encoder, &unjittered, timer);
         }
         let frame = LayerFrame {
             device,

@@ -1,0 +1,472 @@
+//! `relief bench --world endless --only temporal` and `--only reference`: the temporal service
+//! ([`relief::World::set_temporal`]) on the named and the random views.
+//!
+//! - **reference**: the reference ray cast at 3x3, 4x4, 6x6 and 8x8 rays a pixel, each against
+//!   the next (about twice the rays): where the reference stops changing.
+//! - **temporal**: for each view, the default method (`relief render`'s choice on a fast GPU:
+//!   visibility, one sample a pixel, rasterised in compute) accumulating a still view: FLIP of
+//!   1, 4, 16 and 64 frames against its own 256-frame mean (convergence), the 256-frame mean
+//!   against the reference (bias) and 1 and 16 frames against the reference; while moving (the
+//!   fly-through path, and 90 degree a second turns at 60 frames a second), frames against the
+//!   reference of that frame, with and without the service; the resolve's GPU time and memory.
+
+use crate::bench::{measure, Options};
+use crate::metrics::{image_error, median, rgb};
+use crate::views::{random_views, views, LandscapeView};
+use relief::error::Result;
+use relief::gpu::headless::{render_world_rays_at, Gpu, Offscreen};
+use relief::gpu::timing::{GpuTimer, Slot};
+use relief::world::WorldParams;
+use relief::{Method, MethodConfig, Raster, Shading, Temporal, World, WorldView};
+
+/// Rays a pixel per side of the reference the temporal measurements are against (chosen by
+/// the `reference` part: see docs/results/temporal.md).
+pub const REFERENCE_SIDE: u32 = 6;
+
+/// Rays a pixel per side the `reference` part casts, each against the next.
+pub const REFERENCE_SIDES: [u32; 4] = [3, 4, 6, 8];
+
+/// Accumulated frame counts measured against the 256-frame mean.
+pub const FRAME_COUNTS: [u32; 4] = [1, 4, 16, 64];
+
+/// The frame count every count is measured against.
+pub const CONVERGED_FRAMES: u32 = 256;
+
+/// The method measured: what `relief render --method auto` picks on a GPU with few raster
+/// units (the H100).
+pub fn method() -> MethodConfig {
+    MethodConfig::new(Method::Visibility)
+        .with_samples(1)
+        .with_raster(Raster::Compute)
+}
+
+/// One view's still accumulation.
+#[derive(Clone, Debug)]
+pub struct StillRow {
+    /// The view.
+    pub view: String,
+    /// FLIP of [`FRAME_COUNTS`] frames against the [`CONVERGED_FRAMES`]-frame mean.
+    pub convergence: [f64; FRAME_COUNTS.len()],
+    /// FLIP of [`FRAME_COUNTS`] frames and the converged mean against the reference.
+    pub against_reference: [f64; FRAME_COUNTS.len() + 1],
+}
+
+/// One moving frame against its reference.
+#[derive(Clone, Debug)]
+pub struct MovingRow {
+    /// `flight` (the fly-through path) or `turn <view>`.
+    pub motion: String,
+    /// Frames since the motion began.
+    pub frame: u32,
+    /// FLIP with the service, then without.
+    pub flip: [f64; 2],
+}
+
+/// One reference against the next.
+#[derive(Clone, Debug)]
+pub struct ReferenceRow {
+    /// The view.
+    pub view: String,
+    /// Rays per side of the coarser and the finer cast.
+    pub sides: [u32; 2],
+    /// FLIP of the coarser against the finer.
+    pub flip: f64,
+}
+
+/// The views measured: the named ones and, outside `quick`, the random set.
+fn all_views(params: &WorldParams, size: (u32, u32), quick: bool) -> Vec<LandscapeView> {
+    let mut v = views(params, size);
+    if !quick {
+        v.extend(random_views(params, size));
+    }
+    v
+}
+
+fn reference(gpu: &Gpu, params: &WorldParams, view: &WorldView, side: u32) -> Result<Vec<u8>> {
+    let shading = Shading::default();
+    let image = render_world_rays_at(gpu, params, &shading, view, Method::Reference, side, None)?;
+    Ok(rgb(&image.rgba))
+}
+
+/// The `reference` part: each view's reference at [`REFERENCE_SIDES`], each against the next,
+/// on the named views and the first four random ones (the finest cast is some 15 s a view at
+/// 1080p on an H100).
+pub fn run_reference(
+    gpu: &Gpu,
+    params: &WorldParams,
+    options: &Options,
+    quick: bool,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<ReferenceRow>> {
+    let size = (options.width, options.height);
+    let mut rows = Vec::new();
+    let mut here = views(params, size);
+    if !quick {
+        here.extend(random_views(params, size).into_iter().take(4));
+    }
+    for v in here {
+        let p = v.params(params);
+        let mut casts = Vec::new();
+        for side in REFERENCE_SIDES {
+            progress(&format!("{}: the reference at {side}x{side}", v.name));
+            casts.push(reference(gpu, &p, &v.view, side)?);
+        }
+        for (i, pair) in casts.windows(2).enumerate() {
+            rows.push(ReferenceRow {
+                view: v.name.to_owned(),
+                sides: [REFERENCE_SIDES[i], REFERENCE_SIDES[i + 1]],
+                flip: image_error(&pair[1], &pair[0], size.0, size.1).0,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// What the `temporal` part measured.
+#[derive(Clone, Debug, Default)]
+pub struct TemporalRun {
+    /// Each view, still.
+    pub still: Vec<StillRow>,
+    /// Moving frames.
+    pub moving: Vec<MovingRow>,
+    /// The resolve's GPU time (median) and the whole draw's with and without the service,
+    /// milliseconds, on the first named view.
+    pub resolve_ms: Option<f64>,
+    /// The draw's median with the service, and without, milliseconds.
+    pub draw_ms: [Option<f64>; 2],
+    /// GPU memory of the histories at the measured size, bytes.
+    pub history_bytes: u64,
+    /// Rays a pixel per side of the reference.
+    pub reference_side: u32,
+    /// Frames of the converged mean.
+    pub converged: u32,
+}
+
+fn new_world(gpu: &Gpu, params: &WorldParams, frames: u32) -> Result<World> {
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
+    world.set_method(&gpu.device, method())?;
+    world.set_temporal(&gpu.device, Temporal { frames })?;
+    Ok(world)
+}
+
+/// The `temporal` part.
+pub fn run_temporal(
+    gpu: &Gpu,
+    params: &WorldParams,
+    options: &Options,
+    quick: bool,
+    mut progress: impl FnMut(&str),
+) -> Result<TemporalRun> {
+    let size = (options.width, options.height);
+    let target = Offscreen::new(&gpu.device, size.0, size.1, 1)?;
+    let side = if quick { 3 } else { REFERENCE_SIDE };
+    let converged = if quick { 64 } else { CONVERGED_FRAMES };
+    let mut run = TemporalRun {
+        reference_side: side,
+        converged,
+        ..Default::default()
+    };
+    let flip = |a: &[u8], b: &[u8]| image_error(a, &rgb(b), size.0, size.1).0;
+    for v in all_views(params, size, quick) {
+        let p = v.params(params);
+        progress(&format!("{}: {converged} frames", v.name));
+        let mut world = new_world(gpu, &p, converged)?;
+        let mut kept = Vec::new();
+        target.accumulate_world(gpu, &mut world, &v.view, 0)?;
+        for n in 1..=converged {
+            if FRAME_COUNTS.contains(&n) || n == converged {
+                kept.push(target.render_world(gpu, &mut world, &v.view, None)?.0);
+            } else {
+                target.advance_world(gpu, &mut world, &v.view, 1)?;
+            }
+        }
+        progress(&format!("{}: the reference", v.name));
+        let truth = reference(gpu, &p, &v.view, side)?;
+        let last = rgb(kept.last().expect("the converged frame"));
+        let mut row = StillRow {
+            view: v.name.to_owned(),
+            convergence: [0.0; FRAME_COUNTS.len()],
+            against_reference: [0.0; FRAME_COUNTS.len() + 1],
+        };
+        for (i, image) in kept.iter().take(FRAME_COUNTS.len()).enumerate() {
+            row.convergence[i] = flip(&last, image);
+            row.against_reference[i] = flip(&truth, image);
+        }
+        row.against_reference[FRAME_COUNTS.len()] = flip(&truth, kept.last().unwrap_or(&last));
+        run.still.push(row);
+    }
+    run.history_bytes = relief::temporal::history_bytes(size);
+    // The cost: the first named view, with the service and without.
+    let timer = GpuTimer::new(&gpu.device, &gpu.queue);
+    let first = views(params, size)[0];
+    for (i, frames) in [16, 1].into_iter().enumerate() {
+        progress(&format!("the cost ({frames} frames)"));
+        let mut world = new_world(gpu, params, frames)?;
+        target.accumulate_world(gpu, &mut world, &first.view, 0)?;
+        let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
+            let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &first.view, timer);
+            target.draw(encoder, &world, wgpu::Color::BLACK, timer);
+        })?;
+        run.draw_ms[i] = median(times.iter().filter_map(relief::choice::draw_ms));
+        if frames > 1 {
+            run.resolve_ms = median(times.iter().filter_map(|t| t[Slot::Resolve as usize]));
+        }
+    }
+    run.moving = moving(gpu, params, (&target, side, quick), &mut progress)?;
+    Ok(run)
+}
+
+/// A camera along a motion: the view of frame k.
+type Camera<'a> = Box<dyn Fn(u32) -> WorldView + 'a>;
+
+/// Frames along the fly-through path and under 90 degree a second turns, at 60 a second,
+/// against the reference of each, with the service and without.
+fn moving(
+    gpu: &Gpu,
+    params: &WorldParams,
+    (target, side, quick): (&Offscreen, u32, bool),
+    progress: &mut impl FnMut(&str),
+) -> Result<Vec<MovingRow>> {
+    let size = (target.width, target.height);
+    let dt = 1.0 / 60.0;
+    let frames = if quick { 8 } else { 120 };
+    let every = if quick { 4 } else { 30 };
+    let path = relief::PathCamera::default();
+    let land = params.land;
+    let flight = move |k: u32| path.view(move |x, z| land.height_at(x, z), f64::from(k) * dt, size);
+    let turn = |base: WorldView| {
+        move |k: u32| {
+            let a = (90.0 * f64::from(k) * dt).to_radians();
+            let f = base.forward.as_dvec3();
+            let r = glam::DVec3::new(
+                f.x * a.cos() - f.z * a.sin(),
+                f.y,
+                f.x * a.sin() + f.z * a.cos(),
+            );
+            WorldView::look_at(base.eye, base.eye + r, base.fov_y, size)
+        }
+    };
+    let named = views(params, size);
+    let motions: Vec<(String, Camera<'_>)> = vec![
+        ("flight".to_owned(), Box::new(flight)),
+        (
+            format!("turn {}", named[0].name),
+            Box::new(turn(named[0].view)),
+        ),
+        (
+            format!("turn {}", named[2].name),
+            Box::new(turn(named[2].view)),
+        ),
+    ];
+    let mut rows = Vec::new();
+    for (name, at) in motions {
+        let mut on = new_world(gpu, params, relief::temporal::INTERACTIVE_FRAMES)?;
+        let mut off = new_world(gpu, params, 1)?;
+        for k in 0..frames {
+            let view = at(k);
+            progress(&format!("{name}: frame {k}"));
+            let image = target.render_world(gpu, &mut on, &view, None)?.0;
+            if k > 0 && k % every == 0 || k + 1 == frames {
+                let plain = target.render_world(gpu, &mut off, &view, None)?.0;
+                let truth = reference(gpu, params, &view, side)?;
+                rows.push(MovingRow {
+                    motion: name.clone(),
+                    frame: k,
+                    flip: [
+                        image_error(&truth, &rgb(&image), size.0, size.1).0,
+                        image_error(&truth, &rgb(&plain), size.0, size.1).0,
+                    ],
+                });
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// `temporal.csv`: one line per view.
+pub fn still_csv(run: &TemporalRun, device: &str, size: (u32, u32)) -> String {
+    let rows = &run.still;
+    let side = run.reference_side;
+    let mut out = format!(
+        "# relief bench --world endless --only temporal on {device} at {}x{}: the default method \
+         (visibility, 1 sample a pixel rasterised in compute) accumulating a still view; FLIP \
+         of n frames against its own {}-frame mean, and against the reference ({side}x{side} \
+         rays a pixel)\n",
+        size.0, size.1, run.converged
+    );
+    out.push_str("view");
+    for n in FRAME_COUNTS {
+        out.push_str(&format!(",flip_{n}_vs_converged"));
+    }
+    for n in FRAME_COUNTS {
+        out.push_str(&format!(",flip_{n}_vs_reference"));
+    }
+    out.push_str(",flip_converged_vs_reference\n");
+    for r in rows {
+        out.push_str(&r.view);
+        for v in r.convergence.iter().chain(&r.against_reference) {
+            out.push_str(&format!(",{v:.5}"));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// `temporal-moving.csv`: one line per measured frame.
+pub fn moving_csv(rows: &[MovingRow], device: &str, size: (u32, u32)) -> String {
+    let mut out = format!(
+        "# relief bench --world endless --only temporal on {device} at {}x{}: frames while \
+         moving at 60 a second, against the reference of each; the service's history holds \
+         {} frames\nmotion,frame,flip_with_service,flip_without\n",
+        size.0,
+        size.1,
+        relief::temporal::INTERACTIVE_FRAMES
+    );
+    for r in rows {
+        out.push_str(&format!(
+            "{},{},{:.5},{:.5}\n",
+            r.motion, r.frame, r.flip[0], r.flip[1]
+        ));
+    }
+    out
+}
+
+/// `reference.csv`: one line per view and pair of casts.
+pub fn reference_csv(rows: &[ReferenceRow], device: &str, size: (u32, u32)) -> String {
+    let mut out = format!(
+        "# relief bench --world endless --only reference on {device} at {}x{}: the reference \
+         cast at n x n rays a pixel against the next\nview,rays,next_rays,flip\n",
+        size.0, size.1
+    );
+    for r in rows {
+        out.push_str(&format!(
+            "{},{},{},{:.5}\n",
+            r.view,
+            r.sides[0] * r.sides[0],
+            r.sides[1] * r.sides[1],
+            r.flip
+        ));
+    }
+    out
+}
+
+/// Summary lines: the goals against what was measured.
+pub fn summary(run: &TemporalRun) -> Vec<String> {
+    let worst = |f: &dyn Fn(&StillRow) -> f64| {
+        run.still
+            .iter()
+            .map(|r| (f(r), r.view.as_str()))
+            .fold((0.0, ""), |a, b| if b.0 > a.0 { b } else { a })
+    };
+    let i16 = FRAME_COUNTS.iter().position(|&n| n == 16).unwrap_or(2);
+    let (c, cv) = worst(&|r| r.convergence[i16]);
+    let (d, dv) = worst(&|r| r.against_reference[i16]);
+    let mut lines = vec![
+        format!(
+            "16 frames against the {}-frame mean: worst {c:.4} ({cv}); goal 0.005",
+            run.converged
+        ),
+        format!("16 frames against the reference: worst {d:.4} ({dv}); goal 0.01"),
+    ];
+    if let Some(m) = run
+        .moving
+        .iter()
+        .map(|r| (r.flip[0], r))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+    {
+        lines.push(format!(
+            "moving, against each frame's reference: worst {:.4} ({} frame {}); goal 0.02",
+            m.0, m.1.motion, m.1.frame
+        ));
+    }
+    lines.push(format!(
+        "the resolve: {} ms a frame (goal 0.1), the draw {} ms with the service and {} ms \
+         without; histories {:.1} MiB",
+        run.resolve_ms.map_or("-".into(), |v| format!("{v:.3}")),
+        run.draw_ms[0].map_or("-".into(), |v| format!("{v:.3}")),
+        run.draw_ms[1].map_or("-".into(), |v| format!("{v:.3}")),
+        run.history_bytes as f64 / f64::from(1u32 << 20)
+    ));
+    lines
+}
+
+/// `temporal.svg` and `.png`: FLIP against the 256-frame mean over the frames accumulated, a
+/// line per view (the named views in colour, the random ones grey).
+pub fn chart(rows: &[StillRow], stem: &std::path::Path) -> Result<()> {
+    crate::chart::write_chart(stem, |b| draw(b, rows), |b| draw(b, rows))
+}
+
+fn draw<DB: plotters::prelude::DrawingBackend>(
+    backend: DB,
+    rows: &[StillRow],
+) -> std::result::Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let values = rows.iter().flat_map(|r| r.convergence);
+    let lo = values
+        .clone()
+        .filter(|v| *v > 0.0)
+        .fold(f64::MAX, f64::min)
+        .min(0.004);
+    let hi = values.fold(0.0, f64::max).max(0.02);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "relief: a still view converging (FLIP against its own mean of many frames)",
+            ("sans-serif", 20),
+        )
+        .margin(20)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d((0.8f64..80.0).log_scale(), (lo * 0.8..hi * 1.2).log_scale())
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc("frames accumulated")
+        .y_desc("FLIP")
+        .x_labels(8)
+        .x_label_formatter(&|v| crate::chart::tick_label(*v))
+        .y_label_formatter(&|v| crate::chart::tick_label(*v))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+    ];
+    let mut named = 0;
+    for r in rows {
+        let points: Vec<(f64, f64)> = FRAME_COUNTS
+            .iter()
+            .zip(r.convergence)
+            .map(|(&n, v)| (f64::from(n), v.max(lo)))
+            .collect();
+        let random = crate::views::RANDOM_VIEWS.contains(&r.view.as_str());
+        let color = if random {
+            RGBColor(170, 170, 170)
+        } else {
+            named += 1;
+            colors[(named - 1) % colors.len()]
+        };
+        let series = chart
+            .draw_series(LineSeries::new(points, color.stroke_width(2)))
+            .map_err(|e| e.to_string())?;
+        if !random {
+            series
+                .label(r.view.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        }
+    }
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(0.8, 0.005), (80.0, 0.005)],
+            BLACK.stroke_width(1),
+        )))
+        .map_err(|e| e.to_string())?
+        .label("goal after 16 frames: 0.005 (random views grey)")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+    crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)
+}

@@ -1,0 +1,110 @@
+//! [`World`]'s temporal service: the jittered view a frame is drawn through, and the resolve
+//! that blends it into the history ([`crate::temporal`] plans, [`crate::gpu::temporal`] runs).
+//! The methods shaded in compute (`visibility`, `hybrid`) use it; the forward mesh draws
+//! into the host's pass, has no image of its own to keep, and draws unjittered.
+
+use super::*;
+use crate::temporal::{jitter_matrix, Temporal};
+
+impl World {
+    /// Turns the temporal service on (`temporal.frames` > 1) or off. On, each frame of the
+    /// methods shaded in compute (`visibility`, `hybrid`) is drawn through a sub-pixel jitter
+    /// and blended into a history of up to `frames` frames, which is what
+    /// [`World::render`] and [`World::present`] show: a still view converges to the mean of
+    /// that many jittered frames, and a moving one reprojects its history (rejecting what the
+    /// new frame disoccludes). New parameters, shading, method, targets or image size, and
+    /// [`World::cut`], start a new history. The forward mesh is not accumulated (it draws
+    /// into the host's pass). Off by default.
+    ///
+    /// The histories cost [`crate::gpu::temporal`]'s 48 bytes a pixel
+    /// ([`World::method_bytes`] counts them).
+    pub fn set_temporal(&mut self, device: &wgpu::Device, temporal: Temporal) -> Result<()> {
+        temporal.validate()?;
+        if temporal == self.temporal {
+            return Ok(());
+        }
+        self.temporal = temporal;
+        self.history.clear();
+        if let Some(vis) = &mut self.visibility {
+            vis.set_temporal(device, temporal.on());
+        }
+        Ok(())
+    }
+
+    /// The temporal service's setting.
+    pub fn temporal(&self) -> Temporal {
+        self.temporal
+    }
+
+    /// A camera cut: the next frame starts a new history (the scene it showed is gone).
+    pub fn cut(&mut self) {
+        self.history.reset("cut");
+    }
+
+    /// The sub-pixel offset, in pixels (x right, y down), the last [`World::prepare`] drew
+    /// through: its [`World::relative_matrix`] is
+    /// [`crate::temporal::jitter_matrix`]`(jitter, size)` times the view's own. (0, 0) where
+    /// the service is off or the method is the mesh, and for a history's first frame.
+    ///
+    /// The resolve runs in [`World::prepare`], before the host's pass: what
+    /// [`World::render`] composites is the accumulated image, with the jittered frame's
+    /// depth. A host drawing its own geometry after it draws unjittered (it does not shimmer:
+    /// its edges against the terrain's may move by this sub-pixel offset), or multiplies its
+    /// projection by the same matrix for depth that matches the terrain's exactly.
+    pub fn jitter(&self) -> [f32; 2] {
+        if self.temporal_active() {
+            self.history.jitter
+        } else {
+            [0.0; 2]
+        }
+    }
+
+    /// Whether frames are accumulated: the service on and a method shaded in compute.
+    fn temporal_active(&self) -> bool {
+        self.temporal.on()
+            && matches!(self.method, Method::Visibility | Method::Hybrid)
+            && self.visibility.is_some()
+    }
+
+    /// `view` as the next frame draws it: through the history's next jitter where the
+    /// service is active, else itself.
+    pub(super) fn jittered(&self, view: &WorldView) -> WorldView {
+        if !self.temporal_active() {
+            return *view;
+        }
+        let size = self.target_size.unwrap_or(view.size);
+        let jitter = self.history.next_jitter(size);
+        WorldView {
+            crop: jitter_matrix(jitter, size) * view.crop,
+            ..*view
+        }
+    }
+
+    /// Plans the frame just shaded (drawn from `view` jittered) and records its resolve.
+    pub(super) fn encode_resolve(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) {
+        if !self.temporal_active() {
+            self.stats.history_frames = 0;
+            self.stats.history_fresh = None;
+            return;
+        }
+        let size = self.vis_size;
+        let jitter = self.history.next_jitter(size);
+        let (near, far) = self.near_far;
+        let unjittered = view.relative_matrix(near, far).as_dmat4();
+        let step = self
+            .history
+            .advance(jitter, unjittered, (view.eye, self.clock(), size));
+        let cap = self.temporal.frames;
+        if let Some(vis) = &mut self.visibility {
+            vis.resolve(queue, encoder, (&step, cap), timer);
+        }
+        self.stats.history_frames = self.history.frames(cap);
+        self.stats.history_fresh = self.history.fresh;
+    }
+}
