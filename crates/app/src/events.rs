@@ -170,6 +170,12 @@ impl ApplicationHandler<UserEvent> for App {
                     {
                         self.sky_key(&c.to_lowercase());
                     }
+                    Key::Character(c) if c.eq_ignore_ascii_case("t") && self.fly.is_some() => {
+                        let off = if self.options.temporal { "1" } else { "0" };
+                        if let Err(e) = self.set("no_temporal", off) {
+                            self.report.warn(&e.to_string());
+                        }
+                    }
                     Key::Character(c) if c.eq_ignore_ascii_case("m") => {
                         // The next method this world draws (the reference is slow).
                         let all = relief::Method::ALL;

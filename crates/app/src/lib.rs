@@ -26,7 +26,7 @@ pub mod web;
 #[cfg(not(target_arch = "wasm32"))]
 pub use self::native::*;
 pub use self::report::*;
-pub use options::{url_keys, AppOptions, Ignored, OFFSET_STEPS, OPTIONS, SCROLL_SPEED};
+pub use options::{url_keys, AppOptions, Ignored, OFFSET_STEPS, OPTIONS, SCROLL_SPEED, TEMPORAL};
 pub use state::{Drawn, State};
 
 use relief::error::{Error, Result};
@@ -146,6 +146,9 @@ pub struct App {
     starting: bool,
     recoveries: u32,
     surface_losses: u32,
+    /// Frames still to draw after the last change so that the temporal service's history
+    /// fills (a still view converges over [`relief::temporal::INTERACTIVE_FRAMES`] frames).
+    settling: u32,
     lost_reason: String,
     frames_on_device: u64,
     error: Option<Error>,
@@ -198,6 +201,7 @@ impl App {
             starting: false,
             recoveries: 0,
             surface_losses: 0,
+            settling: 0,
             lost_reason: String::new(),
             frames_on_device: 0,
             error: None,
@@ -226,6 +230,7 @@ impl App {
 
     /// Something visible changed: draw a frame (only then; see the module docs).
     fn changed(&mut self) {
+        self.settling = relief::temporal::INTERACTIVE_FRAMES;
         if self.stats.idle {
             self.stats.idle = false;
             let describe = self
@@ -572,12 +577,13 @@ impl App {
             .map_or(String::new(), |p| format!(" · baking {p}%"));
         match &o.world {
             Some((w, _)) => format!(
-                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · [ ] - = move the sun, F fog, L water",
+                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · history {} (T) · [ ] - = move the sun, F fog, L water",
                 w.land.seed,
                 w.sky.sun_azimuth,
                 w.sky.sun_elevation,
                 w.sky.fog,
-                if w.no_water { "off" } else { "on" }
+                if w.no_water { "off" } else { "on" },
+                if o.temporal { "on" } else { "off" }
             ),
             None => format!(
                 "relief: {method} (M){baking} · seed {} · octaves {} · frequency {}",

@@ -69,6 +69,7 @@ impl App {
             world.set_bake_budget(heights);
             world.set_light_budget(light);
         }
+        s.temporal = self.options.temporal;
         let drawn = s.draw(&view, self.fly.as_ref(), timed, self.options.method);
         if drawn == Drawn::SurfaceLost {
             self.surface_losses += 1;
@@ -135,6 +136,21 @@ impl App {
             Some(w) => w.pending_texels() > 0,
             None => s.terrain.pending_texels() > 0,
         };
+        // A history still filling after a change (the temporal service's) keeps a few more
+        // frames coming, then the window idles.
+        let filling = self.fly.is_some()
+            && self.options.temporal
+            && matches!(
+                self.options.method,
+                relief::Method::Visibility | relief::Method::Hybrid
+            );
+        if drawn == Drawn::Frame {
+            self.settling = self.settling.saturating_sub(1);
+        }
+        if animating {
+            self.settling = relief::temporal::INTERACTIVE_FRAMES;
+        }
+        let animating = animating || (filling && self.settling > 0);
         if animating && !s.minimised() {
             s.window.request_redraw();
         }

@@ -70,6 +70,9 @@ pub struct State {
     /// The samples a pixel and the raster that `visibility` and `hybrid` draw with (from the
     /// chosen candidate); the method is the app's, given to each [`State::draw`].
     method_knobs: (u32, relief::Raster),
+    /// Whether the endless world accumulates frames ([`relief::World::set_temporal`]); the
+    /// app's, set before each [`State::draw`].
+    pub(crate) temporal: bool,
     pub(crate) terrain: Terrain,
     /// The endless world, when the window shows it instead of the tile.
     pub(crate) world: Option<World>,
@@ -219,6 +222,7 @@ impl State {
             samples: SAMPLES,
             targets_failed: false,
             method_knobs: (4, relief::Raster::Hardware),
+            temporal: true,
             terrain,
             world,
             timer,
@@ -436,6 +440,14 @@ impl State {
             (Some(world), Some(fly)) => {
                 let view = fly.view(size);
                 if let Err(e) = world.set_method(&self.device, config) {
+                    log::warn!("{e}");
+                }
+                let temporal = if self.temporal {
+                    relief::Temporal::INTERACTIVE
+                } else {
+                    relief::Temporal::OFF
+                };
+                if let Err(e) = world.set_temporal(&self.device, temporal) {
                     log::warn!("{e}");
                 }
                 if let Err(e) =

@@ -122,6 +122,7 @@ pub fn world_params_table() -> String {
         .iter()
         .map(row_json)
         .chain(std::iter::once(row_json(&super::options::METHOD)))
+        .chain(std::iter::once(row_json(&super::options::TEMPORAL)))
         .collect();
     format!("[{}]", rows.join(","))
 }

@@ -103,15 +103,10 @@ pub(super) fn bench_endless(
     let device = gpu.describe();
     let temporal = || -> Result<()> {
         use relief_eval::bench_temporal as t;
-        let run = t::run_temporal(&gpu, params, &options, quick, progress)?;
+        let mut sink = TemporalFiles::create(dir, &device, size, t::reference_side(quick))?;
+        let run = t::run_temporal(&gpu, params, &options, quick, &mut sink)?;
         done();
-        write_whole(
-            &dir.join("temporal.csv"),
-            &t::still_csv(&run, &device, size),
-        )?;
         wrote("temporal.csv", run.still.len());
-        let moving = t::moving_csv(&run.moving, &device, size);
-        write_whole(&dir.join("temporal-moving.csv"), &moving)?;
         wrote("temporal-moving.csv", run.moving.len());
         t::chart(&run.still, &dir.join("temporal"))?;
         for line in t::summary(&run) {
@@ -144,4 +139,52 @@ pub(super) fn bench_endless(
         }
     }
     result
+}
+
+/// `temporal.csv` and `temporal-moving.csv`, written a row at a time as the part measures.
+struct TemporalFiles {
+    still: std::fs::File,
+    moving: std::fs::File,
+    paths: [std::path::PathBuf; 2],
+    started: std::time::Instant,
+}
+
+impl TemporalFiles {
+    fn create(dir: &Path, device: &str, size: (u32, u32), side: u32) -> Result<Self> {
+        use relief_eval::bench_temporal as t;
+        use std::io::Write;
+        let paths = [dir.join("temporal.csv"), dir.join("temporal-moving.csv")];
+        let open = |p: &Path, header: String| -> Result<std::fs::File> {
+            let mut f = std::fs::File::create(p).map_err(|e| Error::io(p, e))?;
+            f.write_all(header.as_bytes())
+                .map_err(|e| Error::io(p, e))?;
+            Ok(f)
+        };
+        Ok(Self {
+            still: open(&paths[0], t::still_header(device, size, side))?,
+            moving: open(&paths[1], t::moving_header(device, size))?,
+            paths,
+            started: std::time::Instant::now(),
+        })
+    }
+}
+
+impl relief_eval::bench_temporal::Sink for TemporalFiles {
+    fn still(&mut self, row: &relief_eval::bench_temporal::StillRow) -> Result<()> {
+        use std::io::Write;
+        self.still
+            .write_all(relief_eval::bench_temporal::still_line(row).as_bytes())
+            .map_err(|e| Error::io(&self.paths[0], e))
+    }
+
+    fn moving(&mut self, row: &relief_eval::bench_temporal::MovingRow) -> Result<()> {
+        use std::io::Write;
+        self.moving
+            .write_all(relief_eval::bench_temporal::moving_line(row).as_bytes())
+            .map_err(|e| Error::io(&self.paths[1], e))
+    }
+
+    fn progress(&mut self, what: &str) {
+        println!("{:6.1} s  {what}", self.started.elapsed().as_secs_f64());
+    }
 }

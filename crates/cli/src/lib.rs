@@ -526,6 +526,10 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
                     timings: m.get_flag("timings"),
                     ..Default::default()
                 };
+                let temporal = &relief_app::TEMPORAL;
+                if given(m, temporal.key) {
+                    (temporal.set)(&mut options, flag_value(temporal, &flag_text(m, temporal))?);
+                }
                 if let Some(d) = window_drawn {
                     draw_window_with(&mut options, d);
                 }

@@ -389,6 +389,46 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     );
 }
 
+/// T turns the temporal service off and on, and the title says so; `--no-temporal` starts
+/// with it off.
+#[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
+fn the_t_key_and_no_temporal_turn_the_history_off_and_the_title_says_so() {
+    let args = [
+        "--world",
+        "endless",
+        "--method",
+        "visibility",
+        "--pixel-error",
+        "16",
+        "--exit-after",
+        "30",
+    ];
+    let keys = "xdotool getwindowname \"$w\"; xdotool key t; sleep 1; \
+                xdotool getwindowname \"$w\"; xdotool key t; sleep 1; \
+                xdotool getwindowname \"$w\"";
+    let (code, stdout, err) = window_with_keys(&args, keys, "true");
+    assert_eq!(code, 0, "{err}");
+    let history: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("relief: "))
+        .map(|l| {
+            l.split("history ")
+                .nth(1)
+                .unwrap_or("")
+                .split(' ')
+                .next()
+                .unwrap_or("")
+        })
+        .collect();
+    assert_eq!(history, ["on", "off", "on"], "{stdout}");
+    let mut off = args.to_vec();
+    off.push("--no-temporal");
+    let (code, stdout, err) = window_with_keys(&off, "xdotool getwindowname \"$w\"", "true");
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("history off (T)"), "{stdout}");
+}
+
 /// `relief --method M --samples N --raster R` draws the window with that method, its samples a
 /// pixel and its raster, and the timings name all three.
 #[test]

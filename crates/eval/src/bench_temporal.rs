@@ -73,13 +73,13 @@ pub struct ReferenceRow {
     pub flip: f64,
 }
 
-/// The views measured: the named ones and, outside `quick`, the random set.
-fn all_views(params: &WorldParams, size: (u32, u32), quick: bool) -> Vec<LandscapeView> {
-    let mut v = views(params, size);
-    if !quick {
-        v.extend(random_views(params, size));
+/// Rays a pixel per side of the reference the `temporal` part measures against.
+pub fn reference_side(quick: bool) -> u32 {
+    if quick {
+        3
+    } else {
+        REFERENCE_SIDE
     }
-    v
 }
 
 fn reference(gpu: &Gpu, params: &WorldParams, view: &WorldView, side: u32) -> Result<Vec<u8>> {
@@ -149,58 +149,67 @@ fn new_world(gpu: &Gpu, params: &WorldParams, frames: u32) -> Result<World> {
     Ok(world)
 }
 
-/// The `temporal` part.
+/// Where the `temporal` part writes as it goes: each row the moment it is measured (a run
+/// cut short keeps what it measured), and what it says of its progress.
+pub trait Sink {
+    /// A view measured still.
+    fn still(&mut self, row: &StillRow) -> Result<()>;
+    /// A frame measured moving.
+    fn moving(&mut self, row: &MovingRow) -> Result<()>;
+    /// A line of progress.
+    fn progress(&mut self, what: &str);
+}
+
+/// The `temporal` part: the cost first, then the named views still, the motions, and the
+/// random views still (the order of what matters most, should a run be cut short).
 pub fn run_temporal(
     gpu: &Gpu,
     params: &WorldParams,
     options: &Options,
     quick: bool,
-    mut progress: impl FnMut(&str),
+    sink: &mut impl Sink,
 ) -> Result<TemporalRun> {
     let size = (options.width, options.height);
     let target = Offscreen::new(&gpu.device, size.0, size.1, 1)?;
-    let side = if quick { 3 } else { REFERENCE_SIDE };
+    let side = reference_side(quick);
     let converged = if quick { 64 } else { CONVERGED_FRAMES };
     let mut run = TemporalRun {
         reference_side: side,
         converged,
+        history_bytes: relief::temporal::history_bytes(size),
         ..Default::default()
     };
-    let flip = |a: &[u8], b: &[u8]| image_error(a, &rgb(b), size.0, size.1).0;
-    for v in all_views(params, size, quick) {
-        let p = v.params(params);
-        progress(&format!("{}: {converged} frames", v.name));
-        let mut world = new_world(gpu, &p, converged)?;
-        let mut kept = Vec::new();
-        target.accumulate_world(gpu, &mut world, &v.view, 0)?;
-        for n in 1..=converged {
-            if FRAME_COUNTS.contains(&n) || n == converged {
-                kept.push(target.render_world(gpu, &mut world, &v.view, None)?.0);
-            } else {
-                target.advance_world(gpu, &mut world, &v.view, 1)?;
-            }
-        }
-        progress(&format!("{}: the reference", v.name));
-        let truth = reference(gpu, &p, &v.view, side)?;
-        let last = rgb(kept.last().expect("the converged frame"));
-        let mut row = StillRow {
-            view: v.name.to_owned(),
-            convergence: [0.0; FRAME_COUNTS.len()],
-            against_reference: [0.0; FRAME_COUNTS.len() + 1],
-        };
-        for (i, image) in kept.iter().take(FRAME_COUNTS.len()).enumerate() {
-            row.convergence[i] = flip(&last, image);
-            row.against_reference[i] = flip(&truth, image);
-        }
-        row.against_reference[FRAME_COUNTS.len()] = flip(&truth, kept.last().unwrap_or(&last));
+    cost(gpu, params, options, &target, &mut run)?;
+    sink.progress("the cost");
+    let named = views(params, size);
+    for v in &named {
+        let row = still(gpu, params, (&target, side, converged), v, sink)?;
+        sink.still(&row)?;
         run.still.push(row);
     }
-    run.history_bytes = relief::temporal::history_bytes(size);
-    // The cost: the first named view, with the service and without.
+    run.moving = moving(gpu, params, (&target, side, quick), sink)?;
+    if !quick {
+        for v in &random_views(params, size) {
+            let row = still(gpu, params, (&target, side, converged), v, sink)?;
+            sink.still(&row)?;
+            run.still.push(row);
+        }
+    }
+    Ok(run)
+}
+
+/// The resolve's time and the draw's, with the service and without, on the first named view.
+fn cost(
+    gpu: &Gpu,
+    params: &WorldParams,
+    options: &Options,
+    target: &Offscreen,
+    run: &mut TemporalRun,
+) -> Result<()> {
+    let size = (target.width, target.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let first = views(params, size)[0];
     for (i, frames) in [16, 1].into_iter().enumerate() {
-        progress(&format!("the cost ({frames} frames)"));
         let mut world = new_world(gpu, params, frames)?;
         target.accumulate_world(gpu, &mut world, &first.view, 0)?;
         let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
@@ -212,8 +221,46 @@ pub fn run_temporal(
             run.resolve_ms = median(times.iter().filter_map(|t| t[Slot::Resolve as usize]));
         }
     }
-    run.moving = moving(gpu, params, (&target, side, quick), &mut progress)?;
-    Ok(run)
+    Ok(())
+}
+
+/// One view still: `converged` frames accumulated, kept at [`FRAME_COUNTS`], and the
+/// reference at `side` x `side` rays a pixel.
+fn still(
+    gpu: &Gpu,
+    params: &WorldParams,
+    (target, side, converged): (&Offscreen, u32, u32),
+    v: &LandscapeView,
+    sink: &mut impl Sink,
+) -> Result<StillRow> {
+    let size = (target.width, target.height);
+    let flip = |a: &[u8], b: &[u8]| image_error(a, &rgb(b), size.0, size.1).0;
+    let p = v.params(params);
+    let mut world = new_world(gpu, &p, converged)?;
+    let mut kept = Vec::new();
+    target.accumulate_world(gpu, &mut world, &v.view, 0)?;
+    for n in 1..=converged {
+        if FRAME_COUNTS.contains(&n) || n == converged {
+            kept.push(target.render_world(gpu, &mut world, &v.view, None)?.0);
+        } else {
+            target.advance_world(gpu, &mut world, &v.view, 1)?;
+        }
+    }
+    sink.progress(&format!("{}: {converged} frames", v.name));
+    let truth = reference(gpu, &p, &v.view, side)?;
+    sink.progress(&format!("{}: the reference", v.name));
+    let last = rgb(kept.last().expect("the converged frame"));
+    let mut row = StillRow {
+        view: v.name.to_owned(),
+        convergence: [0.0; FRAME_COUNTS.len()],
+        against_reference: [0.0; FRAME_COUNTS.len() + 1],
+    };
+    for (i, image) in kept.iter().take(FRAME_COUNTS.len()).enumerate() {
+        row.convergence[i] = flip(&last, image);
+        row.against_reference[i] = flip(&truth, image);
+    }
+    row.against_reference[FRAME_COUNTS.len()] = flip(&truth, kept.last().unwrap_or(&last));
+    Ok(row)
 }
 
 /// A camera along a motion: the view of frame k.
@@ -225,11 +272,11 @@ fn moving(
     gpu: &Gpu,
     params: &WorldParams,
     (target, side, quick): (&Offscreen, u32, bool),
-    progress: &mut impl FnMut(&str),
+    sink: &mut impl Sink,
 ) -> Result<Vec<MovingRow>> {
     let size = (target.width, target.height);
     let dt = 1.0 / 60.0;
-    let frames = if quick { 8 } else { 120 };
+    let frames = if quick { 8 } else { 90 };
     let every = if quick { 4 } else { 30 };
     let path = relief::PathCamera::default();
     let land = params.land;
@@ -253,10 +300,6 @@ fn moving(
             format!("turn {}", named[0].name),
             Box::new(turn(named[0].view)),
         ),
-        (
-            format!("turn {}", named[2].name),
-            Box::new(turn(named[2].view)),
-        ),
     ];
     let mut rows = Vec::new();
     for (name, at) in motions {
@@ -264,37 +307,39 @@ fn moving(
         let mut off = new_world(gpu, params, 1)?;
         for k in 0..frames {
             let view = at(k);
-            progress(&format!("{name}: frame {k}"));
-            let image = target.render_world(gpu, &mut on, &view, None)?.0;
             if k > 0 && k % every == 0 || k + 1 == frames {
+                let image = target.render_world(gpu, &mut on, &view, None)?.0;
                 let plain = target.render_world(gpu, &mut off, &view, None)?.0;
                 let truth = reference(gpu, params, &view, side)?;
-                rows.push(MovingRow {
+                let row = MovingRow {
                     motion: name.clone(),
                     frame: k,
                     flip: [
                         image_error(&truth, &rgb(&image), size.0, size.1).0,
                         image_error(&truth, &rgb(&plain), size.0, size.1).0,
                     ],
-                });
+                };
+                sink.moving(&row)?;
+                sink.progress(&format!("{name}: frame {k}"));
+                rows.push(row);
+            } else {
+                // Drawn and not read back: the window's frame.
+                target.accumulate_frame(gpu, &mut on, &view)?;
             }
         }
     }
     Ok(rows)
 }
 
-/// `temporal.csv`: one line per view.
-pub fn still_csv(run: &TemporalRun, device: &str, size: (u32, u32)) -> String {
-    let rows = &run.still;
-    let side = run.reference_side;
+/// `temporal.csv`'s header: the comment line and the columns.
+pub fn still_header(device: &str, size: (u32, u32), side: u32) -> String {
     let mut out = format!(
         "# relief bench --world endless --only temporal on {device} at {}x{}: the default method \
          (visibility, 1 sample a pixel rasterised in compute) accumulating a still view; FLIP \
-         of n frames against its own {}-frame mean, and against the reference ({side}x{side} \
-         rays a pixel)\n",
-        size.0, size.1, run.converged
+         of n frames against its own mean of many (256 at 1080p, 64 in --quick), and against the \
+         reference ({side}x{side} rays a pixel)\nview",
+        size.0, size.1
     );
-    out.push_str("view");
     for n in FRAME_COUNTS {
         out.push_str(&format!(",flip_{n}_vs_converged"));
     }
@@ -302,33 +347,37 @@ pub fn still_csv(run: &TemporalRun, device: &str, size: (u32, u32)) -> String {
         out.push_str(&format!(",flip_{n}_vs_reference"));
     }
     out.push_str(",flip_converged_vs_reference\n");
-    for r in rows {
-        out.push_str(&r.view);
-        for v in r.convergence.iter().chain(&r.against_reference) {
-            out.push_str(&format!(",{v:.5}"));
-        }
-        out.push('\n');
-    }
     out
 }
 
-/// `temporal-moving.csv`: one line per measured frame.
-pub fn moving_csv(rows: &[MovingRow], device: &str, size: (u32, u32)) -> String {
-    let mut out = format!(
+/// One line of `temporal.csv`.
+pub fn still_line(r: &StillRow) -> String {
+    let mut out = r.view.clone();
+    for v in r.convergence.iter().chain(&r.against_reference) {
+        out.push_str(&format!(",{v:.5}"));
+    }
+    out.push('\n');
+    out
+}
+
+/// `temporal-moving.csv`'s header.
+pub fn moving_header(device: &str, size: (u32, u32)) -> String {
+    format!(
         "# relief bench --world endless --only temporal on {device} at {}x{}: frames while \
          moving at 60 a second, against the reference of each; the service's history holds \
          {} frames\nmotion,frame,flip_with_service,flip_without\n",
         size.0,
         size.1,
         relief::temporal::INTERACTIVE_FRAMES
-    );
-    for r in rows {
-        out.push_str(&format!(
-            "{},{},{:.5},{:.5}\n",
-            r.motion, r.frame, r.flip[0], r.flip[1]
-        ));
-    }
-    out
+    )
+}
+
+/// One line of `temporal-moving.csv`.
+pub fn moving_line(r: &MovingRow) -> String {
+    format!(
+        "{},{},{:.5},{:.5}\n",
+        r.motion, r.frame, r.flip[0], r.flip[1]
+    )
 }
 
 /// `reference.csv`: one line per view and pair of casts.
@@ -469,4 +518,57 @@ where
         .label("goal after 16 frames: 0.005 (random views grey)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
     crate::chart::legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// The rows of a `temporal.csv` ([`still_header`], [`still_line`]).
+pub fn parse_still_csv(text: &str) -> std::result::Result<Vec<StillRow>, String> {
+    let columns = 2 * FRAME_COUNTS.len() + 2;
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("view,") && !l.trim().is_empty())
+        .map(|line| {
+            let cells: Vec<&str> = line.split(',').collect();
+            if cells.len() != columns {
+                return Err(format!("{columns} columns expected: {line}"));
+            }
+            let number = |i: usize| {
+                cells[i]
+                    .trim()
+                    .parse::<f64>()
+                    .map_err(|e| format!("{}: {e}", cells[i]))
+            };
+            let mut row = StillRow {
+                view: cells[0].to_owned(),
+                convergence: [0.0; FRAME_COUNTS.len()],
+                against_reference: [0.0; FRAME_COUNTS.len() + 1],
+            };
+            for i in 0..FRAME_COUNTS.len() {
+                row.convergence[i] = number(1 + i)?;
+            }
+            for i in 0..=FRAME_COUNTS.len() {
+                row.against_reference[i] = number(1 + FRAME_COUNTS.len() + i)?;
+            }
+            Ok(row)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_temporal_csv_reads_back_as_written() {
+        let row = StillRow {
+            view: "ridge".into(),
+            convergence: [0.1, 0.2, 0.3, 0.4],
+            against_reference: [0.5, 0.6, 0.7, 0.8, 0.9],
+        };
+        let text = still_header("a GPU", (8, 4), 3) + &still_line(&row);
+        let back = parse_still_csv(&text).unwrap();
+        assert_eq!(back.len(), 1);
+        assert_eq!(back[0].view, "ridge");
+        assert_eq!(back[0].convergence, row.convergence);
+        assert_eq!(back[0].against_reference, row.against_reference);
+        assert!(parse_still_csv("ridge,1,2\n").is_err());
+    }
 }

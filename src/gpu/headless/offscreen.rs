@@ -517,6 +517,16 @@ impl Offscreen {
         self.advance_world(gpu, world, view, frames)
     }
 
+    /// One frame of `view` drawn whole (everything it uncovered baked and lit first) into the
+    /// world's history after what it holds, read nothing back: a frame of a moving camera
+    /// that is not looked at.
+    pub fn accumulate_frame(&self, gpu: &Gpu, world: &mut World, view: &WorldView) -> Result<()> {
+        self.check_targets(world.targets())?;
+        world.set_target_size(Some((self.width, self.height)));
+        bake_world_whole(gpu, world, view, None)?;
+        self.advance_world(gpu, world, view, 1)
+    }
+
     /// Draws `frames` frames of `view` into the world's history (after what it holds), reading
     /// nothing back.
     pub fn advance_world(

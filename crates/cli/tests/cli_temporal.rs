@@ -1,0 +1,92 @@
+//! `relief render --frames N` (the temporal service accumulating a still view) and
+//! `relief bench --world endless --only PART`, and their refusals.
+
+#[path = "common/cli.rs"]
+mod cli_common;
+use cli_common::*;
+
+/// Renders the endless world small with the visibility method as a fast GPU draws it; returns
+/// the PNG's bytes and the `--stats` lines.
+fn render(name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>, String) {
+    let dir = scratch("temporal");
+    let out = dir.join(format!("{name}.png"));
+    let mut args = vec![
+        "render",
+        "--world",
+        "endless",
+        "--method",
+        "visibility",
+        "--samples",
+        "1",
+        "--raster",
+        "compute",
+        "--width",
+        "96",
+        "--height",
+        "54",
+        "--pixel-error",
+        "16",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let (code, stdout, err) = relief(&args);
+    assert_eq!(code, 0, "{extra:?}: {err}");
+    (std::fs::read(&out).unwrap(), stats_of(&stdout), stdout)
+}
+
+#[test]
+fn frames_accumulates_and_one_frame_is_the_frame_without_it() {
+    let (plain, stats, stdout) = render("plain", &[]);
+    let (one, _, _) = render("one", &["--frames", "1"]);
+    let (four, four_stats, four_out) = render("four", &["--frames", "4"]);
+    assert!(
+        plain == one,
+        "--frames 1 is the frame without the service, byte for byte"
+    );
+    assert!(plain != four, "four jittered frames differ from one");
+    assert!(!stdout.contains("history"), "{stdout}");
+    assert_eq!(stat(&four_stats, "history_frames"), 4.0, "{four_out}");
+    assert!(stat(&four_stats, "method_texture_mib") > stat(&stats, "method_texture_mib"));
+}
+
+#[test]
+fn frames_and_only_are_refused_where_they_do_nothing() {
+    let r = Rejections::default();
+    let out = scratch("temporal-refused").join("x.png");
+    let out = out.to_str().unwrap();
+    r.check(
+        &[
+            "render", "--world", "endless", "--frames", "0", "--out", out,
+        ],
+        &["--frames", "0"],
+    );
+    r.check(
+        &[
+            "render", "--world", "endless", "--frames", "many", "--out", out,
+        ],
+        &["--frames", "many"],
+    );
+    r.check(
+        &["render", "--frames", "4", "--out", out],
+        &["--frames 4", "endless"],
+    );
+    r.check(&["--frames", "4"], &["frames", "render"]);
+    r.check(&["bench", "--only", "temporal"], &["--only", "endless"]);
+    r.check(
+        &["bench", "--world", "endless", "--only", "everything"],
+        &["--only", "everything", "temporal"],
+    );
+    // The mesh keeps no history: refused once the frame's method is known.
+    let (code, _, err) = relief(&[
+        "render", "--world", "endless", "--method", "mesh", "--frames", "4", "--width", "32",
+        "--height", "18", "--out", out,
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--frames 4") && err.contains("visibility"),
+        "{err}"
+    );
+    assert!(!std::path::Path::new(out).exists());
+}
