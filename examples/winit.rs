@@ -172,9 +172,15 @@ impl Gpu {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.world
             .prepare(&self.device, &self.queue, &mut encoder, &view)?;
-        // relief's camera-relative matrix, so the pillar and the terrain share one depth.
+        // relief's camera-relative matrix, so the pillar and the terrain share one depth. With
+        // the temporal service on (`World::set_temporal`, the visibility method or the hybrid)
+        // the matrix carries this frame's sub-pixel jitter, and relief has already resolved its
+        // history in `prepare`, before this pass: the pillar is drawn without the jitter, so it
+        // holds still (its edge against the terrain's depth moves by at most the jitter).
         let rel = (foot - eye).as_vec3();
-        let mut uniforms = self.world.relative_matrix().to_cols_array().to_vec();
+        let unjittered = relief::temporal::jitter_matrix(self.world.jitter(), size).inverse()
+            * self.world.relative_matrix();
+        let mut uniforms = unjittered.to_cols_array().to_vec();
         uniforms.extend([rel.x, rel.y, rel.z, 0.0]);
         self.queue
             .write_buffer(&self.pillar.1, 0, bytemuck::cast_slice(&uniforms));

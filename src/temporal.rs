@@ -1,7 +1,7 @@
 //! The temporal service's plan, on the CPU: the sub-pixel jitter sequence, whether a frame
 //! keeps the history (and why not), and the matrix that carries a pixel of this frame to where
 //! it was in the last one. The GPU's half, the history images and the resolve pass, is
-//! [`crate::gpu::temporal`].
+//! `src/gpu/temporal.rs` and `wgsl/temporal.wgsl`.
 //!
 //! A frame drawn with the service is drawn through a jittered projection
 //! ([`jitter_matrix`]); the resolve blends it into the history: where the view has not
