@@ -478,9 +478,7 @@ impl AppOptions {
             if self.method != relief::Method::Mesh {
                 camera.push(format!("method={}", self.method));
             }
-            if !self.temporal {
-                camera.push("no_temporal=1".to_owned());
-            }
+            camera.insert(0, format!("no_temporal={}", u8::from(!self.temporal)));
             return std::iter::once("world=endless".to_owned())
                 .chain(keys)
                 .chain(camera)

@@ -180,10 +180,10 @@ fn the_temporal_service_is_on_by_default_and_rides_in_the_url_of_either_world() 
     let mut back = AppOptions::default();
     assert!(back.apply_query(&o.to_query()).is_empty());
     assert!(!back.temporal);
-    // The endless world: written only when off, read in either case.
+    // The endless world: written either way, as its other rows are.
     let mut w = AppOptions::default();
     assert!(w.apply_query("world=endless").is_empty());
-    assert!(w.temporal && !w.to_query().contains("temporal"));
+    assert!(w.temporal && w.to_query().contains("no_temporal=0"));
     assert!(w.apply_query("world=endless&no_temporal=on").is_empty());
     assert!(!w.temporal);
     assert!(w.to_query().contains("no_temporal=1"), "{}", w.to_query());
