@@ -510,20 +510,24 @@ impl Offscreen {
         view: &WorldView,
         frames: u32,
     ) -> Result<()> {
-        self.check_targets(world.targets())?;
-        world.set_target_size(Some((self.width, self.height)));
-        bake_world_whole(gpu, world, view, None)?;
+        self.bake_world_for(gpu, world, view)?;
         world.cut();
         self.advance_world(gpu, world, view, frames)
+    }
+
+    /// Checks `world` draws into this target's formats, sizes its images to this target, and
+    /// bakes and lights everything `view` needs.
+    fn bake_world_for(&self, gpu: &Gpu, world: &mut World, view: &WorldView) -> Result<()> {
+        self.check_targets(world.targets())?;
+        world.set_target_size(Some((self.width, self.height)));
+        bake_world_whole(gpu, world, view, None)
     }
 
     /// One frame of `view` drawn whole (everything it uncovered baked and lit first) into the
     /// world's history after what it holds, read nothing back: a frame of a moving camera
     /// that is not looked at.
     pub fn accumulate_frame(&self, gpu: &Gpu, world: &mut World, view: &WorldView) -> Result<()> {
-        self.check_targets(world.targets())?;
-        world.set_target_size(Some((self.width, self.height)));
-        bake_world_whole(gpu, world, view, None)?;
+        self.bake_world_for(gpu, world, view)?;
         self.advance_world(gpu, world, view, 1)
     }
 
