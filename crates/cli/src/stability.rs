@@ -202,6 +202,35 @@ pub fn stability(
             }),
         ));
     }
+    if on(Axis::Temporal) {
+        let options = sweeps.temporal.clone();
+        println!(
+            "the temporal service under a moving eye: turns of {:?} degrees a second and sideways {:?} m/s from the horizon view, {} frames measured after {}, {}x{}, against a {}x{} reference",
+            options.turns,
+            options.strafes,
+            options.frames,
+            options.warm,
+            options.size.0,
+            options.size.1,
+            options.side,
+            options.side
+        );
+        restart(options.turns.len() + options.strafes.len());
+        let rows = stability::temporal::temporal(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::temporal::temporal_table(&rows));
+        let csv = stability::temporal::temporal_csv(&rows, &device, &backend);
+        let title = format!("relief: flicker with and without a history on {device} ({backend})");
+        outputs.push((
+            "temporal.csv",
+            csv,
+            Box::new(move || {
+                stability::temporal::temporal_chart(&rows, (&title, &dir.join("temporal")))
+            }),
+        ));
+    }
     if on(Axis::Detail) {
         // Detail against resolution, on the CPU twin, then FLIP on the GPU.
         let options = sweeps.detail.clone();

@@ -326,6 +326,11 @@ fn tiny_sweeps() -> relief_eval::stability::Sweeps {
     s.detail.grids = vec![32];
     s.detail.image = (48, 32);
     s.storage_side = 64;
+    s.temporal.size = (48, 27);
+    s.temporal.warm = 2;
+    s.temporal.frames = 2;
+    s.temporal.turns = vec![90.0];
+    s.temporal.strafes = Vec::new();
     s
 }
 
@@ -366,6 +371,9 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
             "storage.csv",
             "storage.png",
             "storage.svg",
+            "temporal.csv",
+            "temporal.png",
+            "temporal.svg",
             "world-grazing-hs2400.png",
             "world-grazing-hs2400.svg",
             "world-grazing.csv"
@@ -382,6 +390,7 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
     };
     assert_eq!(lines("shadow.csv"), 1 + 3);
     assert_eq!(lines("motion.csv"), 1 + 4);
+    assert_eq!(lines("temporal.csv"), 1 + 1);
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance

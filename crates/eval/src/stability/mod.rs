@@ -34,6 +34,9 @@
 //! seed blog's (`blog`), each judged on whether a one-texel scroll moves its bake by one texel
 //! and whether its texel columns stay apart; relief's against the twin too.
 //!
+//! The eighth is the temporal service under a moving eye ([`temporal`]), on the endless world:
+//! flicker and ghosting with a history and without, against the reference of each frame.
+//!
 //! Each is an [`Axis`], by the name `relief stability --axis` takes.
 
 pub mod detail;
@@ -42,6 +45,7 @@ pub mod motion;
 mod precision;
 pub mod scroll;
 pub mod shadow;
+pub mod temporal;
 pub mod world_grazing;
 
 use crate::raycast::{pixel_ray, Surface};
@@ -76,6 +80,8 @@ pub struct Sweeps {
     pub scroll: scroll::ScrollOptions,
     /// A moving eye.
     pub motion: motion::MotionOptions,
+    /// The temporal service under a moving eye.
+    pub temporal: temporal::TemporalOptions,
     /// Detail against resolution.
     pub detail: detail::DetailOptions,
     /// The side in texels of the storage-precision axis.
@@ -93,6 +99,7 @@ impl Sweeps {
             distance: distance::DistanceOptions::full(),
             scroll: scroll::ScrollOptions::full(),
             motion: motion::MotionOptions::full(),
+            temporal: temporal::TemporalOptions::full(),
             detail: detail::DetailOptions::full(),
             storage_side: STORAGE_SIZE,
         }
@@ -109,6 +116,7 @@ impl Sweeps {
             distance: distance::DistanceOptions::quick(),
             scroll: scroll::ScrollOptions::quick(),
             motion: motion::MotionOptions::quick(),
+            temporal: temporal::TemporalOptions::quick(),
             detail: detail::DetailOptions::quick(),
             storage_side: 256,
         }
@@ -134,11 +142,13 @@ pub enum Axis {
     Detail,
     /// Storage precision ([`storage`]).
     Storage,
+    /// The temporal service under a moving eye ([`temporal`]).
+    Temporal,
 }
 
 impl Axis {
     /// Every axis, in the order `relief stability` runs them.
-    pub const ALL: [Axis; 8] = [
+    pub const ALL: [Axis; 9] = [
         Axis::Grazing,
         Axis::WorldGrazing,
         Axis::Shadow,
@@ -147,6 +157,7 @@ impl Axis {
         Axis::Motion,
         Axis::Detail,
         Axis::Storage,
+        Axis::Temporal,
     ];
 
     /// Its name on the command line (`--axis`).
@@ -160,6 +171,7 @@ impl Axis {
             Axis::Motion => "motion",
             Axis::Detail => "detail",
             Axis::Storage => "storage",
+            Axis::Temporal => "temporal",
         }
     }
 
