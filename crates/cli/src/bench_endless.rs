@@ -7,16 +7,29 @@ pub(super) fn bench_endless(
     params: &WorldParams,
     dir: &Path,
     quick: bool,
-    only: Option<&str>,
+    (only, views): (Option<&str>, &[String]),
 ) -> Result<()> {
     use relief_eval::bench::Options;
-    check_out_dir(dir)?;
-    let gpu = Gpu::new()?;
     let (options, knobs): (Options, &[f64]) = if quick {
         (Options::QUICK, &[8.0, 16.0])
     } else {
         (Options::FULL, &[0.5, 1.0, 2.0, 4.0, 8.0])
     };
+    let size = (options.width, options.height);
+    // `--view`: checked before anything is made.
+    let chosen = if views.is_empty() {
+        None
+    } else if matches!(only, Some("temporal" | "reference")) {
+        Some(relief_eval::views::views_named(params, size, views)?)
+    } else {
+        return Err(Error::Usage(
+            "--view picks the views of relief bench --world endless --only temporal or \
+             --only reference"
+                .into(),
+        ));
+    };
+    check_out_dir(dir)?;
+    let gpu = Gpu::new()?;
     let land = &params.land;
     if let Some(part) = only {
         println!(
@@ -99,12 +112,17 @@ pub(super) fn bench_endless(
         }
         Ok(())
     };
-    let size = (options.width, options.height);
     let device = gpu.describe();
     let temporal = || -> Result<()> {
         use relief_eval::bench_temporal as t;
         let mut sink = TemporalFiles::create(dir, &device, size, t::reference_side(quick))?;
-        let run = t::run_temporal(&gpu, params, &options, quick, &mut sink)?;
+        let run = t::run_temporal(
+            &gpu,
+            params,
+            &options,
+            (quick, chosen.as_deref()),
+            &mut sink,
+        )?;
         done();
         wrote("temporal.csv", run.still.len());
         wrote("temporal-moving.csv", run.moving.len());
@@ -116,7 +134,7 @@ pub(super) fn bench_endless(
     };
     let reference = || -> Result<()> {
         use relief_eval::bench_temporal as t;
-        let rows = t::run_reference(&gpu, params, &options, quick, progress)?;
+        let rows = t::run_reference(&gpu, params, &options, (quick, chosen.as_deref()), progress)?;
         done();
         write_whole(
             &dir.join("reference.csv"),

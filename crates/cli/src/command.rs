@@ -105,6 +105,18 @@ pub fn command() -> Command {
                              [allowed: {}]",
                             BENCH_PARTS.allowed()
                         )),
+                )
+                .arg(
+                    Arg::new("view")
+                        .long("view")
+                        .action(ArgAction::Append)
+                        .value_delimiter(',')
+                        .value_name("NAME")
+                        .help(
+                            "--only temporal or reference: measure only these views (repeat \
+                             the flag or separate names with commas): horizon, ridge, oblique, \
+                             random-1 to random-16",
+                        ),
                 ),
         )
         .subcommand(
@@ -116,8 +128,10 @@ pub fn command() -> Command {
                      moving eye on the default endless world, against f64 rays, the twin and the reference; and \
                      detail against resolution and the storage precision of heights and normals \
                      against the f64 twin; and relief's tile and the blog's scrolled far from their \
-                     origin; write stability.csv, world-grazing.csv, shadow.csv, distance.csv, \
-                     scroll.csv, motion.csv, detail.csv, storage.csv and their charts",
+                     origin; and flicker and ghosting with and without the temporal service \
+                     under a moving eye; write stability.csv, world-grazing.csv, shadow.csv, \
+                     distance.csv, scroll.csv, motion.csv, detail.csv, storage.csv, temporal.csv \
+                     and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU"))

@@ -337,6 +337,12 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
             quick: m.get_flag("quick"),
             only: bench_part(m)?,
+            views: m
+                .get_many::<String>("view")
+                .into_iter()
+                .flatten()
+                .cloned()
+                .collect(),
         },
         "stability" => Run::Stability {
             out_dir: PathBuf::from(string(m, "out-dir").unwrap_or_default()),
@@ -617,11 +623,12 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
             out_dir,
             quick,
             only,
+            views,
         } => {
-            if only.is_some() {
+            if only.is_some() || !views.is_empty() {
                 return Err(Error::Usage(
-                    "--only picks a part of relief bench --world endless (the tile's benchmark \
-                     is one sweep)"
+                    "--only and --view pick a part and views of relief bench --world endless \
+                     (the tile's benchmark is one sweep)"
                         .into(),
                 ));
             }

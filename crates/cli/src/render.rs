@@ -156,7 +156,8 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             out_dir,
             quick,
             only,
-        } => bench_endless(&params, &out_dir, quick, only),
+            views,
+        } => bench_endless(&params, &out_dir, quick, (only, &views)),
         _ => Err(Error::Usage(
             "--world endless applies to relief render, height and bench only".into(),
         )),

@@ -197,6 +197,8 @@ pub(super) enum Run {
         quick: bool,
         /// `--only`: one part of the endless world's benchmark.
         only: Option<&'static str>,
+        /// `--view`: the views the temporal and reference parts measure (empty: their own).
+        views: Vec<String>,
     },
     Height {
         points: Vec<[f64; 2]>,

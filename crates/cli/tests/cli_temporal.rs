@@ -90,3 +90,73 @@ fn frames_and_only_are_refused_where_they_do_nothing() {
     );
     assert!(!std::path::Path::new(out).exists());
 }
+
+#[test]
+#[ignore = "slow: a still view accumulated and reference casts on a software GPU (.ci/test runs it)"]
+fn bench_measures_the_views_it_is_given_and_refuses_others() {
+    // The reference's ladder and a still view's convergence on the views named, and nothing
+    // else (no cost, no motion).
+    let dir = scratch("bench-views");
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--only",
+        "reference",
+        "--view",
+        "random-3,horizon",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("reference.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(2).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    assert!(rows[0].starts_with("random-3,4,8,"), "{csv}");
+    assert!(rows[1].starts_with("horizon,4,8,"), "{csv}");
+    assert!(stdout.contains("2 rows"), "{stdout}");
+    let (code, _, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--only",
+        "temporal",
+        "--view",
+        "random-16",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("temporal.csv")).unwrap();
+    let views: Vec<&str> = csv
+        .lines()
+        .skip(2)
+        .filter_map(|l| l.split(',').next())
+        .collect();
+    assert_eq!(views, ["random-16"], "{csv}");
+    let moving = std::fs::read_to_string(dir.join("temporal-moving.csv")).unwrap();
+    assert_eq!(moving.lines().count(), 2, "{moving}");
+    // An unknown view, a view for a part that has none, and the tile's benchmark.
+    let r = Rejections::default();
+    r.check(
+        &[
+            "bench",
+            "--world",
+            "endless",
+            "--only",
+            "temporal",
+            "--view",
+            "random-17",
+        ],
+        &["--view", "random-17", "horizon", "random-16"],
+    );
+    r.check(
+        &[
+            "bench", "--world", "endless", "--only", "look", "--view", "ridge",
+        ],
+        &["--view", "--only temporal"],
+    );
+    r.check(&["bench", "--view", "ridge"], &["--view", "endless"]);
+}

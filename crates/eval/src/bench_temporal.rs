@@ -23,8 +23,14 @@ use relief::{Method, MethodConfig, Raster, Shading, Temporal, World, WorldView};
 /// the `reference` part: see docs/results/temporal.md).
 pub const REFERENCE_SIDE: u32 = 6;
 
-/// Rays a pixel per side the `reference` part casts, each against the next.
-pub const REFERENCE_SIDES: [u32; 4] = [3, 4, 6, 8];
+/// The casts the `reference` part compares, each against the next: `(side, passes)`, a cast of
+/// `side` x `side` rays a pixel repeated `passes` times through sub-pixel offsets of its grid
+/// (the Halton sequence), averaged in linear light ([`reference_rays`]): 16 to 256 rays a
+/// pixel, each twice the last.
+pub const REFERENCE_LADDER: [(u32, u32); 5] = [(4, 1), (4, 2), (4, 4), (4, 8), (4, 16)];
+
+/// [`REFERENCE_LADDER`] in `--quick`.
+pub const QUICK_LADDER: [(u32, u32); 2] = [(2, 1), (2, 2)];
 
 /// Accumulated frame counts measured against the 256-frame mean.
 pub const FRAME_COUNTS: [u32; 4] = [1, 4, 16, 64];
@@ -67,8 +73,8 @@ pub struct MovingRow {
 pub struct ReferenceRow {
     /// The view.
     pub view: String,
-    /// Rays per side of the coarser and the finer cast.
-    pub sides: [u32; 2],
+    /// Rays a pixel of the coarser and the finer cast.
+    pub rays: [u32; 2],
     /// FLIP of the coarser against the finer.
     pub flip: f64,
 }
@@ -88,33 +94,90 @@ fn reference(gpu: &Gpu, params: &WorldParams, view: &WorldView, side: u32) -> Re
     Ok(rgb(&image.rgba))
 }
 
-/// The `reference` part: each view's reference at [`REFERENCE_SIDES`], each against the next,
-/// on the named views and the first four random ones (the finest cast is some 15 s a view at
-/// 1080p on an H100).
+/// `view` cast by the reference at `side` x `side` rays a pixel, `passes` times through the
+/// sub-pixel offsets [`relief::temporal::jitter`]`(1..=passes)` of that grid (in units of its
+/// spacing), averaged in linear light: `passes * side * side` rays a pixel, each pass's grid
+/// shifted, so that rays fill each pixel more evenly than one finer regular grid would (which a
+/// texture's largest side also bounds: 8 x 8 rays at 1920x1080). RGB, 8 bits a channel.
+pub fn reference_rays(
+    gpu: &Gpu,
+    params: &WorldParams,
+    view: &WorldView,
+    (side, passes): (u32, u32),
+) -> Result<Vec<u8>> {
+    let lut: Vec<f64> = (0..=255u8)
+        .map(|c| f64::from(relief::params::srgb_to_linear(f32::from(c) / 255.0)))
+        .collect();
+    let mut sum = vec![0.0f64; (view.size.0 * view.size.1 * 3) as usize];
+    for pass in 1..=passes.max(1) {
+        let [x, y] = relief::temporal::jitter(pass);
+        let offset = [x / side as f32, y / side as f32];
+        let shifted = WorldView {
+            crop: relief::temporal::jitter_matrix(offset, view.size) * view.crop,
+            ..*view
+        };
+        for (s, &c) in sum.iter_mut().zip(&reference(gpu, params, &shifted, side)?) {
+            *s += lut[usize::from(c)];
+        }
+    }
+    let n = f64::from(passes.max(1));
+    Ok(sum
+        .into_iter()
+        .map(|l| {
+            let l = l / n;
+            let c = if l <= 0.003_130_8 {
+                l * 12.92
+            } else {
+                1.055 * l.powf(1.0 / 2.4) - 0.055
+            };
+            (c * 255.0).round().clamp(0.0, 255.0) as u8
+        })
+        .collect())
+}
+
+/// The `reference` part: each of `chosen` (the named views and the first random one where
+/// `None`) cast at each of [`REFERENCE_LADDER`] ([`QUICK_LADDER`] in `quick`, on the named
+/// views), each against the next (the finest is about a minute a view at 1080p on an H100).
 pub fn run_reference(
     gpu: &Gpu,
     params: &WorldParams,
     options: &Options,
-    quick: bool,
+    (quick, chosen): (bool, Option<&[LandscapeView]>),
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<ReferenceRow>> {
     let size = (options.width, options.height);
     let mut rows = Vec::new();
-    let mut here = views(params, size);
-    if !quick {
-        here.extend(random_views(params, size).into_iter().take(4));
-    }
+    let here = match chosen {
+        Some(v) => v.to_vec(),
+        None => {
+            let mut here = views(params, size);
+            if !quick {
+                here.extend(random_views(params, size).into_iter().take(1));
+            }
+            here
+        }
+    };
+    let ladder: &[(u32, u32)] = if quick {
+        &QUICK_LADDER
+    } else {
+        &REFERENCE_LADDER
+    };
+    let rays = |(side, passes): (u32, u32)| side * side * passes;
     for v in here {
         let p = v.params(params);
         let mut casts = Vec::new();
-        for side in REFERENCE_SIDES {
-            progress(&format!("{}: the reference at {side}x{side}", v.name));
-            casts.push(reference(gpu, &p, &v.view, side)?);
+        for &rung in ladder {
+            progress(&format!(
+                "{}: the reference at {} rays a pixel",
+                v.name,
+                rays(rung)
+            ));
+            casts.push(reference_rays(gpu, &p, &v.view, rung)?);
         }
         for (i, pair) in casts.windows(2).enumerate() {
             rows.push(ReferenceRow {
                 view: v.name.to_owned(),
-                sides: [REFERENCE_SIDES[i], REFERENCE_SIDES[i + 1]],
+                rays: [rays(ladder[i]), rays(ladder[i + 1])],
                 flip: image_error(&pair[1], &pair[0], size.0, size.1).0,
             });
         }
@@ -161,12 +224,13 @@ pub trait Sink {
 }
 
 /// The `temporal` part: the cost first, then the named views still, the motions, and the
-/// random views still (the order of what matters most, should a run be cut short).
+/// random views still (the order of what matters most, should a run be cut short); or, where
+/// views are `chosen`, those views still and nothing else.
 pub fn run_temporal(
     gpu: &Gpu,
     params: &WorldParams,
     options: &Options,
-    quick: bool,
+    (quick, chosen): (bool, Option<&[LandscapeView]>),
     sink: &mut impl Sink,
 ) -> Result<TemporalRun> {
     let size = (options.width, options.height);
@@ -179,6 +243,14 @@ pub fn run_temporal(
         history_bytes: relief::temporal::history_bytes(size),
         ..Default::default()
     };
+    if let Some(chosen) = chosen {
+        for v in chosen {
+            let row = still(gpu, params, (&target, side, converged), v, sink)?;
+            sink.still(&row)?;
+            run.still.push(row);
+        }
+        return Ok(run);
+    }
     cost(gpu, params, options, &target, &mut run)?;
     sink.progress("the cost");
     let named = views(params, size);
@@ -384,16 +456,13 @@ pub fn moving_line(r: &MovingRow) -> String {
 pub fn reference_csv(rows: &[ReferenceRow], device: &str, size: (u32, u32)) -> String {
     let mut out = format!(
         "# relief bench --world endless --only reference on {device} at {}x{}: the reference \
-         cast at n x n rays a pixel against the next\nview,rays,next_rays,flip\n",
+         cast at n rays a pixel (4x4-ray grids through sub-pixel offsets, averaged) against the next\nview,rays,next_rays,flip\n",
         size.0, size.1
     );
     for r in rows {
         out.push_str(&format!(
             "{},{},{},{:.5}\n",
-            r.view,
-            r.sides[0] * r.sides[0],
-            r.sides[1] * r.sides[1],
-            r.flip
+            r.view, r.rays[0], r.rays[1], r.flip
         ));
     }
     out

@@ -281,7 +281,10 @@ fn the_stability_axis_measures_flicker_and_finds_no_ghosts() {
     let gpu = common::gpu();
     let options = TemporalOptions::quick();
     let rows = temporal(&gpu, &WorldParams::default(), &options, |_, _| {}).unwrap();
-    eprint!("{}", relief_eval::stability::temporal::temporal_table(&rows));
+    eprint!(
+        "{}",
+        relief_eval::stability::temporal::temporal_table(&rows)
+    );
     assert_eq!(rows.len(), 2);
     for r in &rows {
         assert!(r.ghost < 0.01, "{r:?}");
