@@ -705,7 +705,12 @@ pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<V
 /// supersampled image down to its display size, as MSAA resolves do.
 pub fn downsample_srgb(rgba: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
     let (w, h) = (width / factor, height / factor);
-    let lin = |c: u8| f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0));
+    // A table of the 256 values: a reference's supersampled image is tens of millions of
+    // samples.
+    let table: Vec<f64> = (0..=255u8)
+        .map(|c| f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0)))
+        .collect();
+    let lin = |c: u8| table[usize::from(c)];
     let enc = |l: f64| {
         let c = if l <= 0.003_130_8 {
             l * 12.92

@@ -134,12 +134,24 @@ pub(super) fn bench_endless(
     };
     let reference = || -> Result<()> {
         use relief_eval::bench_temporal as t;
-        let rows = t::run_reference(&gpu, params, &options, (quick, chosen.as_deref()), progress)?;
-        done();
-        write_whole(
-            &dir.join("reference.csv"),
-            &t::reference_csv(&rows, &device, size),
+        use std::io::Write;
+        let path = dir.join("reference.csv");
+        let mut file = std::fs::File::create(&path).map_err(|e| Error::io(&path, e))?;
+        let mut write = |text: String| {
+            file.write_all(text.as_bytes())
+                .map_err(|e| Error::io(&path, e))
+        };
+        write(t::reference_header(&device, size))?;
+        let rows = t::run_reference(
+            &gpu,
+            params,
+            &options,
+            (quick, chosen.as_deref()),
+            (progress, |row: &t::ReferenceRow| {
+                write(t::reference_line(row))
+            }),
         )?;
+        done();
         wrote("reference.csv", rows.len());
         Ok(())
     };

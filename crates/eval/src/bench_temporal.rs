@@ -143,7 +143,7 @@ pub fn run_reference(
     params: &WorldParams,
     options: &Options,
     (quick, chosen): (bool, Option<&[LandscapeView]>),
-    mut progress: impl FnMut(&str),
+    (mut progress, mut sink): (impl FnMut(&str), impl FnMut(&ReferenceRow) -> Result<()>),
 ) -> Result<Vec<ReferenceRow>> {
     let size = (options.width, options.height);
     let mut rows = Vec::new();
@@ -165,21 +165,25 @@ pub fn run_reference(
     let rays = |(side, passes): (u32, u32)| side * side * passes;
     for v in here {
         let p = v.params(params);
-        let mut casts = Vec::new();
-        for &rung in ladder {
+        let mut last: Option<Vec<u8>> = None;
+        for (i, &rung) in ladder.iter().enumerate() {
             progress(&format!(
                 "{}: the reference at {} rays a pixel",
                 v.name,
                 rays(rung)
             ));
-            casts.push(reference_rays(gpu, &p, &v.view, rung)?);
-        }
-        for (i, pair) in casts.windows(2).enumerate() {
-            rows.push(ReferenceRow {
-                view: v.name.to_owned(),
-                rays: [rays(ladder[i]), rays(ladder[i + 1])],
-                flip: image_error(&pair[1], &pair[0], size.0, size.1).0,
-            });
+            let cast = reference_rays(gpu, &p, &v.view, rung)?;
+            if let Some(coarser) = &last {
+                // Each pair the moment it is cast: a run cut short keeps what it measured.
+                let row = ReferenceRow {
+                    view: v.name.to_owned(),
+                    rays: [rays(ladder[i - 1]), rays(rung)],
+                    flip: image_error(&cast, coarser, size.0, size.1).0,
+                };
+                sink(&row)?;
+                rows.push(row);
+            }
+            last = Some(cast);
         }
     }
     Ok(rows)
@@ -452,20 +456,19 @@ pub fn moving_line(r: &MovingRow) -> String {
     )
 }
 
-/// `reference.csv`: one line per view and pair of casts.
-pub fn reference_csv(rows: &[ReferenceRow], device: &str, size: (u32, u32)) -> String {
-    let mut out = format!(
+/// `reference.csv`'s header: the comment line and the columns.
+pub fn reference_header(device: &str, size: (u32, u32)) -> String {
+    format!(
         "# relief bench --world endless --only reference on {device} at {}x{}: the reference \
-         cast at n rays a pixel (4x4-ray grids through sub-pixel offsets, averaged) against the next\nview,rays,next_rays,flip\n",
+         cast at n rays a pixel (4x4-ray grids through sub-pixel offsets, averaged) against the \
+         next\nview,rays,next_rays,flip\n",
         size.0, size.1
-    );
-    for r in rows {
-        out.push_str(&format!(
-            "{},{},{},{:.5}\n",
-            r.view, r.rays[0], r.rays[1], r.flip
-        ));
-    }
-    out
+    )
+}
+
+/// One line of `reference.csv`.
+pub fn reference_line(r: &ReferenceRow) -> String {
+    format!("{},{},{},{:.5}\n", r.view, r.rays[0], r.rays[1], r.flip)
 }
 
 /// Summary lines: the goals against what was measured.
