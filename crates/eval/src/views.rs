@@ -144,6 +144,34 @@ pub fn random_views(params: &WorldParams, size: (u32, u32)) -> Vec<LandscapeView
         .collect()
 }
 
+/// The named and random views of `params`' world at `size` called `names` (each once, in the
+/// order given); an error names the first unknown one and the names allowed.
+pub fn views_named(
+    params: &WorldParams,
+    size: (u32, u32),
+    names: &[String],
+) -> relief::error::Result<Vec<LandscapeView>> {
+    let all: Vec<LandscapeView> = views(params, size)
+        .into_iter()
+        .chain(random_views(params, size))
+        .collect();
+    let mut chosen: Vec<LandscapeView> = Vec::new();
+    for name in names {
+        let Some(v) = all.iter().find(|v| v.name == name.trim()) else {
+            let allowed: Vec<&str> = all.iter().map(|v| v.name).collect();
+            return Err(relief::error::Error::invalid(
+                "--view",
+                name,
+                allowed.join(", "),
+            ));
+        };
+        if !chosen.iter().any(|c| c.name == v.name) {
+            chosen.push(*v);
+        }
+    }
+    Ok(chosen)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,32 +211,4 @@ mod tests {
             - xs.iter().cloned().fold(f64::MAX, f64::min);
         assert!(spread > 5_000.0, "{xs:?}");
     }
-}
-
-/// The named and random views of `params`' world at `size` called `names` (each once, in the
-/// order given); an error names the first unknown one and the names allowed.
-pub fn views_named(
-    params: &WorldParams,
-    size: (u32, u32),
-    names: &[String],
-) -> relief::error::Result<Vec<LandscapeView>> {
-    let all: Vec<LandscapeView> = views(params, size)
-        .into_iter()
-        .chain(random_views(params, size))
-        .collect();
-    let mut chosen: Vec<LandscapeView> = Vec::new();
-    for name in names {
-        let Some(v) = all.iter().find(|v| v.name == name.trim()) else {
-            let allowed: Vec<&str> = all.iter().map(|v| v.name).collect();
-            return Err(relief::error::Error::invalid(
-                "--view",
-                name,
-                allowed.join(", "),
-            ));
-        };
-        if !chosen.iter().any(|c| c.name == v.name) {
-            chosen.push(*v);
-        }
-    }
-    Ok(chosen)
 }
