@@ -42,21 +42,31 @@ fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a
         .expect("dry land within 10 km");
     let view = view_of(foot, SIZE);
     let size = DVec3::new(150.0, 300.0, 150.0);
+    // The forward mesh twice: into the host's pass, and through the temporal service's
+    // history (4 frames accumulated), whose composite writes the terrain's depth.
     let configs = [
-        MethodConfig::MESH,
-        MethodConfig::new(Method::Visibility),
-        MethodConfig::new(Method::Visibility)
-            .with_samples(1)
-            .with_raster(Raster::Compute),
-        MethodConfig::new(Method::Hybrid).with_samples(1),
+        (MethodConfig::MESH, 1),
+        (MethodConfig::MESH, 4),
+        (MethodConfig::new(Method::Visibility), 1),
+        (
+            MethodConfig::new(Method::Visibility)
+                .with_samples(1)
+                .with_raster(Raster::Compute),
+            1,
+        ),
+        (MethodConfig::new(Method::Hybrid).with_samples(1), 1),
     ];
     let mut counts = Vec::new();
-    for config in configs {
+    for (config, frames) in configs {
         let targets = Offscreen::targets(render_samples(config.method));
         let mut world = World::new(&gpu.device, &gpu.queue, targets, params).unwrap();
         world.set_method(&gpu.device, config).unwrap();
+        world
+            .set_temporal(&gpu.device, relief::Temporal { frames })
+            .unwrap();
         let draw = |world: &mut World| {
-            headless::render_world_image(&gpu, world, &view, SIZE, headless::TILE, None)
+            let size = (SIZE, frames);
+            headless::render_world_frames(&gpu, world, &view, size, headless::TILE, None)
                 .unwrap()
                 .0
         };
@@ -75,7 +85,8 @@ fn every_mesh_method_and_the_reference_draw_the_test_box_and_the_terrain_hides_a
         world.take_layers();
         let again = draw(&mut world);
         eprintln!(
-            "{config:?}: the box changed {shown} pixels, buried {buried}; bare again equal: {}",
+            "{config:?}, {frames} frames: the box changed {shown} pixels, buried {buried}; bare \
+             again equal: {}",
             again == bare
         );
         assert!(shown > 150, "{config:?}: the box drew {shown} pixels");

@@ -1,4 +1,4 @@
-// import: world, vis_common, fullscreen
+// import: world, vis_common, composite
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the
@@ -80,50 +80,9 @@ fn shade_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
     shade_pixel(vec2<i32>(id.xy), rasterised_depth(id.xy));
 }
 
-// The composite: one full-screen triangle; each pixel takes its shaded colour (blended over what
-// is there by its coverage where there is no sky) and its nearest sample's depth (1 for sky,
-// which the host's less-or-equal test lets through only where nothing was drawn).
-@group(0) @binding(13) var shown: texture_2d<f32>;
-@group(0) @binding(14) var shown_depth: texture_2d<f32>;
-
-@vertex
-fn composite_vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    return vec4<f32>(fullscreen_xy(i), 0.0, 1.0);
-}
-
-struct CompositeOut {
-    @location(0) color: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-}
-
-fn composite_color(c: vec4<f32>) -> vec4<f32> {
-    if vis.encode_srgb == 0u || c.a <= 0.0 {
-        return c;
-    }
-    return vec4<f32>(srgb_encode(c.rgb / c.a) * c.a, c.a);
-}
-
-@fragment
-fn composite_fs(@builtin(position) position: vec4<f32>) -> CompositeOut {
-    let px = vec2<i32>(floor(position.xy));
-    let c = textureLoad(shown, px, 0);
-    if c.a <= 0.0 {
-        discard;
-    }
-    var out: CompositeOut;
-    out.color = composite_color(c);
-    out.depth = textureLoad(shown_depth, px, 0).x;
-    return out;
-}
-
-// The same for a host pass without depth.
-@fragment
-fn composite_fs_color(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let c = textureLoad(shown, vec2<i32>(floor(position.xy)), 0);
-    if c.a <= 0.0 {
-        discard;
-    }
-    return composite_color(c);
+// The composite (composite.wgsl) encodes where the host's target is not sRGB.
+fn composite_encodes() -> bool {
+    return vis.encode_srgb != 0u;
 }
 
 // The frame written without a render pass (Visibility::present), for an opaque image (the sky

@@ -25,7 +25,7 @@ mod uniforms;
 mod util;
 pub mod visibility;
 #[cfg(test)]
-mod wgsl_tests;
+pub(crate) mod wgsl_tests;
 pub mod world;
 pub(crate) mod world_light;
 pub mod world_rays;

@@ -7,7 +7,7 @@ use super::normals::NormalUniforms;
 use super::{shader, RenderUniforms};
 use std::mem::{offset_of, size_of};
 
-fn parse(name: &str, source: &str) -> naga::Module {
+pub(crate) fn parse(name: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
         .unwrap_or_else(|e| panic!("{name}.wgsl does not parse:\n{}", e.emit_to_string(source)));
     naga::valid::Validator::new(
@@ -114,7 +114,7 @@ fn only_the_raster_with_ids_needs_64_bit_integers() {
 }
 
 /// (size, member name -> offset) of a WGSL struct as naga lays it out.
-fn layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+pub(crate) fn layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
     for (_, ty) in module.types.iter() {
         if ty.name.as_deref() == Some(name) {
             if let naga::TypeInner::Struct { members, span } = &ty.inner {
@@ -129,7 +129,7 @@ fn layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
     panic!("struct {name} not found");
 }
 
-fn offset(members: &[(String, u32)], name: &str) -> usize {
+pub(crate) fn offset(members: &[(String, u32)], name: &str) -> usize {
     members
         .iter()
         .find(|(n, _)| n == name)

@@ -153,9 +153,9 @@ pub static OPTIONS: [Param<AppOptions>; 3] = [
 /// The `no_temporal` row: the window's and the page's in either world.
 pub const TEMPORAL: Param<AppOptions> = Param {
     key: "no_temporal",
-    doc: "draw each frame of the endless world's visibility method and hybrid alone and \
-          unjittered, instead of accumulating jittered frames (a still view converges to an \
-          anti-aliased image; T toggles)",
+    doc: "draw each frame of the endless world's mesh, visibility method and hybrid alone \
+          and unjittered, instead of accumulating jittered frames (a still view converges to \
+          an anti-aliased image; T toggles)",
     kind: Kind::Bool,
     control: Control::Checkbox,
     get: |o: &AppOptions| Value::Bool(!o.temporal),

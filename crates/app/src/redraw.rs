@@ -138,12 +138,7 @@ impl App {
         };
         // A history still filling after a change (the temporal service's) keeps a few more
         // frames coming, then the window idles.
-        let filling = self.fly.is_some()
-            && self.options.temporal
-            && matches!(
-                self.options.method,
-                relief::Method::Visibility | relief::Method::Hybrid
-            );
+        let filling = self.fly.is_some() && self.options.temporal && self.options.method.is_mesh();
         if drawn == Drawn::Frame {
             self.settling = self.settling.saturating_sub(1);
         }

@@ -307,7 +307,8 @@ pub fn command() -> Command {
             .help(format!(
                 "render --world endless: draw N frames of the still view through the temporal \
                  service, each jittered within its pixels, and write their mean (the \
-                 visibility method and the hybrid; 1: one frame, unjittered) [default: 1] \
+                 mesh-based methods: mesh, visibility, hybrid; 1: one frame, unjittered) \
+                 [default: 1] \
                  [allowed: {}]",
                 FRAMES.allowed()
             )),

@@ -85,6 +85,13 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             if let Some(method) = method.own_path() {
+                if frames > 1 {
+                    return Err(Error::Usage(format!(
+                        "--frames {frames}: the temporal service accumulates the mesh-based \
+                         methods (mesh, visibility, hybrid), and the {method} casts rays: give \
+                         one of those (or --frames 1)"
+                    )));
+                }
                 let image = headless::render_world_rays(
                     &gpu,
                     &params,
@@ -115,12 +122,6 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let scene = headless::TrialScene::Endless(&mut world, &view);
             resolve_drawn(&gpu, method, scene, timings)?;
             if frames > 1 {
-                let drawn = world.method();
-                if !matches!(drawn, relief::Method::Visibility | relief::Method::Hybrid) {
-                    return Err(Error::Usage(format!(
-                        "--frames {frames}: the temporal service accumulates the visibility                          method and the hybrid, and this frame is drawn by the {drawn}: give                          --method visibility or hybrid (or --frames 1)"
-                    )));
-                }
                 world.set_temporal(&gpu.device, relief::Temporal { frames })?;
             }
             let (pixels, t) = headless::render_world_frames(
@@ -180,7 +181,8 @@ pub(super) fn render(
     } = flags;
     if frames > 1 {
         return Err(Error::Usage(format!(
-            "--frames {frames}: the tile world draws one frame (the temporal service              accumulates the endless world's: --world endless)"
+            "--frames {frames}: the tile world draws one frame (the temporal service \
+             accumulates the endless world's: --world endless)"
         )));
     }
     let gpu = Gpu::new()?;

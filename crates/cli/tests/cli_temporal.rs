@@ -5,21 +5,29 @@
 mod cli_common;
 use cli_common::*;
 
+/// The visibility method as a fast GPU draws it.
+const VISIBILITY: [&str; 6] = [
+    "--method",
+    "visibility",
+    "--samples",
+    "1",
+    "--raster",
+    "compute",
+];
+
 /// Renders the endless world small with the visibility method as a fast GPU draws it; returns
 /// the PNG's bytes and the `--stats` lines.
 fn render(name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>, String) {
+    render_as(name, &VISIBILITY, extra)
+}
+
+/// Renders the endless world small drawn as `method` says.
+fn render_as(name: &str, method: &[&str], extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>, String) {
     let dir = scratch("temporal");
     let out = dir.join(format!("{name}.png"));
-    let mut args = vec![
-        "render",
-        "--world",
-        "endless",
-        "--method",
-        "visibility",
-        "--samples",
-        "1",
-        "--raster",
-        "compute",
+    let mut args = vec!["render", "--world", "endless"];
+    args.extend_from_slice(method);
+    args.extend_from_slice(&[
         "--width",
         "96",
         "--height",
@@ -29,7 +37,7 @@ fn render(name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>, String) {
         "--stats",
         "--out",
         out.to_str().unwrap(),
-    ];
+    ]);
     args.extend_from_slice(extra);
     let (code, stdout, err) = relief(&args);
     assert_eq!(code, 0, "{extra:?}: {err}");
@@ -78,17 +86,28 @@ fn frames_and_only_are_refused_where_they_do_nothing() {
         &["bench", "--world", "endless", "--only", "everything"],
         &["--only", "everything", "temporal"],
     );
-    // The mesh keeps no history: refused once the frame's method is known.
+    // A ray caster keeps no history: refused once the frame's method is known, in words.
     let (code, _, err) = relief(&[
-        "render", "--world", "endless", "--method", "mesh", "--frames", "4", "--width", "32",
+        "render", "--world", "endless", "--method", "raymarch", "--frames", "4", "--width", "32",
         "--height", "18", "--out", out,
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(
-        err.contains("--frames 4") && err.contains("visibility"),
+        err.contains("--frames 4") && err.contains("raymarch") && !err.contains("  "),
         "{err}"
     );
     assert!(!std::path::Path::new(out).exists());
+}
+
+#[test]
+fn the_forward_mesh_accumulates_its_frames_too() {
+    let mesh = ["--method", "mesh"];
+    let (plain, stats, _) = render_as("mesh-plain", &mesh, &[]);
+    let (four, four_stats, four_out) = render_as("mesh-four", &mesh, &["--frames", "4"]);
+    assert!(plain != four, "four jittered frames differ from one");
+    assert_eq!(stat(&four_stats, "history_frames"), 4.0, "{four_out}");
+    assert_eq!(stat(&stats, "method_texture_mib"), 0.0);
+    assert!(stat(&four_stats, "method_texture_mib") > 0.0, "{four_out}");
 }
 
 #[test]

@@ -81,20 +81,51 @@ fn a_first_frame_and_a_service_that_is_off_draw_the_frame_without_it() {
     );
     assert_eq!(on.stats().history_frames, 1);
     assert_eq!(on.stats().history_fresh, Some("first frame"));
-    // The mesh is not accumulated: the same frame, with or without the service.
-    let mut mesh = World::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(headless::RENDER_SAMPLES),
-        WorldParams::default(),
-    )
-    .unwrap();
-    let a = still(&gpu, &mut mesh, &view, 1);
-    mesh.set_temporal(&gpu.device, Temporal { frames: 8 })
-        .unwrap();
-    let b = still(&gpu, &mut mesh, &view, 4);
-    assert!(a == b && mesh.jitter() == [0.0; 2]);
-    assert_eq!(mesh.stats().history_frames, 0);
+}
+
+/// The forward mesh drawn into the host's targets at `render`'s samples, accumulating up to
+/// `frames` frames.
+fn mesh(gpu: &Gpu, frames: u32) -> World {
+    let targets = Offscreen::targets(headless::RENDER_SAMPLES);
+    let mut w = World::new(&gpu.device, &gpu.queue, targets, WorldParams::default()).unwrap();
+    w.set_temporal(&gpu.device, Temporal { frames }).unwrap();
+    w
+}
+
+#[test]
+fn the_forward_mesh_accumulates_too() {
+    let gpu = common::gpu();
+    let view = oblique(SIZE);
+    let plain = still(&gpu, &mut mesh(&gpu, 1), &view, 1);
+    let mut m = mesh(&gpu, 64);
+    // Its first frame is the frame without the service, but for the own image's half
+    // precision and the order the samples are averaged in.
+    let first = still(&gpu, &mut m, &view, 1);
+    assert_eq!(m.stats().history_frames, 1);
+    let worst = plain
+        .iter()
+        .zip(&first)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    eprintln!("the mesh's first frame against the frame without the service: {worst} levels");
+    assert!(worst <= 2, "{worst} levels");
+    let converged = rgb(&still(&gpu, &mut m, &view, 64));
+    let flip = |image: &[u8]| image_error(&converged, &rgb(image), SIZE.0, SIZE.1).0;
+    let one = flip(&first);
+    let sixteen = flip(&still(&gpu, &mut m, &view, 16));
+    assert_eq!(m.stats().history_frames, 16);
+    assert!(m.jitter() != [0.0; 2]);
+    eprintln!("the mesh against its 64 frames: 1 frame {one:.4}, 16 frames {sixteen:.4}");
+    assert!(sixteen < one, "1 frame {one:.4}, 16 frames {sixteen:.4}");
+    assert!(sixteen < GOAL_16, "16 frames {sixteen:.4}");
+    // Its own image and the histories are counted.
+    let histories = relief::temporal::history_bytes(SIZE);
+    assert!(m.method_bytes() > histories, "{}", m.method_bytes());
+    // Off again, it draws into the host's pass and counts nothing.
+    m.set_temporal(&gpu.device, Temporal::OFF).unwrap();
+    assert!(still(&gpu, &mut m, &view, 1) == plain);
+    assert_eq!((m.method_bytes(), m.stats().history_frames), (0, 0));
 }
 
 /// One frame of `view` prepared and drawn into `target` (no readback).

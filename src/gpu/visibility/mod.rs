@@ -24,6 +24,7 @@
 mod present;
 mod targets;
 
+pub(crate) use self::targets::composite_pipeline;
 use self::targets::*;
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
@@ -78,22 +79,12 @@ impl VisUniforms {
     /// image of `size`.
     pub fn new(matrix: glam::Mat4, size: (u32, u32), sky: bool, world: bool, encode: bool) -> Self {
         let m = matrix.as_dmat4();
-        let (row2, row3) = (m.row(2), m.row(3));
-        // A perspective projection after an affine view: row 2 = -a row 3 + b e4, and clip w
-        // from depth d is b / (d + a). Read `a` where row 3 is largest.
-        let k = (0..3)
-            .max_by(|&i, &j| row3[i].abs().total_cmp(&row3[j].abs()))
-            .unwrap_or(2);
-        let a = if row3[k] != 0.0 {
-            -row2[k] / row3[k]
-        } else {
-            0.0
-        };
-        let b = row2.w + a * row3.w;
+        let row3 = m.row(3);
+        let depth = clip_w_from_depth(matrix);
         Self {
             inv: m.inverse().as_mat4().to_cols_array_2d(),
             w_row: row3.as_vec4().to_array(),
-            depth: [a as f32, b as f32, 0.0, 0.0],
+            depth: [depth[0], depth[1], 0.0, 0.0],
             size: [size.0.max(1), size.1.max(1)],
             sky: u32::from(sky),
             world: u32::from(world),
@@ -102,6 +93,25 @@ impl VisUniforms {
             _pad: [0; 2],
         }
     }
+}
+
+/// How a camera-relative perspective `matrix` (the eye at the origin) turns depth d into clip
+/// w: `b / (d + a)`, as `[a, b]` (`VisUniforms::depth`, what the temporal resolve reads).
+pub(crate) fn clip_w_from_depth(matrix: glam::Mat4) -> [f32; 2] {
+    let m = matrix.as_dmat4();
+    let (row2, row3) = (m.row(2), m.row(3));
+    // A perspective projection after an affine view: row 2 = -a row 3 + b e4, and clip w
+    // from depth d is b / (d + a). Read `a` where row 3 is largest.
+    let k = (0..3)
+        .max_by(|&i, &j| row3[i].abs().total_cmp(&row3[j].abs()))
+        .unwrap_or(2);
+    let a = if row3[k] != 0.0 {
+        -row2[k] / row3[k]
+    } else {
+        0.0
+    };
+    let b = row2.w + a * row3.w;
+    [a as f32, b as f32]
 }
 
 /// What the compute pass reads of the world beside its own images.

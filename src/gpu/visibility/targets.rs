@@ -27,10 +27,10 @@ pub(super) fn present_order(format: wgpu::TextureFormat) -> Option<bool> {
     }
 }
 
-/// The composite's pipeline into the host's targets: premultiplied colour over what is there
+/// The composite's pipeline (`wgsl/composite.wgsl` in `module`) into the host's targets: premultiplied colour over what is there
 /// (or opaque), and the nearest sample's depth, tested (less or equal: the sky's 1 passes where
 /// nothing was drawn) and written, where the host's pass has depth.
-pub(super) fn composite_pipeline(
+pub(crate) fn composite_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     module: &wgpu::ShaderModule,

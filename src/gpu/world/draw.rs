@@ -73,6 +73,14 @@ impl World {
             vis.composite(pass);
             return;
         }
+        // The forward mesh's history, where it accumulates (its own pass drew the sky).
+        if self
+            .mesh_history
+            .as_ref()
+            .is_some_and(|h| h.composite(pass))
+        {
+            return;
+        }
         self.sky.around(pass, self.shading.sky, |pass| {
             let [whole, subs] = self.instance_counts;
             if whole + subs == 0 {

@@ -164,6 +164,9 @@ impl World {
             }
         };
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
+        if let Some(history) = &self.mesh_history {
+            history.write_uniforms(queue, &uniforms);
+        }
 
         let active: Vec<_> = self.map.levels[first.min(n)..]
             .iter()

@@ -7,6 +7,7 @@
 mod bake;
 mod draw;
 mod frame;
+mod mesh_history;
 mod resources;
 mod temporal;
 
@@ -139,6 +140,8 @@ pub struct World {
     history: crate::temporal::History,
     /// The near and far planes of the last `prepare`'s matrix.
     near_far: (f32, f32),
+    /// The forward mesh's own image and history, where it accumulates.
+    mesh_history: Option<mesh_history::MeshHistory>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -319,6 +322,7 @@ impl World {
                 temporal: crate::temporal::Temporal::OFF,
                 history: Default::default(),
                 near_far: (0.0, 0.0),
+                mesh_history: None,
             }
         })
     }
@@ -351,8 +355,10 @@ impl World {
             self.kept.remove(0);
         }
         self.targets = targets;
-        // The visibility method's composite draws into the host's pass: built again for these.
+        // The visibility method's and the mesh history's composites draw into the host's pass:
+        // built again for these.
         self.visibility = None;
+        self.mesh_history = None;
         let rebuilt = self.set_method(device, self.method_config());
         if rebuilt.is_err() {
             // Never a method without its passes: the forward mesh draws, and says so.
@@ -453,7 +459,7 @@ impl World {
         self.method = method;
         self.vis_samples = config.samples;
         self.vis_raster = config.raster;
-        Ok(())
+        self.update_mesh_history(device)
     }
 
     /// How frames are drawn: the method with its samples and raster ([`World::set_method`]).
@@ -505,11 +511,16 @@ impl World {
         self.target_size
     }
 
-    /// GPU memory of the visibility method's own images for the last frame's size, bytes (0
-    /// for the forward mesh).
+    /// GPU memory of the method's own images for the last frame's size, bytes: the
+    /// visibility method's, or the forward mesh's image and history where it accumulates (0
+    /// for the forward mesh drawing into the host's pass).
     pub fn method_bytes(&self) -> u64 {
         match (&self.visibility, self.method) {
             (Some(v), Method::Visibility | Method::Hybrid) => v.bytes(self.vis_size),
+            (_, Method::Mesh) => self
+                .mesh_history
+                .as_ref()
+                .map_or(0, |h| h.bytes(self.vis_size)),
             _ => 0,
         }
     }
@@ -671,6 +682,9 @@ impl World {
         self.write_uniforms(queue, view);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
+            self.encode_resolve(queue, encoder, &unjittered, timer);
+        } else if self.mesh_history.is_some() {
+            self.encode_mesh_history((device, queue, encoder), view, timer);
             self.encode_resolve(queue, encoder, &unjittered, timer);
         }
         let frame = LayerFrame {

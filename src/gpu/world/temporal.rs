@@ -1,23 +1,26 @@
 //! [`World`]'s temporal service: the jittered view a frame is drawn through, and the resolve
 //! that blends it into the history ([`crate::temporal`] plans, [`crate::gpu::temporal`] runs).
-//! The methods shaded in compute (`visibility`, `hybrid`) use it; the forward mesh draws
-//! into the host's pass, has no image of its own to keep, and draws unjittered.
+//! Every mesh-based method uses it: the methods shaded in compute (`visibility`, `hybrid`)
+//! resolve the image they shaded, the forward mesh an image of its own
+//! ([`super::mesh_history`]).
 
 use super::*;
 use crate::temporal::{jitter_matrix, Temporal};
 
 impl World {
     /// Turns the temporal service on (`temporal.frames` > 1) or off. On, each frame of the
-    /// methods shaded in compute (`visibility`, `hybrid`) is drawn through a sub-pixel jitter
+    /// mesh-based methods (`mesh`, `visibility`, `hybrid`) is drawn through a sub-pixel jitter
     /// and blended into a history of up to `frames` frames, which is what
     /// [`World::render`] and [`World::present`] show: a still view converges to the mean of
     /// that many jittered frames, and a moving one reprojects its history (rejecting what the
     /// new frame disoccludes). New parameters, shading, method, targets or image size, and
-    /// [`World::cut`], start a new history. The forward mesh is not accumulated (it draws
-    /// into the host's pass). Off by default.
+    /// [`World::cut`], start a new history. The forward mesh then draws into an image of its
+    /// own (half-precision colour and depth at the host's samples), which is resolved and
+    /// composited into the host's pass as the visibility method's is. Off by default.
     ///
     /// The histories cost [`crate::temporal::history_bytes`]: 64 bytes a pixel, 127 MiB at
-    /// 1920x1080 ([`World::method_bytes`] counts them).
+    /// 1920x1080, and the forward mesh's own image 60 bytes a pixel at 4 samples
+    /// ([`World::method_bytes`] counts both).
     pub fn set_temporal(&mut self, device: &wgpu::Device, temporal: Temporal) -> Result<()> {
         temporal.validate()?;
         if temporal == self.temporal {
@@ -28,7 +31,7 @@ impl World {
         if let Some(vis) = &mut self.visibility {
             vis.set_temporal(device, temporal.on());
         }
-        Ok(())
+        self.update_mesh_history(device)
     }
 
     /// The temporal service's setting.
@@ -44,7 +47,7 @@ impl World {
     /// The sub-pixel offset, in pixels (x right, y down), the last [`World::prepare`] drew
     /// through: its [`World::relative_matrix`] is
     /// [`crate::temporal::jitter_matrix`]`(jitter, size)` times the view's own. (0, 0) where
-    /// the service is off or the method is the mesh, and for a history's first frame.
+    /// the service is off, and for a history's first frame.
     ///
     /// The resolve runs in [`World::prepare`], before the host's pass: what
     /// [`World::render`] composites is the accumulated image, with the jittered frame's
@@ -60,11 +63,14 @@ impl World {
         }
     }
 
-    /// Whether frames are accumulated: the service on and a method shaded in compute.
+    /// Whether frames are accumulated: the service on and the method's passes built.
     fn temporal_active(&self) -> bool {
         self.temporal.on()
-            && matches!(self.method, Method::Visibility | Method::Hybrid)
-            && self.visibility.is_some()
+            && match self.method {
+                Method::Visibility | Method::Hybrid => self.visibility.is_some(),
+                Method::Mesh => self.mesh_history.is_some(),
+                _ => false,
+            }
     }
 
     /// `view` as the next frame draws it: through the history's next jitter where the
@@ -102,8 +108,12 @@ impl World {
             .history
             .advance(jitter, unjittered, (view.eye, self.clock(), size));
         let cap = self.temporal.frames;
-        if let Some(vis) = &mut self.visibility {
-            vis.resolve(queue, encoder, (&step, cap), timer);
+        match (&mut self.mesh_history, &mut self.visibility) {
+            (Some(mesh), _) if self.method == Method::Mesh => {
+                mesh.resolve(queue, encoder, (&step, cap), timer);
+            }
+            (_, Some(vis)) => vis.resolve(queue, encoder, (&step, cap), timer),
+            _ => {}
         }
         self.stats.history_frames = self.history.frames(cap);
         self.stats.history_fresh = self.history.fresh;
