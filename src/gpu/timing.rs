@@ -16,7 +16,8 @@ pub enum Slot {
     Light = 3,
     /// The visibility method's raster pass (depth and surface attributes per sample).
     Raster = 4,
-    /// The visibility method's compute shading of every sample.
+    /// The visibility method's compute shading of every sample, or the forward mesh's own
+    /// image drawn for the temporal service.
     Shade = 5,
     /// A ray-cast image shown in the target (the window's, the benchmark's): a full-screen draw.
     Show = 6,

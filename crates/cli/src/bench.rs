@@ -14,6 +14,8 @@ impl relief_eval::bench::Progress for Bar {
 pub(super) fn bench(base: &TerrainParams, dir: &Path, quick: bool) -> Result<()> {
     use relief_eval::bench;
     check_out_dir(dir)?;
+    // Its charts' font, before minutes of measuring.
+    relief_eval::chart::check_font()?;
     let gpu = Gpu::new()?;
     let info = gpu.adapter.get_info();
     let options = if quick {

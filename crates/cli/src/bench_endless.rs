@@ -29,6 +29,8 @@ pub(super) fn bench_endless(
         ));
     };
     check_out_dir(dir)?;
+    // Its charts' font, before minutes of measuring.
+    relief_eval::chart::check_font()?;
     let gpu = Gpu::new()?;
     let land = &params.land;
     if let Some(part) = only {
@@ -164,8 +166,10 @@ pub(super) fn bench_endless(
         _ => look().and_then(|()| sweep()).and_then(|()| arrival()),
     };
     if result.is_err() {
+        // A folder this made goes again only where it holds nothing: the parts write their
+        // rows as they measure them, and what was measured before the failure stays.
         if let Some(c) = created {
-            let _ = std::fs::remove_dir_all(c);
+            let _ = std::fs::remove_dir(c);
         }
     }
     result

@@ -32,6 +32,8 @@ pub fn stability(
 ) -> Result<()> {
     use relief_eval::stability::{self, Axis};
     check_out_dir(dir)?;
+    // Its charts' font, before minutes of measuring.
+    relief_eval::chart::check_font()?;
     let gpu = Gpu::new()?;
     let info = gpu.adapter.get_info();
     let backend = format!("{:?}", info.backend);

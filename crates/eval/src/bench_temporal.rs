@@ -14,7 +14,7 @@ use crate::bench::{measure, Options};
 use crate::metrics::{image_error, median, rgb};
 use crate::views::{random_views, views, LandscapeView};
 use relief::error::Result;
-use relief::gpu::headless::{render_world_rays_at, Gpu, Offscreen};
+use relief::gpu::headless::{render_samples, render_world_rays_at, Gpu, Offscreen};
 use relief::gpu::timing::{GpuTimer, Slot};
 use relief::world::WorldParams;
 use relief::{Method, MethodConfig, Raster, Shading, Temporal, World, WorldView};
@@ -201,6 +201,10 @@ pub struct TemporalRun {
     pub resolve_ms: Option<f64>,
     /// The draw's median with the service, and without, milliseconds.
     pub draw_ms: [Option<f64>; 2],
+    /// The same for the forward mesh as the window draws it (into 1-sample targets with the
+    /// service, 4-sample ones without): its resolve, its draw with the service and without,
+    /// and its own image and histories, bytes.
+    pub mesh: (Option<f64>, [Option<f64>; 2], u64),
     /// GPU memory of the histories at the measured size, bytes.
     pub history_bytes: u64,
     /// Rays a pixel per side of the reference.
@@ -210,8 +214,20 @@ pub struct TemporalRun {
 }
 
 fn new_world(gpu: &Gpu, params: &WorldParams, frames: u32) -> Result<World> {
-    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), *params)?;
-    world.set_method(&gpu.device, method())?;
+    drawn_as(gpu, params, frames, (method(), 1))
+}
+
+/// A world drawing as `config` says into targets of `samples` a pixel, accumulating up to
+/// `frames` frames.
+fn drawn_as(
+    gpu: &Gpu,
+    params: &WorldParams,
+    frames: u32,
+    (config, samples): (MethodConfig, u32),
+) -> Result<World> {
+    let targets = Offscreen::targets(samples);
+    let mut world = World::new(&gpu.device, &gpu.queue, targets, *params)?;
+    world.set_method(&gpu.device, config)?;
     world.set_temporal(&gpu.device, Temporal { frames })?;
     Ok(world)
 }
@@ -229,7 +245,7 @@ pub trait Sink {
 
 /// The `temporal` part: the cost first, then the named views still, the motions, and the
 /// random views still (the order of what matters most, should a run be cut short); or, where
-/// views are `chosen`, those views still and nothing else.
+/// views are `chosen`, the cost and those views still.
 pub fn run_temporal(
     gpu: &Gpu,
     params: &WorldParams,
@@ -247,6 +263,8 @@ pub fn run_temporal(
         history_bytes: relief::temporal::history_bytes(size),
         ..Default::default()
     };
+    cost(gpu, params, options, &target, &mut run)?;
+    sink.progress("the cost");
     if let Some(chosen) = chosen {
         for v in chosen {
             let row = still(gpu, params, (&target, side, converged), v, sink)?;
@@ -255,8 +273,6 @@ pub fn run_temporal(
         }
         return Ok(run);
     }
-    cost(gpu, params, options, &target, &mut run)?;
-    sink.progress("the cost");
     let named = views(params, size);
     for v in &named {
         let row = still(gpu, params, (&target, side, converged), v, sink)?;
@@ -274,7 +290,9 @@ pub fn run_temporal(
     Ok(run)
 }
 
-/// The resolve's time and the draw's, with the service and without, on the first named view.
+/// The resolve's time and the draw's, with the service and without, on the first named view:
+/// of the method measured, and of the forward mesh as the window draws it (its history
+/// anti-aliases a 1-sample target; without it, 4 samples a pixel).
 fn cost(
     gpu: &Gpu,
     params: &WorldParams,
@@ -285,16 +303,35 @@ fn cost(
     let size = (target.width, target.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let first = views(params, size)[0];
-    for (i, frames) in [16, 1].into_iter().enumerate() {
-        let mut world = new_world(gpu, params, frames)?;
-        target.accumulate_world(gpu, &mut world, &first.view, 0)?;
-        let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
-            let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &first.view, timer);
-            target.draw(encoder, &world, wgpu::Color::BLACK, timer);
-        })?;
-        run.draw_ms[i] = median(times.iter().filter_map(relief::choice::draw_ms));
-        if frames > 1 {
-            run.resolve_ms = median(times.iter().filter_map(|t| t[Slot::Resolve as usize]));
+    let mesh = MethodConfig::MESH;
+    let mesh_4x = Offscreen::new(&gpu.device, size.0, size.1, render_samples(mesh.method))?;
+    let four = render_samples(mesh.method);
+    let drawn = [
+        (method(), [(target, 1), (target, 1)]),
+        (mesh, [(target, 1), (&mesh_4x, four)]),
+    ];
+    for (config, targets) in drawn {
+        let mut resolve_ms = None;
+        let mut draw_ms = [None; 2];
+        let mut bytes = 0;
+        for (i, frames) in [16, 1].into_iter().enumerate() {
+            let (target, samples) = targets[i];
+            let mut world = drawn_as(gpu, params, frames, (config, samples))?;
+            target.accumulate_world(gpu, &mut world, &first.view, 0)?;
+            let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
+                let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &first.view, timer);
+                target.draw(encoder, &world, wgpu::Color::BLACK, timer);
+            })?;
+            draw_ms[i] = median(times.iter().filter_map(relief::choice::draw_ms));
+            if frames > 1 {
+                resolve_ms = median(times.iter().filter_map(|t| t[Slot::Resolve as usize]));
+                bytes = world.method_bytes();
+            }
+        }
+        if config == mesh {
+            run.mesh = (resolve_ms, draw_ms, bytes);
+        } else {
+            (run.resolve_ms, run.draw_ms) = (resolve_ms, draw_ms);
         }
     }
     Ok(())
@@ -507,6 +544,16 @@ pub fn summary(run: &TemporalRun) -> Vec<String> {
         run.draw_ms[0].map_or("-".into(), |v| format!("{v:.3}")),
         run.draw_ms[1].map_or("-".into(), |v| format!("{v:.3}")),
         run.history_bytes as f64 / f64::from(1u32 << 20)
+    ));
+    let (resolve, [with, without], bytes) = run.mesh;
+    lines.push(format!(
+        "the forward mesh as the window draws it: {} ms with the service into 1-sample \
+         targets (its resolve {} ms), {} ms without it into 4-sample ones; its own image and \
+         histories {:.1} MiB",
+        with.map_or("-".into(), |v| format!("{v:.3}")),
+        resolve.map_or("-".into(), |v| format!("{v:.3}")),
+        without.map_or("-".into(), |v| format!("{v:.3}")),
+        bytes as f64 / f64::from(1u32 << 20)
     ));
     lines
 }

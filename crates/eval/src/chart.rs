@@ -42,13 +42,34 @@ fn load_font() -> Result<&'static [u8]> {
             return Ok(Box::leak(bytes.into_boxed_slice()));
         }
     }
-    Err(Error::io(
+    Err(no_font())
+}
+
+/// Fails, saying what to install, where no chart font ([`FONT_PATHS`], or `RELIEF_FONT`) can
+/// be opened: what a command that measures and then charts checks before it measures (a
+/// benchmark that ran for minutes should not end on a missing font).
+pub fn check_font() -> Result<()> {
+    let from_env = std::env::var("RELIEF_FONT").ok();
+    let found = from_env
+        .as_deref()
+        .into_iter()
+        .chain(FONT_PATHS)
+        .any(|p| std::fs::File::open(p).is_ok());
+    if found {
+        Ok(())
+    } else {
+        Err(no_font())
+    }
+}
+
+fn no_font() -> Error {
+    Error::io(
         FONT_PATHS[0],
         std::io::Error::new(
             std::io::ErrorKind::NotFound,
             "no font for the chart: install fonts-dejavu-core",
         ),
-    ))
+    )
 }
 
 /// Tick values for a log axis over `lo..hi`: 1-2-5 per decade, or every integer multiple when

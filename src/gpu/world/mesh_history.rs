@@ -282,7 +282,8 @@ impl MeshHistory {
 
     /// Records the mesh (`draw` draws the patches with the bind group at 0 set), and its sky
     /// where `sky` is on, into the own image of `size` seen through the camera-relative
-    /// `matrix`, and the copy of its depth (timed as [`Slot::Render`]).
+    /// `matrix`, and the copy of its depth (timed as [`Slot::Shade`]: the host's pass, timed as
+    /// [`Slot::Render`], then holds the composite).
     fn encode(
         &mut self,
         (device, queue, encoder): (&wgpu::Device, &wgpu::Queue, &mut wgpu::CommandEncoder),
@@ -323,7 +324,7 @@ impl MeshHistory {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: timer.map(|t| t.render_writes(Slot::Render)),
+                timestamp_writes: timer.map(|t| t.render_writes(Slot::Shade)),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
