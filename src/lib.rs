@@ -82,6 +82,7 @@ pub mod choice;
 pub mod clipmap;
 pub mod error;
 pub mod gpu;
+pub mod grass;
 pub mod landscape;
 pub mod light;
 pub mod method;

@@ -5,6 +5,7 @@ pub(crate) mod bake;
 pub mod blit;
 pub mod blog;
 #[cfg(not(target_arch = "wasm32"))]
+pub mod grass;
 pub mod headless;
 pub mod landscape;
 pub mod layer;

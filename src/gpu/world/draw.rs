@@ -19,8 +19,8 @@ impl World {
     /// which a compute pass packs the frame for and a copy fills. Both round each value in the
     /// shader; the stored one is the packed one wherever the device's 8-bit store rounds to
     /// the nearest, down or toward zero (lavapipe's and the H100's do).
-    /// Otherwise it records nothing and returns false: draw with [`World::render`] in a render
-    /// pass.
+    /// Otherwise (and where layers or grass draw after the terrain) it records nothing and
+    /// returns false: draw with [`World::render`] in a render pass.
     pub fn present(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -28,8 +28,10 @@ impl World {
         timer: Option<&GpuTimer>,
     ) -> bool {
         match (self.method, &self.visibility) {
-            // The layers draw into a render pass: with any, the frame needs one.
-            (Method::Visibility | Method::Hybrid, Some(vis)) if self.layers.is_empty() => {
+            // The layers and the grass draw into a render pass: with any, the frame needs one.
+            (Method::Visibility | Method::Hybrid, Some(vis))
+                if self.layers.is_empty() && self.grass.is_none() =>
+            {
                 vis.present(encoder, target, timer)
             }
             _ => false,
@@ -71,9 +73,11 @@ impl World {
         if let (Method::Visibility | Method::Hybrid, Some(vis)) = (self.method, &self.visibility) {
             // Its compute pass shaded the sky too: one full-screen draw.
             vis.composite(pass);
+            self.draw_grass(pass);
             return;
         }
-        // The forward mesh's history, where it accumulates (its own pass drew the sky).
+        // The forward mesh's history, where it accumulates (its own pass drew the sky and the
+        // grass).
         if self
             .mesh_history
             .as_ref()
@@ -95,6 +99,7 @@ impl World {
                 (&self.indices, self.index_counts),
             );
             pass.pop_debug_group();
+            self.draw_grass(pass);
         });
     }
 }

@@ -76,6 +76,7 @@ impl MeshHistory {
             depth_format: Some(DEPTH_FORMAT),
             sample_count: targets.sample_count,
         };
+        // (`own_targets` below says the same once built.)
         let uniforms =
             crate::gpu::uniform_buffer::<RenderUniforms>(device, "relief:mesh-history:render");
         let pipeline = mesh_pipeline(device, (layout, module), &own_targets, tile);
@@ -171,6 +172,20 @@ impl MeshHistory {
             + resolved
             + bytes(DEPTH_COPY_FORMAT);
         pixels * per_pixel + Resolve::bytes(size)
+    }
+
+    /// The targets of its own image.
+    pub fn own_targets(&self) -> Targets {
+        Targets {
+            color_format: COLOR_FORMAT,
+            depth_format: Some(DEPTH_FORMAT),
+            sample_count: self.samples,
+        }
+    }
+
+    /// The render uniforms its own image is drawn with.
+    pub fn uniforms(&self) -> &wgpu::Buffer {
+        &self.uniforms
     }
 
     /// Writes the frame's render uniforms as the own image takes them: linear colour.
@@ -430,6 +445,8 @@ impl World {
             )
         });
         let [whole, subs] = self.instance_counts;
+        let (own, uniforms) = (history.own_targets(), history.uniforms().clone());
+        let grass = &self.grass;
         let draw = |pass: &mut wgpu::RenderPass<'_>| {
             if whole + subs > 0 {
                 draw_patches(
@@ -437,6 +454,10 @@ impl World {
                     (&self.instances, self.instance_counts),
                     (&self.indices, self.index_counts),
                 );
+            }
+            // The grass into the same image: accumulated and composited with the terrain.
+            if let Some(grass) = grass {
+                grass.draw(pass, &own, &uniforms);
             }
         };
         history.encode(

@@ -7,6 +7,7 @@
 mod bake;
 mod draw;
 mod frame;
+mod grass;
 mod mesh_history;
 mod resources;
 mod temporal;
@@ -142,6 +143,8 @@ pub struct World {
     near_far: (f32, f32),
     /// The forward mesh's own image and history, where it accumulates.
     mesh_history: Option<mesh_history::MeshHistory>,
+    /// The grass's passes, where it grows ([`World::set_grass`]).
+    grass: Option<crate::gpu::grass::GrassPass>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -323,6 +326,7 @@ impl World {
                 history: Default::default(),
                 near_far: (0.0, 0.0),
                 mesh_history: None,
+                grass: None,
             }
         })
     }
@@ -680,6 +684,7 @@ impl World {
         let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
+        self.encode_grass(device, queue, encoder, view);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
             self.encode_resolve(queue, encoder, &unjittered, timer);

@@ -1,0 +1,522 @@
+//! Grass on the GPU, first part: the uniforms `wgsl/grass.wgsl` reads (the eye's cell and
+//! clump in 64 bits, the seed, the grass's parameters), and probes that run its blades and its
+//! cover at given cells and surfaces (`wgsl/grass_probe.wgsl`), which the tests hold to the CPU
+//! twin ([`crate::grass`]).
+
+use crate::grass::{Blade, CoverParams, Grass};
+
+/// Mirrors `GrassUniforms` in `wgsl/grass.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GrassUniforms {
+    eye_cell: [u32; 4],
+    eye_clump: [u32; 4],
+    eye_rem: [i32; 2],
+    clump_cells: i32,
+    seed: u32,
+    height: f32,
+    cell: f32,
+    _pad: [f32; 2],
+}
+
+/// A 64-bit integer as its low and high words.
+fn words(v: i64) -> [u32; 2] {
+    [v as u64 as u32, (v as u64 >> 32) as u32]
+}
+
+impl GrassUniforms {
+    /// The uniforms of `grass` over the landscape of `seed`, cells counted from `eye_cell`.
+    pub fn new(grass: &Grass, seed: u32, eye_cell: [i64; 2]) -> Self {
+        let k = i64::from(grass.clump_cells());
+        let clump = eye_cell.map(|c| c.div_euclid(k));
+        let [x, z] = eye_cell.map(words);
+        let [cx, cz] = clump.map(words);
+        Self {
+            eye_cell: [x[0], x[1], z[0], z[1]],
+            eye_clump: [cx[0], cx[1], cz[0], cz[1]],
+            eye_rem: eye_cell.map(|c| c.rem_euclid(k) as i32),
+            clump_cells: k as i32,
+            seed,
+            height: grass.height,
+            cell: grass.cell() as f32,
+            _pad: [0.0; 2],
+        }
+    }
+}
+
+/// Mirrors `GrassFrame` in `wgsl/grass_scatter.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+struct GrassFrame {
+    g: GrassUniforms,
+    eye_in_cell: [f32; 2],
+    distance: f32,
+    side: u32,
+    capacity: u32,
+    _pad: [u32; 3],
+}
+
+/// Blades the draw holds at most a frame: 48 bytes each, 24 MiB.
+pub const CAPACITY: u32 = 1 << 19;
+
+/// Bytes a blade takes in the draw's buffer.
+const BLADE_BYTES: u64 = 48;
+
+/// The grass of the endless world on the GPU: the scatter pass that keeps each frame's blades
+/// (`wgsl/grass_scatter.wgsl`, reading the world's bind group for the drawn surface) and their
+/// draw (`wgsl/grass_draw.wgsl`), one indirect draw of a strip a blade.
+pub(crate) struct GrassPass {
+    grass: Grass,
+    scatter: wgpu::ComputePipeline,
+    finish: wgpu::ComputePipeline,
+    frame: wgpu::Buffer,
+    blades: wgpu::Buffer,
+    counts: wgpu::Buffer,
+    args: wgpu::Buffer,
+    scatter_group: wgpu::BindGroup,
+    draw_module: wgpu::ShaderModule,
+    draw_layout: wgpu::BindGroupLayout,
+    /// The draw's pipelines for the targets it drew into, and its bind groups for the
+    /// render-uniform buffers it read (the host's pass's and the mesh history's own).
+    pipelines: Vec<(super::Targets, wgpu::RenderPipeline)>,
+    groups: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
+impl GrassPass {
+    /// The passes for `grass`, the scatter reading the world's bind group of `world_layout`.
+    pub fn new(device: &wgpu::Device, world_layout: &wgpu::BindGroupLayout, grass: Grass) -> Self {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:grass:frame-layout"),
+            entries: &[
+                super::uniform_entry::<GrassFrame>(0, c),
+                super::storage_buffer_entry(1, false),
+                super::storage_buffer_entry(2, false),
+                super::storage_buffer_entry(3, false),
+            ],
+        });
+        let module = super::shader::module(
+            device,
+            "relief:grass:scatter",
+            &super::shader::source("grass_scatter"),
+        );
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:grass:scatter-layout"),
+            bind_group_layouts: &[Some(world_layout), Some(&frame_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("relief:grass:scatter"),
+                layout: Some(&layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let buffer = |label: &str, size: u64, usage: wgpu::BufferUsages| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let storage = wgpu::BufferUsages::STORAGE;
+        let frame = super::uniform_buffer::<GrassFrame>(device, "relief:grass:frame");
+        let blades = buffer(
+            "relief:grass:blades",
+            u64::from(CAPACITY) * BLADE_BYTES,
+            storage,
+        );
+        let counts = buffer(
+            "relief:grass:counts",
+            16,
+            storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        );
+        let args = buffer(
+            "relief:grass:draw-args",
+            16,
+            storage | wgpu::BufferUsages::INDIRECT,
+        );
+        let scatter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:grass:frame-group"),
+            layout: &frame_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: blades.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: counts.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: args.as_entire_binding(),
+                },
+            ],
+        });
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:grass:draw-layout"),
+            entries: &[
+                super::uniform_entry::<super::RenderUniforms>(0, vf),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        Self {
+            grass,
+            scatter: pipeline("scatter"),
+            finish: pipeline("finish"),
+            frame,
+            blades,
+            counts,
+            args,
+            scatter_group,
+            draw_module: super::shader::module(
+                device,
+                "relief:grass:draw",
+                &super::shader::source("grass_draw"),
+            ),
+            draw_layout,
+            pipelines: Vec::new(),
+            groups: Vec::new(),
+        }
+    }
+
+    /// The grass it draws.
+    pub fn grass(&self) -> Grass {
+        self.grass
+    }
+
+    /// GPU memory of its buffers, bytes.
+    pub fn bytes(&self) -> u64 {
+        u64::from(CAPACITY) * BLADE_BYTES + 32 + std::mem::size_of::<GrassFrame>() as u64
+    }
+
+    /// Records the scatter of the blades around `eye` (world metres) over the landscape of
+    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written).
+    pub fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
+    ) {
+        let s = self.grass.cell();
+        let eye_cell = self.grass.cell_at(eye.x, eye.z);
+        let frame = GrassFrame {
+            g: GrassUniforms::new(&self.grass, seed, eye_cell),
+            eye_in_cell: [
+                (eye.x - eye_cell[0] as f64 * s) as f32,
+                (eye.z - eye_cell[1] as f64 * s) as f32,
+            ],
+            distance: self.grass.distance,
+            side: self.grass.side(),
+            capacity: CAPACITY,
+            _pad: [0; 3],
+        };
+        queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
+        encoder.clear_buffer(&self.counts, 0, None);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:grass:scatter-pass"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.scatter);
+        pass.set_bind_group(0, world, &[]);
+        pass.set_bind_group(1, &self.scatter_group, &[]);
+        let groups = frame.side.div_ceil(super::WORKGROUP);
+        pass.dispatch_workgroups(groups, groups, 1);
+        pass.set_pipeline(&self.finish);
+        pass.dispatch_workgroups(1, 1, 1);
+    }
+
+    /// Makes the draw's pipeline for `targets` and its bind group for the render uniforms in
+    /// `uniforms`, where it has none yet (a few of each are kept).
+    pub fn prepare_draw(
+        &mut self,
+        device: &wgpu::Device,
+        targets: &super::Targets,
+        uniforms: &wgpu::Buffer,
+    ) {
+        if !self.pipelines.iter().any(|(t, _)| t == targets) {
+            let pipeline = super::render_pipeline(
+                device,
+                (
+                    "relief:grass:draw",
+                    &self.draw_layout,
+                    &self.draw_module,
+                    ("blade_vs", "blade_fs"),
+                ),
+                targets,
+                wgpu::PrimitiveTopology::TriangleStrip,
+                &[],
+                (true, wgpu::CompareFunction::Less),
+            );
+            self.pipelines.push((*targets, pipeline));
+            if self.pipelines.len() > 4 {
+                self.pipelines.remove(0);
+            }
+        }
+        if !self.groups.iter().any(|(b, _)| b == uniforms) {
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:grass:draw-group"),
+                layout: &self.draw_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: uniforms.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: self.blades.as_entire_binding(),
+                    },
+                ],
+            });
+            self.groups.push((uniforms.clone(), group));
+            if self.groups.len() > 4 {
+                self.groups.remove(0);
+            }
+        }
+    }
+
+    /// Draws the blades the last scatter kept into `pass`, of `targets`, shaded with the
+    /// render uniforms in `uniforms` (both made ready by [`GrassPass::prepare_draw`]; nothing
+    /// is drawn otherwise).
+    pub fn draw(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        targets: &super::Targets,
+        uniforms: &wgpu::Buffer,
+    ) {
+        let pipeline = self.pipelines.iter().find(|(t, _)| t == targets);
+        let group = self.groups.iter().find(|(b, _)| b == uniforms);
+        let (Some((_, pipeline)), Some((_, group))) = (pipeline, group) else {
+            return;
+        };
+        pass.push_debug_group("relief:grass");
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, group, &[]);
+        pass.draw_indirect(&self.args, 0);
+        pass.pop_debug_group();
+    }
+}
+
+/// The blades of the cells `cells` from `eye_cell` (each within ±2^30 of it) as the GPU
+/// makes them (`blade_at` in `wgsl/grass.wgsl`), and the cover at each surface of `surfaces`
+/// (the normal's y, the normalised height, the colour channel) under `cover` (`grass_cover`).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn probe(
+    gpu: &super::headless::Gpu,
+    (grass, seed, eye_cell): (&Grass, u32, [i64; 2]),
+    cells: &[[i32; 2]],
+    (cover, surfaces): (&CoverParams, &[[f32; 3]]),
+) -> crate::Result<(Vec<Blade>, Vec<f32>)> {
+    use wgpu::util::DeviceExt as _;
+    let device = &gpu.device;
+    let mut render: super::RenderUniforms = bytemuck::Zeroable::zeroed();
+    render.snow_height = cover.snow_height;
+    render.sand_band = cover.sand_band;
+    if let Some(level) = cover.water {
+        render.water_on = 1;
+        render.water_level = level;
+    }
+    let uniforms = GrassUniforms::new(grass, seed, eye_cell);
+    let init = |label: &str, contents: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let storage = wgpu::BufferUsages::STORAGE;
+    let out = |label: &str, bytes: u64| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: bytes.max(4),
+            usage: storage | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    };
+    let surfaces4: Vec<[f32; 4]> = surfaces.iter().map(|s| [s[0], s[1], s[2], 0.0]).collect();
+    // Empty inputs bind one unused element: a binding holds at least one.
+    let cells_in: Vec<[i32; 2]> = if cells.is_empty() {
+        vec![[0; 2]]
+    } else {
+        cells.to_vec()
+    };
+    let surfaces_in = if surfaces4.is_empty() {
+        vec![[0.0; 4]]
+    } else {
+        surfaces4
+    };
+    let buffers = [
+        init(
+            "relief:grass-probe:grass",
+            bytemuck::bytes_of(&uniforms),
+            wgpu::BufferUsages::UNIFORM,
+        ),
+        init(
+            "relief:grass-probe:render",
+            bytemuck::bytes_of(&render),
+            wgpu::BufferUsages::UNIFORM,
+        ),
+        init(
+            "relief:grass-probe:cells",
+            bytemuck::cast_slice(&cells_in),
+            storage,
+        ),
+        out("relief:grass-probe:blades", 40 * cells_in.len() as u64),
+        init(
+            "relief:grass-probe:surfaces",
+            bytemuck::cast_slice(&surfaces_in),
+            storage,
+        ),
+        out("relief:grass-probe:cover", 4 * surfaces_in.len() as u64),
+    ];
+    let [grass_buf, render_buf, cells_buf, blades_buf, surfaces_buf, cover_buf] = &buffers;
+    let source = super::shader::source("grass_probe");
+    let read = super::scoped(device, || {
+        let module = super::shader::module(device, "relief:grass-probe", &source);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        for (entry, io) in [
+            ("blades_cs", [(0, cells_buf), (1, blades_buf)]),
+            ("cover_cs", [(2, surfaces_buf), (3, cover_buf)]),
+        ] {
+            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("relief:grass-probe"),
+                layout: None,
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            let group = |index: u32, entries: &[(u32, &wgpu::Buffer)]| {
+                let entries: Vec<_> = entries
+                    .iter()
+                    .map(|&(binding, b)| wgpu::BindGroupEntry {
+                        binding,
+                        resource: b.as_entire_binding(),
+                    })
+                    .collect();
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("relief:grass-probe"),
+                    layout: &pipeline.get_bind_group_layout(index),
+                    entries: &entries,
+                })
+            };
+            // Each entry point's layout holds the uniforms it reads.
+            let uniform = if entry == "blades_cs" {
+                (0, grass_buf)
+            } else {
+                (1, render_buf)
+            };
+            let uniforms = group(0, &[uniform]);
+            let io_group = group(1, &io);
+            let n = if entry == "blades_cs" {
+                cells_in.len()
+            } else {
+                surfaces_in.len()
+            };
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &uniforms, &[]);
+            pass.set_bind_group(1, &io_group, &[]);
+            pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
+        }
+        let staging = [blades_buf, cover_buf].map(|b| {
+            let s = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("relief:grass-probe:staging"),
+                size: b.size(),
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            encoder.copy_buffer_to_buffer(b, 0, &s, 0, b.size());
+            s
+        });
+        gpu.queue.submit([encoder.finish()]);
+        staging
+    })?;
+    let floats = |b: &wgpu::Buffer| -> crate::Result<Vec<f32>> {
+        let bytes = super::map_read(device, b)?;
+        Ok(bytemuck::cast_slice(&bytes).to_vec())
+    };
+    let blades = floats(&read[0])?
+        .chunks_exact(10)
+        .take(cells.len())
+        .map(|v| Blade {
+            offset: [v[0], v[1]],
+            height: v[2],
+            facing: v[3],
+            lean: v[4],
+            curve: v[5],
+            width: v[6],
+            shade: v[7],
+            keep: v[8],
+            far: v[9],
+        })
+        .collect();
+    let mut cover = floats(&read[1])?;
+    cover.truncate(surfaces.len());
+    Ok((blades, cover))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniforms_match_wgsl() {
+        use crate::gpu::wgsl_tests::{layout, offset, parse};
+        use std::mem::offset_of;
+        let m = parse("grass_probe", &crate::gpu::shader::source("grass_probe"));
+        let (size, members) = layout(&m, "GrassUniforms");
+        assert_eq!(size as usize, std::mem::size_of::<GrassUniforms>());
+        for (name, at) in [
+            ("eye_clump", offset_of!(GrassUniforms, eye_clump)),
+            ("eye_rem", offset_of!(GrassUniforms, eye_rem)),
+            ("clump_cells", offset_of!(GrassUniforms, clump_cells)),
+            ("seed", offset_of!(GrassUniforms, seed)),
+            ("height", offset_of!(GrassUniforms, height)),
+            ("cell", offset_of!(GrassUniforms, cell)),
+        ] {
+            assert_eq!(offset(&members, name), at, "GrassUniforms.{name}");
+        }
+    }
+
+    #[test]
+    fn the_twin_reads_the_shaders_constants() {
+        let grass = crate::gpu::shader::file("grass").unwrap();
+        let shade = crate::gpu::shader::file("shade").unwrap();
+        for (text, line) in [
+            (
+                shade,
+                format!("const SNOW_EDGE: f32 = {};", crate::grass::SNOW_EDGE),
+            ),
+            (
+                shade,
+                format!("const SNOW_JITTER: f32 = {};", crate::grass::SNOW_JITTER),
+            ),
+            (
+                grass,
+                format!("const BLADE_WIDTH: f32 = {};", crate::grass::BLADE_WIDTH),
+            ),
+        ] {
+            assert!(text.contains(&line), "{line}");
+        }
+    }
+}

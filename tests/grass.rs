@@ -1,0 +1,250 @@
+//! The GPU's grass (`wgsl/grass.wgsl`) against its CPU twin (`relief::grass`): the same blade
+//! in every cell, near the origin and 10^6 and 10^9 m from it, and the same cover of grass on
+//! every kind of ground.
+
+mod common;
+
+use relief::grass::{blade, cover, CoverParams, Grass};
+
+/// Cells around an eye's cell: a square of 41 x 41, and a few far ones.
+fn cells() -> Vec<[i32; 2]> {
+    let mut cells: Vec<[i32; 2]> = (-20..=20)
+        .flat_map(|i| (-20..=20).map(move |j| [i, j]))
+        .collect();
+    cells.extend([[5000, -7000], [-100_000, 3], [1 << 20, -(1 << 20)]]);
+    cells
+}
+
+#[test]
+fn the_gpu_grows_the_twins_blades_anywhere() {
+    let gpu = common::gpu();
+    let grass = Grass::default();
+    let p = CoverParams::of(&relief::WorldParams::default());
+    for (seed, at) in [
+        (7, [0.0, 0.0]),
+        (11, [1e6, -1e6]),
+        (7, [-1e9, 1e9]),
+        (3, [4e9, 2e9]),
+    ] {
+        let eye = grass.cell_at(at[0], at[1]);
+        let cells = cells();
+        let (gpu_blades, _) =
+            relief::gpu::grass::probe(&gpu, (&grass, seed, eye), &cells, (&p, &[])).unwrap();
+        let mut worst = 0.0f32;
+        for (c, got) in cells.iter().zip(&gpu_blades) {
+            let want = blade(
+                &grass,
+                seed,
+                [eye[0] + i64::from(c[0]), eye[1] + i64::from(c[1])],
+            );
+            // The hash's numbers are exact; what is computed from them may differ by a
+            // rounding (a fused multiply-add on the GPU).
+            assert_eq!(got.offset, want.offset, "cell {c:?} at {at:?}");
+            assert_eq!(
+                (got.shade, got.keep, got.far),
+                (want.shade, want.keep, want.far),
+                "cell {c:?}"
+            );
+            for (g, w) in [
+                (got.height, want.height),
+                (got.facing, want.facing),
+                (got.lean, want.lean),
+                (got.curve, want.curve),
+                (got.width, want.width),
+            ] {
+                worst = worst.max((g - w).abs() / w.abs().max(1e-3));
+            }
+        }
+        eprintln!("seed {seed} at {at:?}: worst relative difference {worst:e}");
+        assert!(worst < 1e-5, "{worst}");
+    }
+}
+
+#[test]
+fn the_gpu_covers_the_ground_as_the_twin_does() {
+    let gpu = common::gpu();
+    let p = CoverParams::of(&relief::WorldParams::default());
+    let mut surfaces = Vec::new();
+    for n in 0..=20 {
+        for h in 0..=40 {
+            for t in 0..=4 {
+                surfaces.push([0.4 + 0.03 * n as f32, h as f32 / 40.0, t as f32 / 4.0]);
+            }
+        }
+    }
+    let grass = Grass::default();
+    let (_, got) =
+        relief::gpu::grass::probe(&gpu, (&grass, 7, [0, 0]), &[], (&p, &surfaces)).unwrap();
+    let mut worst = 0.0f32;
+    for (s, g) in surfaces.iter().zip(&got) {
+        worst = worst.max((g - cover(&p, s[0], s[1], s[2])).abs());
+    }
+    eprintln!(
+        "cover: worst difference {worst:e} over {} surfaces",
+        surfaces.len()
+    );
+    assert!(worst < 1e-4, "{worst}");
+    // Every kind of ground is among them: none, some and full cover.
+    assert!(got.iter().any(|&c| c == 0.0) && got.iter().any(|&c| c > 0.99));
+    assert!(got.iter().any(|&c| c > 0.05 && c < 0.95));
+}
+
+/// A point of the default world's meadow (grass all round it, dry land, in the sun), found by
+/// the twins.
+fn meadow(params: &relief::WorldParams) -> glam::DVec3 {
+    use relief::noise::Channel;
+    let land = &params.land;
+    let p = CoverParams::of(params);
+    let slope = *land.slope_bounds().last().unwrap();
+    let cover_at = |x: f64, z: f64| {
+        let s = land.sample(Channel::Height, x, z, land.octaves);
+        let t = land.sample(Channel::Color, x, z, land.octaves);
+        let g = [
+            s.gradient[0] * land.peak_height,
+            s.gradient[1] * land.peak_height,
+        ];
+        let n_y = 1.0 / (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
+        cover(&p, n_y as f32, s.value as f32, t.value as f32)
+    };
+    for i in 0..4000 {
+        let (x, z) = (
+            2000.0 + 37.0 * f64::from(i % 200),
+            -3000.0 + 53.0 * f64::from(i / 200),
+        );
+        let around = [
+            (0.0, 0.0),
+            (15.0, 0.0),
+            (-15.0, 0.0),
+            (0.0, 15.0),
+            (0.0, -15.0),
+        ];
+        let sunlit = || {
+            let sun = (
+                f64::from(params.sky.sun_azimuth).to_radians(),
+                f64::from(params.sky.sun_elevation).to_radians(),
+            );
+            relief::light::lit_by_ray(land, (x, z), sun, slope, 20_000.0)
+        };
+        if around
+            .iter()
+            .all(|(dx, dz)| cover_at(x + dx, z + dz) > 0.95)
+            && sunlit()
+        {
+            return glam::DVec3::new(x, land.height_at(x, z), z);
+        }
+    }
+    panic!("no meadow near (2000, -3000)");
+}
+
+/// Pixels whose colour differs by more than a few steps between two frames.
+fn changed(a: &[u8], b: &[u8]) -> usize {
+    a.chunks(4)
+        .zip(b.chunks(4))
+        .filter(|(p, q)| p.iter().zip(q.iter()).any(|(x, y)| x.abs_diff(*y) > 6))
+        .count()
+}
+
+#[test]
+fn every_mesh_method_grows_grass_on_a_meadow_and_none_when_it_is_off() {
+    use relief::gpu::headless::{self, render_samples, Offscreen};
+    use relief::{Method, MethodConfig, Raster, Temporal, World, WorldView};
+    let gpu = common::gpu();
+    let params = relief::WorldParams::default();
+    let foot = meadow(&params);
+    let size = (160, 90);
+    let eye = foot + glam::DVec3::new(0.0, 1.7, 0.0);
+    let view = WorldView::look_at(eye, eye + glam::DVec3::new(30.0, -6.0, 10.0), 0.8, size);
+    let configs = [
+        (MethodConfig::MESH, 1),
+        (MethodConfig::MESH, 4),
+        (
+            MethodConfig::new(Method::Visibility)
+                .with_samples(1)
+                .with_raster(Raster::Compute),
+            1,
+        ),
+    ];
+    for (config, frames) in configs {
+        let targets = Offscreen::targets(render_samples(config.method));
+        let mut world = World::new(&gpu.device, &gpu.queue, targets, params).unwrap();
+        world.set_method(&gpu.device, config).unwrap();
+        world
+            .set_temporal(&gpu.device, Temporal { frames })
+            .unwrap();
+        let draw = |world: &mut World| {
+            headless::render_world_frames(&gpu, world, &view, (size, frames), headless::TILE, None)
+                .unwrap()
+                .0
+        };
+        let bare = draw(&mut world);
+        world
+            .set_grass(&gpu.device, Some(Grass::default()))
+            .unwrap();
+        assert_eq!(world.grass(), Some(Grass::default()));
+        let grassy = draw(&mut world);
+        world.set_grass(&gpu.device, None).unwrap();
+        let again = draw(&mut world);
+        let shown = changed(&bare, &grassy);
+        let pixels = (size.0 * size.1) as usize;
+        eprintln!("{config:?}, {frames} frames: grass changed {shown} of {pixels} pixels");
+        assert!(shown > pixels / 10, "{config:?}: grass drew {shown} pixels");
+        assert!(
+            again == bare,
+            "{config:?}: grass off, the frame is the bare one"
+        );
+    }
+    // Out of range: refused in words, changing nothing.
+    let mut world = World::new(
+        &gpu.device,
+        &gpu.queue,
+        Offscreen::targets(1),
+        relief::WorldParams::default(),
+    )
+    .unwrap();
+    let tall = Grass {
+        height: 50.0,
+        ..Default::default()
+    };
+    let e = world
+        .set_grass(&gpu.device, Some(tall))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("grass height"), "{e}");
+    assert_eq!(world.grass(), None);
+}
+
+/// Writes the meadow with grass, from the ground, to `target/grass-meadow.png` (for a look).
+#[test]
+#[ignore = "a picture to look at, not a check"]
+fn a_meadow_to_look_at() {
+    use relief::gpu::headless::{self, Offscreen};
+    use relief::{World, WorldView};
+    let gpu = common::gpu();
+    let params = relief::WorldParams::default();
+    let foot = meadow(&params);
+    let size = (480, 270);
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(4), params).unwrap();
+    world
+        .set_grass(&gpu.device, Some(Grass::default()))
+        .unwrap();
+    // From 1.7 m looking level, and from 10 m looking 30 degrees down.
+    for (name, up, look) in [
+        ("grass-meadow.png", 1.7, glam::DVec3::new(30.0, -4.0, 10.0)),
+        ("grass-above.png", 10.0, glam::DVec3::new(17.0, -11.5, 6.0)),
+    ] {
+        let eye = foot + glam::DVec3::new(0.0, up, 0.0);
+        let view = WorldView::look_at(eye, eye + look, 0.8, size);
+        let (pixels, _) =
+            headless::render_world_image(&gpu, &mut world, &view, size, headless::TILE, None)
+                .unwrap();
+        image_out(name, size, &pixels);
+    }
+}
+
+fn image_out(name: &str, (w, h): (u32, u32), rgba: &[u8]) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("target")
+        .join(name);
+    image::save_buffer(&path, rgba, w, h, image::ColorType::Rgba8).unwrap();
+    eprintln!("wrote {}", path.display());
+}

@@ -1,0 +1,166 @@
+// import: world, grass
+// The grass's scatter pass (src/gpu/grass.rs): one thread a cell of the square of cells around
+// the eye that the draw distance reaches. Each cell's blade (grass.wgsl) is kept where the
+// ground under it is grass enough (`grass_cover` against the blade's own `keep`), within its
+// own distance (between half the draw distance and all of it, by `far`, shrinking to nothing
+// over its last metres so that no ring of blades pops) and inside the view's frustum; its
+// root stands on the triangle of the mesh the world draws there (the level that draws the
+// point, its vertices placed as world.wgsl's `place` places them, morph and the hybrid's raise
+// included). A kept blade is appended to `blades` for the draw (grass_draw.wgsl).
+
+struct GrassFrame {
+    g: GrassUniforms,
+    // The eye less its cell's first corner, metres (x, z); the draw distance, metres; the
+    // cells the square spans on a side.
+    eye_in_cell: vec2<f32>,
+    distance: f32,
+    side: u32,
+    // The most blades `blades` holds.
+    capacity: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(1) @binding(0) var<uniform> gf: GrassFrame;
+// Per blade: root (camera-relative, metres) and facing; height, lean, curve, width; shade,
+// the sun's and the sky's occlusion at the root, and 0.
+@group(1) @binding(1) var<storage, read_write> blades: array<vec4<f32>>;
+// Blades considered (cells the square holds within the distance), kept, drawn: counted here,
+// the last clamped to the capacity by `finish`.
+@group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 4>;
+// The indirect draw's arguments: vertices, instances, first vertex, first instance.
+@group(1) @binding(3) var<storage, read_write> draw_args: array<u32, 4>;
+
+// Vertices of a blade (grass_draw.wgsl): a strip of four segments and a tip.
+const BLADE_VERTICES: u32 = 9u;
+
+// The mesh's vertex `v` (level-local) of level `l`, placed as the world draws it.
+fn mesh_vertex(l: u32, v: vec2<i32>) -> VertexOut {
+    let pc = i32(w.patch_cells);
+    let last = i32(w.cells / w.patch_cells) - 1;
+    let corner_patch = clamp(vec2<i32>(floor(vec2<f32>(v) / f32(pc))), vec2<i32>(0), vec2<i32>(last));
+    let local = v - corner_patch * pc;
+    let row = w.patch_cells + 1u;
+    let vi = u32(local.y) * row + u32(local.x);
+    return place(vi, vec4<u32>(l, u32(corner_patch.x), u32(corner_patch.y), 0u));
+}
+
+struct Ground {
+    rel: vec3<f32>,
+    // The sample there (height, slopes, colour channel) and the light (horizon, valley).
+    sample: vec4<f32>,
+    light: vec2<f32>,
+}
+
+// The drawn surface at camera-relative `xz`: the finest drawn level whose square holds it, the
+// triangle of its cell that the index buffer draws (src/gpu/world/resources.rs: a to d is the
+// diagonal), and the plane through that triangle's placed vertices at `xz`.
+fn ground_at(xz: vec2<f32>) -> Ground {
+    let f = (xz + w.eye.xz) / w.eye.w;
+    var l = w.first;
+    var p = vec2<f32>(0.0);
+    for (var k = 0; k < 24; k++) {
+        let lv = w.levels[l];
+        p = (f - vec2<f32>(lv.origin_rel)) / f32(1u << lv.shift);
+        let inside = all(p >= vec2<f32>(1.0)) && all(p <= vec2<f32>(f32(w.cells) - 1.0));
+        if inside || lv.coarse == l {
+            break;
+        }
+        l = lv.coarse;
+    }
+    let i = vec2<i32>(floor(p));
+    let t = p - floor(p);
+    let a = mesh_vertex(l, i);
+    let d = mesh_vertex(l, i + vec2<i32>(1, 1));
+    var b: VertexOut;
+    if t.x >= t.y {
+        b = mesh_vertex(l, i + vec2<i32>(1, 0));
+    } else {
+        b = mesh_vertex(l, i + vec2<i32>(0, 1));
+    }
+    // Barycentric weights of `xz` in the placed triangle (a, b, d).
+    let e1 = b.rel.xz - a.rel.xz;
+    let e2 = d.rel.xz - a.rel.xz;
+    let q = xz - a.rel.xz;
+    let det = e1.x * e2.y - e1.y * e2.x;
+    var u = 0.0;
+    var v = 0.0;
+    if abs(det) > 1e-12 {
+        u = (q.x * e2.y - q.y * e2.x) / det;
+        v = (e1.x * q.y - e1.y * q.x) / det;
+    }
+    var g: Ground;
+    g.rel = vec3<f32>(xz.x, a.rel.y + u * (b.rel.y - a.rel.y) + v * (d.rel.y - a.rel.y), xz.y);
+    g.sample = a.sample + u * (b.sample - a.sample) + v * (d.sample - a.sample);
+    g.light = a.light + u * (b.light - a.light) + v * (d.light - a.light);
+    return g;
+}
+
+// Whether a sphere at camera-relative `c` of radius `radius` touches the view's frustum.
+fn in_frustum(c: vec3<f32>, radius: f32) -> bool {
+    let m = transpose(r.view_proj);
+    let planes = array<vec4<f32>, 6>(
+        m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]
+    );
+    for (var k = 0; k < 6; k++) {
+        let pl = planes[k];
+        if dot(pl.xyz, c) + pl.w < -radius * length(pl.xyz) {
+            return false;
+        }
+    }
+    return true;
+}
+
+@compute @workgroup_size(8, 8)
+fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= gf.side || id.y >= gf.side {
+        return;
+    }
+    let half = i32(gf.side / 2u);
+    let rel_cell = vec2<i32>(id.xy) - vec2<i32>(half);
+    let b = blade_at(gf.g, rel_cell);
+    let xz = (vec2<f32>(rel_cell) + b.offset) * gf.g.cell - gf.eye_in_cell;
+    let dist = length(xz);
+    if dist > gf.distance {
+        return;
+    }
+    atomicAdd(&counts[0], 1u);
+    // Each blade's own distance, and the last metres over which it shrinks away.
+    let own = gf.distance * (0.5 + 0.5 * b.far);
+    let fade = 1.0 - smoothstep(own - 0.1 * gf.distance, own, dist);
+    if fade <= 0.0 {
+        return;
+    }
+    let ground = ground_at(xz);
+    let s = ground.sample;
+    let slope = s.yz * w.peak;
+    let n_y = inverseSqrt(1.0 + dot(slope, slope));
+    if b.keep >= grass_cover(r, n_y, s.x, s.w) {
+        return;
+    }
+    let height = b.height * fade;
+    if !in_frustum(ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
+        return;
+    }
+    atomicAdd(&counts[1], 1u);
+    let at = atomicAdd(&counts[2], 1u);
+    if at >= gf.capacity {
+        return;
+    }
+    let occl = occlusion(r, s.x, ground.light.x, ground.light.y);
+    blades[3u * at] = vec4<f32>(ground.rel, b.facing);
+    blades[3u * at + 1u] = vec4<f32>(height, b.lean, b.curve, b.width * fade);
+    blades[3u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
+}
+
+// The indirect draw of the blades the scatter kept (at most the capacity).
+@compute @workgroup_size(1)
+fn finish() {
+    let drawn = min(atomicLoad(&counts[2]), gf.capacity);
+    atomicStore(&counts[3], drawn);
+    draw_args[0] = BLADE_VERTICES;
+    draw_args[1] = drawn;
+    draw_args[2] = 0u;
+    draw_args[3] = 0u;
+}
