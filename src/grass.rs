@@ -32,9 +32,13 @@ const BLADE_STREAM: u32 = 0x6772_6173;
 /// The hash stream of the clumps' heights.
 const CLUMP_STREAM: u32 = 0x636c_756d;
 
-/// The grass's parameters (see the module docs).
+/// The grass's parameters (see the module docs): rows of the endless world's table
+/// ([`crate::world::WORLD_PARAMS`]: `grass`, `grass_density`, `grass_height`,
+/// `grass_distance`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grass {
+    /// Whether grass grows (off by default).
+    pub on: bool,
     /// Blades a square metre where every cell grows one.
     pub density: f32,
     /// The mean blade's height, metres.
@@ -45,10 +49,11 @@ pub struct Grass {
 }
 
 impl Default for Grass {
-    /// 32 blades a square metre (a dense lawn; SimonDev's Quick_Grass draws about 31), half a
-    /// metre tall, to 40 m.
+    /// Off; when on, 32 blades a square metre (a dense lawn; SimonDev's Quick_Grass draws about
+    /// 31), half a metre tall, to 40 m.
     fn default() -> Self {
         Self {
+            on: false,
             density: 32.0,
             height: 0.5,
             distance: 40.0,
@@ -73,9 +78,9 @@ impl Grass {
                 Err(Error::invalid(name, v, format!("{lo} to {hi}")))
             }
         };
-        check("grass density", self.density, Self::DENSITY)?;
-        check("grass height", self.height, Self::HEIGHT)?;
-        check("grass distance", self.distance, Self::DISTANCE)
+        check("grass_density", self.density, Self::DENSITY)?;
+        check("grass_height", self.height, Self::HEIGHT)?;
+        check("grass_distance", self.distance, Self::DISTANCE)
     }
 
     /// Cells on a side of the square around the eye's cell that the draw distance reaches.
@@ -264,7 +269,7 @@ mod tests {
                 ..Default::default()
             };
             let e = g.validate().unwrap_err().to_string();
-            assert!(e.contains("grass density"), "{e}");
+            assert!(e.contains("grass_density"), "{e}");
         }
         let g = Grass {
             height: 9.0,
@@ -274,7 +279,7 @@ mod tests {
             .validate()
             .unwrap_err()
             .to_string()
-            .contains("grass height"));
+            .contains("grass_height"));
         let g = Grass::default();
         assert!((g.cell() - 1.0 / 32f64.sqrt()).abs() < 1e-12);
         assert_eq!(g.clump_cells(), 17);

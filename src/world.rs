@@ -79,6 +79,8 @@ pub struct WorldParams {
     /// The one wind every layer that moves with the wind follows (the water's ripples drift
     /// with it).
     pub wind: Wind,
+    /// The meadow's blades ([`crate::grass`]): off by default.
+    pub grass: crate::grass::Grass,
 }
 
 /// The wind: a speed and the bearing it comes from.
@@ -134,6 +136,7 @@ impl Default for WorldParams {
             no_shadows: false,
             clock: 0.0,
             wind: Wind::default(),
+            grass: crate::grass::Grass::default(),
         }
     }
 }
@@ -151,7 +154,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 19] = [
+pub static WORLD_PARAMS: [WorldParam; 23] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -466,6 +469,75 @@ pub static WORLD_PARAMS: [WorldParam; 19] = [
         set: |p, v| {
             if let Value::Float(x) = v {
                 p.wind.from_azimuth = x;
+            }
+        },
+    },
+    Param {
+        key: "grass",
+        doc: "grow grass: blades of geometry on the ground the material makes grass, within grass_distance of the eye",
+        kind: Kind::Bool,
+        control: Control::Checkbox,
+        get: |p| Value::Bool(p.grass.on),
+        set: |p, v| {
+            if let Value::Bool(x) = v {
+                p.grass.on = x;
+            }
+        },
+    },
+    Param {
+        key: "grass_density",
+        doc: "blades of grass a square metre where the ground is wholly grass",
+        kind: Kind::Float {
+            min: crate::grass::Grass::DENSITY.0,
+            max: crate::grass::Grass::DENSITY.1,
+        },
+        control: Control::Slider {
+            min: 4.0,
+            max: 128.0,
+            step: 4.0,
+        },
+        get: |p| Value::Float(p.grass.density),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.grass.density = x;
+            }
+        },
+    },
+    Param {
+        key: "grass_height",
+        doc: "the mean blade's height in metres (clumps vary it from 0.3 to 1.9 times)",
+        kind: Kind::Float {
+            min: crate::grass::Grass::HEIGHT.0,
+            max: crate::grass::Grass::HEIGHT.1,
+        },
+        control: Control::Slider {
+            min: 0.1,
+            max: 1.5,
+            step: 0.05,
+        },
+        get: |p| Value::Float(p.grass.height),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.grass.height = x;
+            }
+        },
+    },
+    Param {
+        key: "grass_distance",
+        doc: "how far from the eye grass is drawn, in metres (thinning from half of it, each blade shrinking away at its own distance)",
+        kind: Kind::Float {
+            min: crate::grass::Grass::DISTANCE.0,
+            max: crate::grass::Grass::DISTANCE.1,
+        },
+        control: Control::Slider {
+            min: 10.0,
+            max: 120.0,
+            step: 5.0,
+        },
+        get: |p| Value::Float(p.grass.distance),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.grass.distance = x;
             }
         },
     },

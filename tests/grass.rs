@@ -177,12 +177,16 @@ fn every_mesh_method_grows_grass_on_a_meadow_and_none_when_it_is_off() {
                 .0
         };
         let bare = draw(&mut world);
-        world
-            .set_grass(&gpu.device, Some(Grass::default()))
-            .unwrap();
-        assert_eq!(world.grass(), Some(Grass::default()));
+        assert_eq!(world.grass_bytes(), 0);
+        let grass_on = |world: &mut World, on: bool| {
+            let mut p = *world.params();
+            p.grass.on = on;
+            world.set_params(&gpu.device, p).unwrap();
+        };
+        grass_on(&mut world, true);
+        assert!(world.grass_bytes() > 0);
         let grassy = draw(&mut world);
-        world.set_grass(&gpu.device, None).unwrap();
+        grass_on(&mut world, false);
         let again = draw(&mut world);
         let shown = changed(&bare, &grassy);
         let pixels = (size.0 * size.1) as usize;
@@ -201,16 +205,16 @@ fn every_mesh_method_grows_grass_on_a_meadow_and_none_when_it_is_off() {
         relief::WorldParams::default(),
     )
     .unwrap();
-    let tall = Grass {
+    let mut tall = *world.params();
+    tall.grass = Grass {
+        on: true,
         height: 50.0,
         ..Default::default()
     };
-    let e = world
-        .set_grass(&gpu.device, Some(tall))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("grass height"), "{e}");
-    assert_eq!(world.grass(), None);
+    let e = world.set_params(&gpu.device, tall).unwrap_err().to_string();
+    assert!(e.contains("grass_height") && e.contains("50"), "{e}");
+    assert_eq!(world.grass_bytes(), 0);
+    assert!(!world.params().grass.on);
 }
 
 /// Writes the meadow with grass, from the ground, to `target/grass-meadow.png` (for a look).
@@ -220,13 +224,12 @@ fn a_meadow_to_look_at() {
     use relief::gpu::headless::{self, Offscreen};
     use relief::{World, WorldView};
     let gpu = common::gpu();
-    let params = relief::WorldParams::default();
+    let mut params = relief::WorldParams::default();
+    params.grass.on = true;
     let foot = meadow(&params);
+    eprintln!("the meadow at {foot}");
     let size = (480, 270);
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(4), params).unwrap();
-    world
-        .set_grass(&gpu.device, Some(Grass::default()))
-        .unwrap();
     // From 1.7 m looking level, and from 10 m looking 30 degrees down.
     for (name, up, look) in [
         ("grass-meadow.png", 1.7, glam::DVec3::new(30.0, -4.0, 10.0)),

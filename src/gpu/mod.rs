@@ -193,6 +193,8 @@ fn tile_world(
         no_shadows: true,
         clock: 0.0,
         wind: crate::world::Wind::default(),
+        // The tile grows no grass.
+        grass: crate::grass::Grass::default(),
     };
     let setup = world::TileSetup {
         region: frame.region(),

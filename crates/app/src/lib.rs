@@ -58,7 +58,7 @@ pub const FLY_CLEARANCE: f64 = 2.0;
 
 /// The endless world's sun, fog and water keys: `[` `]` turn the sun, `-` `=` lower and raise
 /// it, `f` turns the fog off and on again, `l` the water (lakes).
-pub const SKY_KEYS: [&str; 6] = ["[", "]", "-", "=", "f", "l"];
+pub const SKY_KEYS: [&str; 7] = ["[", "]", "-", "=", "f", "l", "g"];
 
 /// The [`SKY_KEYS`] that move the sun: held, they keep moving it.
 const SUN_KEYS: [&str; 4] = ["[", "]", "-", "="];
@@ -540,6 +540,7 @@ impl App {
                 )
             }
             "l" => ("no_water", if world.no_water { 0.0 } else { 1.0 }),
+            "g" => ("grass", if world.grass.on { 0.0 } else { 1.0 }),
             _ if sky.fog > 0.0 => {
                 self.fog_off = sky.fog;
                 ("fog", 0.0)
@@ -577,12 +578,13 @@ impl App {
             .map_or(String::new(), |p| format!(" · baking {p}%"));
         match &o.world {
             Some((w, _)) => format!(
-                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · history {} (T) · [ ] - = move the sun, F fog, L water",
+                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · grass {} · history {} (T) · [ ] - = move the sun, F fog, L water, G grass",
                 w.land.seed,
                 w.sky.sun_azimuth,
                 w.sky.sun_elevation,
                 w.sky.fog,
                 if w.no_water { "off" } else { "on" },
+                if w.grass.on { "on" } else { "off" },
                 if o.temporal { "on" } else { "off" }
             ),
             None => format!(

@@ -85,6 +85,12 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             if let Some(method) = method.own_path() {
+                if params.grass.on {
+                    return Err(Error::Usage(format!(
+                        "--grass: the {method} casts rays, which draw no grass yet: give --method \
+                         mesh, visibility or hybrid (or leave grass off)"
+                    )));
+                }
                 if frames > 1 {
                     return Err(Error::Usage(format!(
                         "--frames {frames}: the temporal service accumulates the mesh-based \

@@ -88,6 +88,10 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "clock" => "30",
             "wind_speed" => "12",
             "wind_azimuth" => "90",
+            "grass" => "1",
+            "grass_density" => "8",
+            "grass_height" => "1.2",
+            "grass_distance" => "12",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
@@ -102,7 +106,23 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         // carries them as the clock runs: at clock 0 it has carried nothing.
         let lake = ["--eye", "2000,1020,-4600", "--look-at", "2100,1000,-4400"];
         let windy = row.key.starts_with("wind_");
-        let base = if blog {
+        // Grass from 1.7 m over a meadow; its knobs with grass on.
+        let meadow = [
+            "--eye",
+            "2740,1111.7,-3000",
+            "--look-at",
+            "2770,1107.7,-2990",
+        ];
+        let grassy = row.key.starts_with("grass");
+        let base = if grassy {
+            args.extend(meadow);
+            let mut at = meadow.to_vec();
+            if row.key != "grass" {
+                args.push("--grass");
+                at.push("--grass");
+            }
+            render_endless(&dir, &format!("{}-base", row.key), &at).0
+        } else if blog {
             args.extend(["--palette", "blog"]);
             render_endless(&dir, "blog", &["--palette", "blog"]).0
         } else if windy {
@@ -139,9 +159,14 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         if windy {
             knob.push_str("clock = 30\n");
         }
+        if grassy && row.key != "grass" {
+            knob.push_str("grass = true\n");
+        }
         // Over the lake for the clock and the wind (the flags override the scene's camera).
         let camera: &[&str] = if windy || row.key == "clock" {
             &lake
+        } else if grassy {
+            &meadow
         } else {
             &[]
         };
@@ -268,6 +293,16 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         refused.check(&args, needles);
     };
     render(&["--eye", "nan,0,0"], &["--eye", "nan", "X,Y,Z"]);
+    // Grass: out of range, and with a ray caster, which draws none yet.
+    render(
+        &["--world", "endless", "--grass", "--grass-height", "9"],
+        &["grass", "9", "2"],
+    );
+    render(
+        &["--world", "endless", "--grass", "--method", "raymarch"],
+        &["--grass", "raymarch", "mesh"],
+    );
+    render(&["--grass"], &["--grass", "endless"]);
     render(&["--eye", "1,2"], &["--eye", "X,Y,Z"]);
     render(&["--look-at", "1,2,3,4"], &["--look-at", "X,Y,Z"]);
     render(&["--eye", "1e300,0,0"], &["--eye", "X,Y,Z"]);

@@ -320,8 +320,8 @@ fn m_steps_the_window_to_the_next_method() {
     }
 }
 
-/// The sun, fog and water in a window title: (azimuth, elevation, fog, water).
-fn sky_in_title(line: &str) -> (f64, f64, String, String) {
+/// The sun, fog, water and grass in a window title: (azimuth, elevation, fog, water, grass).
+fn sky_in_title(line: &str) -> (f64, f64, String, String, String) {
     let field = |after: &str, before: &str| {
         let at = line
             .find(after)
@@ -334,6 +334,7 @@ fn sky_in_title(line: &str) -> (f64, f64, String, String) {
         field("az, ", "° up").parse().unwrap(),
         field("fog ", " /km"),
         field("water ", " ·"),
+        field("grass ", " ·"),
     )
 }
 
@@ -348,13 +349,14 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
         "--exit-after",
         "40",
     ];
-    // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off, L the water; the title
+    // ] turns the sun 10 degrees, - lowers it 2, F turns the fog off, L the water, G grows
+    // grass; the title
     // shows it. Then F held for 1.5 s, past the X server's key repeat delay, turns the fog on
     // again once (a toggle ignores its key's repeats), and - held as long lowers the sun step
     // after step (the sun keys act on each). A loaded machine can delay a tap's release past
     // the repeat delay too, so a tapped sun key may step more than once.
     let keys = "xdotool getwindowname \"$w\"; xdotool key bracketright; sleep 1; \
-                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool key l; sleep 1; \
+                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool key l; sleep 1; xdotool key g; sleep 1; \
                 xdotool getwindowname \"$w\"; xdotool keydown f; sleep 1.5; xdotool keyup f; \
                 xdotool keydown minus; sleep 1.5; xdotool keyup minus; sleep 1; \
                 xdotool getwindowname \"$w\"";
@@ -367,7 +369,9 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
         .map(sky_in_title)
         .collect();
     assert_eq!(titles.len(), 3, "{stdout}");
-    let on = |t: &(f64, f64, String, String)| (t.2.clone(), t.3.clone());
+    let on = |t: &(f64, f64, String, String, String)| (t.2.clone(), t.3.clone());
+    let grass: Vec<&str> = titles.iter().map(|t| t.4.as_str()).collect();
+    assert_eq!(grass, ["off", "on", "on"], "G grows grass: {stdout}");
     assert_eq!(titles[0].0, 145.0, "the sun before: {stdout}");
     assert_eq!(titles[0].1, 12.0, "the sun before: {stdout}");
     assert_eq!(on(&titles[0]), ("0.03".into(), "on".into()), "{stdout}");

@@ -4,35 +4,26 @@
 
 use super::*;
 use crate::gpu::grass::GrassPass;
-use crate::grass::Grass;
 
 impl World {
-    /// Grows `grass` in the endless world (`None`: none, the default). Each frame the blades
-    /// within its draw distance that stand on grass, inside the view, are kept by a compute
-    /// pass and drawn after the terrain, depth-tested, by every mesh-based method: into the
-    /// host's pass, or with the temporal service on the forward mesh into its own image
-    /// (accumulated with the terrain). Their roots stand on the mesh the levels draw (the
-    /// hybrid's refined surface lies up to its raise below). A new setting starts a new
-    /// history. Refused for the tile, which draws no grass, and for values out of range.
-    pub fn set_grass(&mut self, device: &wgpu::Device, grass: Option<Grass>) -> Result<()> {
-        if let Some(g) = &grass {
-            g.validate()?;
-            if self.tile.is_some() {
-                return Err(Error::invalid(
-                    "grass",
-                    "on",
-                    "off for the tile (the endless world grows grass)",
-                ));
-            }
-        }
-        if grass == self.grass() {
+    /// Builds, rebuilds or drops the grass's passes for the parameters' grass
+    /// ([`WorldParams::grass`]: off by default). With it on, each frame the blades within its
+    /// draw distance that stand on grass, inside the view, are kept by a compute pass and drawn
+    /// after the terrain, depth-tested, by every mesh-based method: into the host's pass, or
+    /// with the temporal service on the forward mesh into its own image (accumulated with the
+    /// terrain). Their roots stand on the mesh the levels draw (the hybrid's refined surface
+    /// lies up to its raise below). The tile draws no grass.
+    pub(super) fn update_grass(&mut self, device: &wgpu::Device) -> Result<()> {
+        let grass = self.params.grass;
+        if !grass.on || self.tile.is_some() {
+            self.grass = None;
             return Ok(());
         }
-        self.history.reset("grass");
-        self.grass = match grass {
-            Some(g) => Some(scoped(device, || GrassPass::new(device, &self.layout, g))?),
-            None => None,
-        };
+        if self.grass.as_ref().map(GrassPass::grass) != Some(grass) {
+            self.grass = Some(scoped(device, || {
+                GrassPass::new(device, &self.layout, grass)
+            })?);
+        }
         Ok(())
     }
 
@@ -40,11 +31,6 @@ impl World {
     /// the density.
     pub fn grass_bytes(&self) -> u64 {
         self.grass.as_ref().map_or(0, GrassPass::bytes)
-    }
-
-    /// The grass grown ([`World::set_grass`]).
-    pub fn grass(&self) -> Option<Grass> {
-        self.grass.as_ref().map(GrassPass::grass)
     }
 
     /// Records the frame's scatter of blades and readies their draw for the frame's targets.

@@ -143,7 +143,7 @@ pub struct World {
     near_far: (f32, f32),
     /// The forward mesh's own image and history, where it accumulates.
     mesh_history: Option<mesh_history::MeshHistory>,
-    /// The grass's passes, where it grows ([`World::set_grass`]).
+    /// The grass's passes, where it grows ([`WorldParams::grass`]).
     grass: Option<crate::gpu::grass::GrassPass>,
 }
 
@@ -200,7 +200,9 @@ impl World {
     ) -> Result<Self> {
         let _ = queue;
         params.validate()?;
-        Self::build(device, targets, params, None)
+        let mut world = Self::build(device, targets, params, None)?;
+        world.update_grass(device)?;
+        Ok(world)
     }
 
     /// A world drawing the seed blog's tile: `params` come from validated tile parameters
@@ -647,7 +649,7 @@ impl World {
         if relayout {
             self.relayout(device, self.map_k)?;
         }
-        Ok(())
+        self.update_grass(device)
     }
 
     /// Everything a frame needs before the host's render pass, recorded into the host's
