@@ -199,7 +199,8 @@ pub fn blade(grass: &Grass, seed: u32, cell: [i64; 2]) -> Blade {
 }
 
 /// What [`cover`] reads of the world's parameters: the snow line, the water and its shore, as
-/// the shading has them (`RenderUniforms` in `wgsl/shade.wgsl`).
+/// the shading has them (`RenderUniforms` in `wgsl/shade.wgsl`;
+/// [`crate::world::WorldParams::grass_cover`] makes them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CoverParams {
     /// The snow line, normalised height.
@@ -208,18 +209,6 @@ pub struct CoverParams {
     pub water: Option<f32>,
     /// The sand band above the water, normalised height.
     pub sand_band: f32,
-}
-
-impl CoverParams {
-    /// The cover's parameters of the endless world's `params`.
-    pub fn of(params: &crate::world::WorldParams) -> Self {
-        let peak = params.land.peak_height;
-        Self {
-            snow_height: params.snow_height,
-            water: (!params.no_water).then(|| (f64::from(params.water_level) / peak) as f32),
-            sand_band: (crate::gpu::world::SAND_BAND / peak) as f32,
-        }
-    }
 }
 
 fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {

@@ -43,6 +43,9 @@ impl WorldKind {
     }
 }
 
+/// Height in metres of the sand along the shore (jittered by the colour noise).
+pub const SAND_BAND: f64 = 12.0;
+
 /// Largest octave count of the endless world.
 pub(crate) const MAX_WORLD_OCTAVES: u32 = 20;
 /// Largest feature size (octave 0's lattice cell), metres.
@@ -553,6 +556,17 @@ pub fn world_param(key: &str) -> Option<&'static WorldParam> {
 }
 
 impl WorldParams {
+    /// What decides where grass grows ([`crate::grass::cover`]): the snow line, the water and
+    /// its shore, as the shading has them.
+    pub fn grass_cover(&self) -> crate::grass::CoverParams {
+        let peak = self.land.peak_height;
+        crate::grass::CoverParams {
+            snow_height: self.snow_height,
+            water: (!self.no_water).then(|| (f64::from(self.water_level) / peak) as f32),
+            sand_band: (SAND_BAND / peak) as f32,
+        }
+    }
+
     /// Checks every field against its row, then the rules between them, naming the parameter.
     pub fn validate(&self) -> Result<()> {
         for row in &WORLD_PARAMS {

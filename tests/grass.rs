@@ -4,7 +4,7 @@
 
 mod common;
 
-use relief::grass::{blade, cover, CoverParams, Grass};
+use relief::grass::{blade, cover, Grass};
 
 /// Cells around an eye's cell: a square of 41 x 41, and a few far ones.
 fn cells() -> Vec<[i32; 2]> {
@@ -19,7 +19,7 @@ fn cells() -> Vec<[i32; 2]> {
 fn the_gpu_grows_the_twins_blades_anywhere() {
     let gpu = common::gpu();
     let grass = Grass::default();
-    let p = CoverParams::of(&relief::WorldParams::default());
+    let p = relief::WorldParams::default().grass_cover();
     for (seed, at) in [
         (7, [0.0, 0.0]),
         (11, [1e6, -1e6]),
@@ -29,7 +29,8 @@ fn the_gpu_grows_the_twins_blades_anywhere() {
         let eye = grass.cell_at(at[0], at[1]);
         let cells = cells();
         let (gpu_blades, _) =
-            relief::gpu::grass::probe(&gpu, (&grass, seed, eye), &cells, (&p, &[])).unwrap();
+            relief::gpu::headless::grass_probe(&gpu, (&grass, seed, eye), &cells, (&p, &[]))
+                .unwrap();
         let mut worst = 0.0f32;
         for (c, got) in cells.iter().zip(&gpu_blades) {
             let want = blade(
@@ -63,7 +64,7 @@ fn the_gpu_grows_the_twins_blades_anywhere() {
 #[test]
 fn the_gpu_covers_the_ground_as_the_twin_does() {
     let gpu = common::gpu();
-    let p = CoverParams::of(&relief::WorldParams::default());
+    let p = relief::WorldParams::default().grass_cover();
     let mut surfaces = Vec::new();
     for n in 0..=20 {
         for h in 0..=40 {
@@ -74,7 +75,8 @@ fn the_gpu_covers_the_ground_as_the_twin_does() {
     }
     let grass = Grass::default();
     let (_, got) =
-        relief::gpu::grass::probe(&gpu, (&grass, 7, [0, 0]), &[], (&p, &surfaces)).unwrap();
+        relief::gpu::headless::grass_probe(&gpu, (&grass, 7, [0, 0]), &[], (&p, &surfaces))
+            .unwrap();
     let mut worst = 0.0f32;
     for (s, g) in surfaces.iter().zip(&got) {
         worst = worst.max((g - cover(&p, s[0], s[1], s[2])).abs());
@@ -85,7 +87,7 @@ fn the_gpu_covers_the_ground_as_the_twin_does() {
     );
     assert!(worst < 1e-4, "{worst}");
     // Every kind of ground is among them: none, some and full cover.
-    assert!(got.iter().any(|&c| c == 0.0) && got.iter().any(|&c| c > 0.99));
+    assert!(got.contains(&0.0) && got.iter().any(|&c| c > 0.99));
     assert!(got.iter().any(|&c| c > 0.05 && c < 0.95));
 }
 
@@ -94,7 +96,7 @@ fn the_gpu_covers_the_ground_as_the_twin_does() {
 fn meadow(params: &relief::WorldParams) -> glam::DVec3 {
     use relief::noise::Channel;
     let land = &params.land;
-    let p = CoverParams::of(params);
+    let p = params.grass_cover();
     let slope = *land.slope_bounds().last().unwrap();
     let cover_at = |x: f64, z: f64| {
         let s = land.sample(Channel::Height, x, z, land.octaves);

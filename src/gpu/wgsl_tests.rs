@@ -431,3 +431,35 @@ fn the_palette_codes_agree_with_shade_wgsl() {
         assert!(wgsl.contains(&line), "shade.wgsl lacks `{line}`");
     }
 }
+
+#[test]
+fn grass_uniforms_match_wgsl() {
+    let m = parse("grass_probe", &crate::gpu::shader::source("grass_probe"));
+    let (size, members) = layout(&m, "GrassUniforms");
+    assert_eq!(
+        size as usize,
+        std::mem::size_of::<crate::gpu::grass::GrassUniforms>()
+    );
+    for (name, at) in [
+        (
+            "eye_clump",
+            offset_of!(crate::gpu::grass::GrassUniforms, eye_clump),
+        ),
+        (
+            "eye_rem",
+            offset_of!(crate::gpu::grass::GrassUniforms, eye_rem),
+        ),
+        (
+            "clump_cells",
+            offset_of!(crate::gpu::grass::GrassUniforms, clump_cells),
+        ),
+        ("seed", offset_of!(crate::gpu::grass::GrassUniforms, seed)),
+        (
+            "height",
+            offset_of!(crate::gpu::grass::GrassUniforms, height),
+        ),
+        ("cell", offset_of!(crate::gpu::grass::GrassUniforms, cell)),
+    ] {
+        assert_eq!(offset(&members, name), at, "GrassUniforms.{name}");
+    }
+}

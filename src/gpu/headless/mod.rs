@@ -1,10 +1,12 @@
 //! Blocking conveniences on top of the core (native only): a device without a window, an
 //! offscreen target drawn through the same [`Terrain`] calls as the window, and readback.
 
+mod grass_probe;
 mod measure;
 mod offscreen;
 mod trial;
 
+pub use self::grass_probe::grass_probe;
 pub use self::measure::*;
 pub use self::offscreen::*;
 pub use self::trial::*;

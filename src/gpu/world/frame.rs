@@ -308,8 +308,7 @@ pub const RIPPLE_PERIOD: f32 = 256.0;
 /// within it (a whole number of cycles).
 pub const CLOCK_PERIOD: f32 = 4096.0;
 
-/// Height in metres of the sand along the shore (jittered by the colour noise).
-pub const SAND_BAND: f64 = 12.0;
+pub use crate::world::SAND_BAND;
 
 /// The six planes (a x + b y + c z + d >= 0 inside) of a wgpu clip-space frustum (depth 0..1).
 pub(super) fn frustum_planes(m: &Mat4) -> [Vec4; 6] {
