@@ -229,20 +229,21 @@ impl Choice {
 
 /// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
 /// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
-/// hybrid's) raster, shading and temporal resolve passes before it. `None` where neither was
-/// timed.
+/// hybrid's) raster, shading and temporal resolve passes and the grass's scatter before it.
+/// `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade, resolve] = [
+    let [render, present, raster, shade, resolve, grass] = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
         Slot::Shade,
         Slot::Resolve,
+        Slot::Grass,
     ]
     .map(|s| t[s as usize]);
     render.or(present)?;
     Some(
-        [render, present, raster, shade, resolve]
+        [render, present, raster, shade, resolve, grass]
             .iter()
             .flatten()
             .sum(),

@@ -210,12 +210,14 @@ impl GrassPass {
     }
 
     /// Records the scatter of the blades around `eye` (world metres) over the landscape of
-    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written).
+    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), timed
+    /// as [`super::timing::Slot::Grass`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
+        timer: Option<&super::timing::GpuTimer>,
     ) {
         let s = self.grass.cell();
         let eye_cell = self.grass.cell_at(eye.x, eye.z);
@@ -234,7 +236,7 @@ impl GrassPass {
         encoder.clear_buffer(&self.counts, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:grass:scatter-pass"),
-            timestamp_writes: None,
+            timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::Grass)),
         });
         pass.set_pipeline(&self.scatter);
         pass.set_bind_group(0, world, &[]);
@@ -243,6 +245,28 @@ impl GrassPass {
         pass.dispatch_workgroups(groups, groups, 1);
         pass.set_pipeline(&self.finish);
         pass.dispatch_workgroups(1, 1, 1);
+    }
+
+    /// The last scatter's counts, read back (blocking): blades considered (cells within the
+    /// draw distance), kept (on grass, inside the view) and drawn (kept, up to [`CAPACITY`]).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn read_counts(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> crate::Result<[u32; 3]> {
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:grass:counts-staging"),
+            size: 16,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.counts, 0, &staging, 0, 16);
+        queue.submit([encoder.finish()]);
+        let bytes = super::map_read(device, &staging)?;
+        let c: &[u32] = bytemuck::cast_slice(&bytes);
+        Ok([c[0], c[1], c[3]])
     }
 
     /// Makes the draw's pipeline for `targets` and its bind group for the render uniforms in

@@ -26,11 +26,13 @@ pub enum Slot {
     Present = 7,
     /// The temporal service's resolve of the frame into its history.
     Resolve = 8,
+    /// The grass's scatter of the frame's blades (their draw is in the pass that draws them).
+    Grass = 9,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 9] = [
+    pub const ALL: [Slot; 10] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -40,6 +42,7 @@ impl Slot {
         Slot::Show,
         Slot::Present,
         Slot::Resolve,
+        Slot::Grass,
     ];
 
     /// The slot's name as printed.
@@ -54,6 +57,7 @@ impl Slot {
             Slot::Show => "show",
             Slot::Present => "present",
             Slot::Resolve => "resolve",
+            Slot::Grass => "grass",
         }
     }
 }

@@ -138,6 +138,13 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             base.clone()
         };
         let (img, s) = render_endless(&dir, row.key, &args);
+        if row.key == "grass" {
+            // --stats counts the blades.
+            let drawn = stat(&s, "grass_blades_drawn");
+            assert!(drawn > 1000.0, "{s:?}");
+            assert!(stat(&s, "grass_blades_considered") > drawn, "{s:?}");
+            assert_eq!(stat(&s, "grass_triangles"), 7.0 * drawn, "{s:?}");
+        }
         if row.key == "pixel_error" {
             assert!(
                 stat(&s, "triangles") > stat(&stats, "triangles"),

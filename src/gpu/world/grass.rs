@@ -33,6 +33,18 @@ impl World {
         self.grass.as_ref().map_or(0, GrassPass::bytes)
     }
 
+    /// The last frame's blades, read back (blocking; native only): considered (cells within
+    /// the draw distance), kept (on grass, inside the view) and drawn (up to the buffer's
+    /// [`crate::gpu::grass::CAPACITY`]). `None` without grass.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn grass_counts(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<Result<[u32; 3]>> {
+        self.grass.as_ref().map(|g| g.read_counts(device, queue))
+    }
+
     /// Records the frame's scatter of blades and readies their draw for the frame's targets.
     pub(super) fn encode_grass(
         &mut self,
@@ -40,12 +52,13 @@ impl World {
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         view: &WorldView,
+        timer: Option<&GpuTimer>,
     ) {
         let Some(grass) = &mut self.grass else {
             return;
         };
         let seed = self.params.land.seed;
-        grass.encode(queue, encoder, (&self.bind_group, seed, view.eye));
+        grass.encode(queue, encoder, (&self.bind_group, seed, view.eye), timer);
         grass.prepare_draw(device, &self.targets, &self.render_uniforms);
         if let Some(history) = &self.mesh_history {
             grass.prepare_draw(device, &history.own_targets(), history.uniforms());

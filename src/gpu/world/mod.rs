@@ -686,7 +686,7 @@ impl World {
         let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
-        self.encode_grass(device, queue, encoder, view);
+        self.encode_grass(device, queue, encoder, view, timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
             self.encode_resolve(queue, encoder, &unjittered, timer);
