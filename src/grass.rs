@@ -241,6 +241,52 @@ pub fn cover(p: &CoverParams, n_y: f32, h: f32, tint: f32) -> f32 {
     gentle * (1.0 - snow) * (1.0 - sand)
 }
 
+/// The wind's gusts: waves along the wind of these wavelengths (metres), travelling downwind at
+/// these multiples of the wind's speed, with these amplitudes about a mean of one half.
+pub const GUSTS: [(f64, f64, f32); 2] = [(23.0, 1.0, 0.3), (9.0, 1.3, 0.2)];
+
+/// How far a blade's tip is blown downwind, as a fraction of its height, per metre a second of
+/// wind at a middling gust; and the most it is blown (a high wind's bend clamped).
+pub const BEND_PER_SPEED: f32 = 0.03;
+/// See [`BEND_PER_SPEED`].
+pub const MAX_BEND: f32 = 0.6;
+
+/// The phase, in turns (0 to 1), of gust wave `wave` at distance `along` metres downwind at
+/// time `clock` seconds in a wind of `speed` metres a second.
+pub fn gust_phase(wave: usize, along: f64, clock: f64, speed: f64) -> f64 {
+    let (length, rate, _) = GUSTS[wave];
+    ((along - rate * speed * clock) / length).rem_euclid(1.0)
+}
+
+/// How gusty the wind is at `xz` (world metres) at `clock`: 0 to 1, a half on average, the
+/// gusts' waves travelling downwind with the air `velocity` (metres a second, x and z).
+pub fn gust(velocity: [f64; 2], clock: f64, xz: [f64; 2]) -> f32 {
+    let speed = velocity[0].hypot(velocity[1]);
+    if speed <= 0.0 {
+        return 0.5;
+    }
+    let along = (xz[0] * velocity[0] + xz[1] * velocity[1]) / speed;
+    let mut g = 0.5f32;
+    for (i, &(_, _, amplitude)) in GUSTS.iter().enumerate() {
+        let turns = gust_phase(i, along, clock, speed);
+        g += amplitude * (std::f64::consts::TAU * turns).sin() as f32;
+    }
+    g
+}
+
+/// Where the wind blows the tip of a blade `height` metres tall rooted at `xz` (world metres):
+/// downwind by [`BEND_PER_SPEED`] of its height per metre a second, times 0.5 to 1.5 with the
+/// gust there, at most [`MAX_BEND`] of its height; metres, x and z.
+pub fn wind_tip(velocity: [f64; 2], clock: f64, xz: [f64; 2], height: f32) -> [f32; 2] {
+    let speed = velocity[0].hypot(velocity[1]);
+    if speed <= 0.0 {
+        return [0.0; 2];
+    }
+    let bend = (BEND_PER_SPEED * speed as f32 * (0.5 + gust(velocity, clock, xz))).min(MAX_BEND);
+    let k = bend * height / speed as f32;
+    [k * velocity[0] as f32, k * velocity[1] as f32]
+}
+
 /// `SNOW_JITTER` and `SNOW_EDGE` of `wgsl/shade.wgsl` (a test reads them there).
 pub(crate) const SNOW_JITTER: f32 = 0.12;
 pub(crate) const SNOW_EDGE: f32 = 0.025;
@@ -330,6 +376,33 @@ mod tests {
         };
         let (near, far) = (correlation(1), correlation(100));
         assert!(near > 0.5 && far.abs() < 0.15, "near {near}, far {far}");
+    }
+
+    #[test]
+    fn the_wind_blows_tips_downwind_in_travelling_gusts() {
+        let west = [4.0, 0.0];
+        let tip = wind_tip(west, 0.0, [10.0, 3.0], 0.5);
+        assert!(tip[0] > 0.0 && tip[1] == 0.0, "{tip:?}");
+        assert_eq!(wind_tip([0.0, 0.0], 5.0, [1.0, 2.0], 0.5), [0.0, 0.0]);
+        // A gale's bend is clamped.
+        let gale = wind_tip([60.0, 0.0], 0.0, [0.0, 0.0], 1.0);
+        assert!((gale[0] - MAX_BEND).abs() < 1e-6, "{gale:?}");
+        // The gusts travel downwind, each wave at its own multiple of the wind's speed: what
+        // was at x at 0 s is at x + rate v t at t.
+        for (i, &(_, rate, _)) in GUSTS.iter().enumerate() {
+            let (a, b) = (
+                gust_phase(i, 3.0, 0.0, 4.0),
+                gust_phase(i, 3.0 + rate * 4.0 * 2.0, 2.0, 4.0),
+            );
+            assert!((a - b).abs() < 1e-9, "wave {i}: {a} {b}");
+        }
+        // Between 0 and 1, a half on average.
+        let g: Vec<f32> = (0..1000)
+            .map(|i| gust(west, 0.0, [0.37 * i as f64, 0.0]))
+            .collect();
+        assert!(g.iter().all(|v| (0.0..=1.0).contains(v)));
+        let mean = g.iter().sum::<f32>() / 1000.0;
+        assert!((mean - 0.5).abs() < 0.05, "{mean}");
     }
 
     #[test]

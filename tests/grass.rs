@@ -253,3 +253,47 @@ fn image_out(name: &str, (w, h): (u32, u32), rgba: &[u8]) {
     image::save_buffer(&path, rgba, w, h, image::ColorType::Rgba8).unwrap();
     eprintln!("wrote {}", path.display());
 }
+
+#[test]
+fn the_wind_blows_the_tips_downwind_as_the_twin_does() {
+    use relief::gpu::headless::{self, Offscreen};
+    use relief::{World, WorldView};
+    let gpu = common::gpu();
+    let mut params = relief::WorldParams::default();
+    params.grass.on = true;
+    // A west wind (blowing east, +x) of 8 m/s, 3 s into the clock.
+    params.wind = relief::Wind {
+        speed: 8.0,
+        from_azimuth: 270.0,
+    };
+    params.clock = 3.0;
+    let foot = meadow(&params);
+    let size = (96, 54);
+    let eye = foot + glam::DVec3::new(0.0, 1.7, 0.0);
+    let view = WorldView::look_at(eye, eye + glam::DVec3::new(30.0, -6.0, 10.0), 0.8, size);
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    headless::render_world_image(&gpu, &mut world, &view, size, headless::TILE, None).unwrap();
+    let blades = world
+        .grass_blades(&gpu.device, &gpu.queue, 4000)
+        .unwrap()
+        .unwrap();
+    assert!(blades.len() > 500, "{} blades", blades.len());
+    let v = params.wind.velocity();
+    let (mut got, mut want, mut worst) = (0.0f64, 0.0f64, 0.0f32);
+    for b in &blades {
+        let root = [eye.x + f64::from(b[0]), eye.z + f64::from(b[2])];
+        let twin = relief::grass::wind_tip([v.x, v.y], params.clock, root, b[4]);
+        assert!(b[12] > 0.0 && b[13].abs() < 1e-6, "downwind: {b:?}");
+        got += f64::from(b[12]);
+        want += f64::from(twin[0]);
+        worst = worst.max((b[12] - twin[0]).abs() / twin[0]);
+    }
+    eprintln!(
+        "{} blades: mean tip push {:.4} m, the twin's {:.4} m, worst {worst:.2e} relative",
+        blades.len(),
+        got / blades.len() as f64,
+        want / blades.len() as f64
+    );
+    assert!((got / want - 1.0).abs() < 0.2, "{got} against {want}");
+    assert!(worst < 0.01, "{worst}");
+}

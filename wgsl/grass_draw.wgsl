@@ -28,9 +28,10 @@ const SEGMENTS: f32 = 4.0;
 
 @vertex
 fn blade_vs(@builtin(vertex_index) vi: u32, @builtin(instance_index) ii: u32) -> BladeOut {
-    let a = blades[3u * ii];
-    let b = blades[3u * ii + 1u];
-    let c = blades[3u * ii + 2u];
+    let a = blades[4u * ii];
+    let b = blades[4u * ii + 1u];
+    let c = blades[4u * ii + 2u];
+    let tip = blades[4u * ii + 3u].xy;
     let root = a.xyz;
     let facing = vec2<f32>(cos(a.w), sin(a.w));
     let across = vec2<f32>(-facing.y, facing.x);
@@ -42,7 +43,14 @@ fn blade_vs(@builtin(vertex_index) vi: u32, @builtin(instance_index) ii: u32) ->
     let side = select(-0.5, 0.5, (vi & 1u) == 1u && vi < 8u);
     let width = b.w * (1.0 - t) * select(1.0, 0.0, vi >= 8u);
     let bend = lean * pow(t, k);
-    let p = root + vec3<f32>(facing.x * bend + across.x * side * width, height * t, facing.y * bend + across.y * side * width);
+    // The wind pushes the blade over more toward its tip; a bent blade stands lower.
+    let pushed = tip * t * t;
+    let droop = sqrt(max(1.0 - dot(tip, tip) / (height * height), 0.3));
+    let p = root + vec3<f32>(
+        facing.x * bend + across.x * side * width + pushed.x,
+        height * t * droop,
+        facing.y * bend + across.y * side * width + pushed.y,
+    );
     // The tangent up the blade, and the normal across it in the plane of its bend.
     let dbend = lean * k * pow(max(t, 1e-3), k - 1.0);
     let n = normalize(vec3<f32>(facing.x * height, -dbend, facing.y * height));

@@ -20,11 +20,36 @@ struct GrassFrame {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+    // The wind: the direction it blows towards (x, z), its speed (m/s); the gust waves' phases
+    // at the eye, in turns (src/grass.rs: GUSTS).
+    wind: vec4<f32>,
+    gust_phase: vec4<f32>,
+}
+
+// The gust waves (src/grass.rs: GUSTS): wavelength in metres, amplitude.
+const GUST_WAVES: array<vec2<f32>, 2> = array<vec2<f32>, 2>(vec2<f32>(23.0, 0.3), vec2<f32>(9.0, 0.2));
+const BEND_PER_SPEED: f32 = 0.03;
+const MAX_BEND: f32 = 0.6;
+
+// Where the wind blows the tip of a blade `height` metres tall rooted at camera-relative `xz`.
+fn wind_tip(xz: vec2<f32>, height: f32) -> vec2<f32> {
+    let speed = gf.wind.z;
+    if speed <= 0.0 {
+        return vec2<f32>(0.0);
+    }
+    let along = dot(xz, gf.wind.xy);
+    var g = 0.5;
+    for (var i = 0; i < 2; i++) {
+        let turns = fract(gf.gust_phase[i] + along / GUST_WAVES[i].x);
+        g += GUST_WAVES[i].y * sin(6.28318530717958648 * turns);
+    }
+    let bend = min(BEND_PER_SPEED * speed * (0.5 + g), MAX_BEND);
+    return gf.wind.xy * bend * height;
 }
 
 @group(1) @binding(0) var<uniform> gf: GrassFrame;
 // Per blade: root (camera-relative, metres) and facing; height, lean, curve, width; shade,
-// the sun's and the sky's occlusion at the root, and 0.
+// the sun's and the sky's occlusion at the root, and 0; the wind's push on the tip (x, z), 0, 0.
 @group(1) @binding(1) var<storage, read_write> blades: array<vec4<f32>>;
 // Blades considered (cells the square holds within the distance), kept, drawn: counted here,
 // the last clamped to the capacity by `finish`.
@@ -149,9 +174,10 @@ fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let occl = occlusion(r, s.x, ground.light.x, ground.light.y);
-    blades[3u * at] = vec4<f32>(ground.rel, b.facing);
-    blades[3u * at + 1u] = vec4<f32>(height, b.lean, b.curve, b.width * fade);
-    blades[3u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
+    blades[4u * at] = vec4<f32>(ground.rel, b.facing);
+    blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, b.width * fade);
+    blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
+    blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), 0.0, 0.0);
 }
 
 // The indirect draw of the blades the scatter kept (at most the capacity).

@@ -54,13 +54,15 @@ struct GrassFrame {
     side: u32,
     capacity: u32,
     _pad: [u32; 3],
+    wind: [f32; 4],
+    gust_phase: [f32; 4],
 }
 
-/// Blades the draw holds at most a frame: 48 bytes each, 24 MiB.
+/// Blades the draw holds at most a frame: 64 bytes each, 32 MiB.
 pub const CAPACITY: u32 = 1 << 19;
 
 /// Bytes a blade takes in the draw's buffer.
-const BLADE_BYTES: u64 = 48;
+pub const BLADE_BYTES: u64 = 64;
 
 /// The grass of the endless world on the GPU: the scatter pass that keeps each frame's blades
 /// (`wgsl/grass_scatter.wgsl`, reading the world's bind group for the drawn surface) and their
@@ -128,7 +130,7 @@ impl GrassPass {
         let blades = buffer(
             "relief:grass:blades",
             u64::from(CAPACITY) * BLADE_BYTES,
-            storage,
+            storage | wgpu::BufferUsages::COPY_SRC,
         );
         let counts = buffer(
             "relief:grass:counts",
@@ -210,15 +212,25 @@ impl GrassPass {
     }
 
     /// Records the scatter of the blades around `eye` (world metres) over the landscape of
-    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), timed
-    /// as [`super::timing::Slot::Grass`].
+    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), the
+    /// tips blown by the air's `velocity` (m/s, x and z) at `clock` seconds, timed as
+    /// [`super::timing::Slot::Grass`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
+        (velocity, clock): (glam::DVec2, f64),
         timer: Option<&super::timing::GpuTimer>,
     ) {
+        let speed = velocity.length();
+        let dir = if speed > 0.0 {
+            velocity / speed
+        } else {
+            glam::DVec2::ZERO
+        };
+        let along = eye.x * dir.x + eye.z * dir.y;
+        let phase = |i| crate::grass::gust_phase(i, along, clock, speed) as f32;
         let s = self.grass.cell();
         let eye_cell = self.grass.cell_at(eye.x, eye.z);
         let frame = GrassFrame {
@@ -231,6 +243,8 @@ impl GrassPass {
             side: self.grass.side(),
             capacity: CAPACITY,
             _pad: [0; 3],
+            wind: [dir.x as f32, dir.y as f32, speed as f32, 0.0],
+            gust_phase: [phase(0), phase(1), 0.0, 0.0],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
         encoder.clear_buffer(&self.counts, 0, None);
@@ -267,6 +281,35 @@ impl GrassPass {
         let bytes = super::map_read(device, &staging)?;
         let c: &[u32] = bytemuck::cast_slice(&bytes);
         Ok([c[0], c[1], c[3]])
+    }
+
+    /// The first `n` blades the last scatter kept, read back (blocking): 16 numbers each, as
+    /// `wgsl/grass_scatter.wgsl` writes them.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn read_blades(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        n: u32,
+    ) -> crate::Result<Vec<[f32; 16]>> {
+        let drawn = self.read_counts(device, queue)?[2].min(n);
+        let bytes = (u64::from(drawn) * BLADE_BYTES).max(BLADE_BYTES);
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:grass:blades-staging"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.blades, 0, &staging, 0, bytes);
+        queue.submit([encoder.finish()]);
+        let raw = super::map_read(device, &staging)?;
+        let floats: &[f32] = bytemuck::cast_slice(&raw);
+        Ok(floats
+            .chunks_exact(16)
+            .take(drawn as usize)
+            .map(|c| std::array::from_fn(|i| c[i]))
+            .collect())
     }
 
     /// Makes the draw's pipeline for `targets` and its bind group for the render uniforms in
@@ -346,6 +389,7 @@ mod tests {
     fn the_twin_reads_the_shaders_constants() {
         let grass = crate::gpu::shader::file("grass").unwrap();
         let shade = crate::gpu::shader::file("shade").unwrap();
+        let scatter = crate::gpu::shader::file("grass_scatter").unwrap();
         for (text, line) in [
             (
                 shade,
@@ -359,6 +403,21 @@ mod tests {
                 grass,
                 format!("const BLADE_WIDTH: f32 = {};", crate::grass::BLADE_WIDTH),
             ),
+            (
+                scatter,
+                format!(
+                    "const BEND_PER_SPEED: f32 = {};",
+                    crate::grass::BEND_PER_SPEED
+                ),
+            ),
+            (
+                scatter,
+                format!("const MAX_BEND: f32 = {};", crate::grass::MAX_BEND),
+            ),
+            (scatter, {
+                let w = crate::grass::GUSTS.map(|(l, _, a)| format!("vec2<f32>({l:.1}, {a})"));
+                format!("array<vec2<f32>, 2>({}, {})", w[0], w[1])
+            }),
         ] {
             assert!(text.contains(&line), "{line}");
         }

@@ -273,14 +273,12 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
         let row = relief::world::world_param(key)
             .filter(|r| r.key == key)
             .ok_or_else(|| {
+                // The keys no longer fit on an error's line: the nearest, and where they are.
+                let keys = relief::world::WORLD_PARAMS.iter().map(|r| r.key);
+                let near = closest(key, keys.chain(["world", "camera", "bake"]));
                 fail(format!(
-                    "invalid key: {} (allowed: world, {}, [camera], [bake])",
+                    "invalid key: {} (did you mean {near}? docs/cli.md lists the keys)",
                     table::shorten(key),
-                    relief::world::WORLD_PARAMS
-                        .iter()
-                        .map(|r| r.key)
-                        .collect::<Vec<_>>()
-                        .join(", ")
                 ))
             })?;
         let text =
@@ -504,4 +502,27 @@ mod tests {
             .to_string();
         assert!(err.contains("1e300") && err.len() < 120, "{err}");
     }
+}
+
+/// The candidate nearest to `word` by edit distance (the first of equals).
+fn closest<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> &'a str {
+    let distance = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut diagonal = row[0];
+            row[0] = i + 1;
+            for (j, &cb) in b.iter().enumerate() {
+                let next = (diagonal + usize::from(ca != cb))
+                    .min(row[j] + 1)
+                    .min(row[j + 1] + 1);
+                diagonal = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    candidates
+        .min_by_key(|c| distance(word, c))
+        .unwrap_or("world")
 }

@@ -640,7 +640,12 @@ fn endless_scene_files_and_camera_tables_round_trip() {
     bad(
         "size.toml",
         "world = \"endless\"\nsize = 64\n",
-        &["size.toml", "size", "water_level"],
+        &["size.toml", "size", "did you mean seed", "docs/cli.md"],
+    );
+    bad(
+        "grass.toml",
+        "world = \"endless\"\ngrass_hight = 1\n",
+        &["grass.toml", "grass_hight", "did you mean grass_height"],
     );
     bad(
         "fov.toml",

@@ -27,7 +27,7 @@ impl World {
         Ok(())
     }
 
-    /// GPU memory of the grass's buffers, bytes (0 without grass): 24 MiB of blades, whatever
+    /// GPU memory of the grass's buffers, bytes (0 without grass): 32 MiB of blades, whatever
     /// the density.
     pub fn grass_bytes(&self) -> u64 {
         self.grass.as_ref().map_or(0, GrassPass::bytes)
@@ -45,6 +45,19 @@ impl World {
         self.grass.as_ref().map(|g| g.read_counts(device, queue))
     }
 
+    /// The first `n` blades the last frame kept, read back (blocking; native only): per blade
+    /// its root (camera-relative, metres) and facing; height, lean, curve, width; shade and the
+    /// sun's and the sky's occlusion; the wind's push on its tip (x, z). `None` without grass.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn grass_blades(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        n: u32,
+    ) -> Option<Result<Vec<[f32; 16]>>> {
+        self.grass.as_ref().map(|g| g.read_blades(device, queue, n))
+    }
+
     /// Records the frame's scatter of blades and readies their draw for the frame's targets.
     pub(super) fn encode_grass(
         &mut self,
@@ -54,11 +67,18 @@ impl World {
         view: &WorldView,
         timer: Option<&GpuTimer>,
     ) {
+        let wind = (self.params.wind.velocity(), self.clock());
         let Some(grass) = &mut self.grass else {
             return;
         };
         let seed = self.params.land.seed;
-        grass.encode(queue, encoder, (&self.bind_group, seed, view.eye), timer);
+        grass.encode(
+            queue,
+            encoder,
+            (&self.bind_group, seed, view.eye),
+            wind,
+            timer,
+        );
         grass.prepare_draw(device, &self.targets, &self.render_uniforms);
         if let Some(history) = &self.mesh_history {
             grass.prepare_draw(device, &history.own_targets(), history.uniforms());
