@@ -433,6 +433,29 @@ fn one_line(s: &str) -> String {
         .join(" ")
 }
 
+/// The candidate nearest to `word` by edit distance (the first of equals).
+fn closest<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> &'a str {
+    let distance = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut diagonal = row[0];
+            row[0] = i + 1;
+            for (j, &cb) in b.iter().enumerate() {
+                let next = (diagonal + usize::from(ca != cb))
+                    .min(row[j] + 1)
+                    .min(row[j + 1] + 1);
+                diagonal = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    candidates
+        .min_by_key(|c| distance(word, c))
+        .unwrap_or("world")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -502,27 +525,4 @@ mod tests {
             .to_string();
         assert!(err.contains("1e300") && err.len() < 120, "{err}");
     }
-}
-
-/// The candidate nearest to `word` by edit distance (the first of equals).
-fn closest<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> &'a str {
-    let distance = |a: &str, b: &str| {
-        let b: Vec<char> = b.chars().collect();
-        let mut row: Vec<usize> = (0..=b.len()).collect();
-        for (i, ca) in a.chars().enumerate() {
-            let mut diagonal = row[0];
-            row[0] = i + 1;
-            for (j, &cb) in b.iter().enumerate() {
-                let next = (diagonal + usize::from(ca != cb))
-                    .min(row[j] + 1)
-                    .min(row[j + 1] + 1);
-                diagonal = row[j + 1];
-                row[j + 1] = next;
-            }
-        }
-        row[b.len()]
-    };
-    candidates
-        .min_by_key(|c| distance(word, c))
-        .unwrap_or("world")
 }
