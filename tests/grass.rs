@@ -91,51 +91,11 @@ fn the_gpu_covers_the_ground_as_the_twin_does() {
     assert!(got.iter().any(|&c| c > 0.05 && c < 0.95));
 }
 
-/// A point of the default world's meadow (grass all round it, dry land, in the sun), found by
-/// the twins.
+/// A point of the default world's meadow (grass all round it, dry land, in the sun).
 fn meadow(params: &relief::WorldParams) -> glam::DVec3 {
-    use relief::noise::Channel;
-    let land = &params.land;
-    let p = params.grass_cover();
-    let slope = *land.slope_bounds().last().unwrap();
-    let cover_at = |x: f64, z: f64| {
-        let s = land.sample(Channel::Height, x, z, land.octaves);
-        let t = land.sample(Channel::Color, x, z, land.octaves);
-        let g = [
-            s.gradient[0] * land.peak_height,
-            s.gradient[1] * land.peak_height,
-        ];
-        let n_y = 1.0 / (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
-        cover(&p, n_y as f32, s.value as f32, t.value as f32)
-    };
-    for i in 0..4000 {
-        let (x, z) = (
-            2000.0 + 37.0 * f64::from(i % 200),
-            -3000.0 + 53.0 * f64::from(i / 200),
-        );
-        let around = [
-            (0.0, 0.0),
-            (15.0, 0.0),
-            (-15.0, 0.0),
-            (0.0, 15.0),
-            (0.0, -15.0),
-        ];
-        let sunlit = || {
-            let sun = (
-                f64::from(params.sky.sun_azimuth).to_radians(),
-                f64::from(params.sky.sun_elevation).to_radians(),
-            );
-            relief::light::lit_by_ray(land, (x, z), sun, slope, 20_000.0)
-        };
-        if around
-            .iter()
-            .all(|(dx, dz)| cover_at(x + dx, z + dz) > 0.95)
-            && sunlit()
-        {
-            return glam::DVec3::new(x, land.height_at(x, z), z);
-        }
-    }
-    panic!("no meadow near (2000, -3000)");
+    params
+        .find_meadow([2000.0, -3000.0])
+        .expect("a meadow near (2000, -3000)")
 }
 
 /// Pixels whose colour differs by more than a few steps between two frames.

@@ -4,8 +4,8 @@
 pub(crate) mod bake;
 pub mod blit;
 pub mod blog;
-#[cfg(not(target_arch = "wasm32"))]
 pub mod grass;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod headless;
 pub mod landscape;
 pub mod layer;

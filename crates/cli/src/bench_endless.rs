@@ -157,12 +157,34 @@ pub(super) fn bench_endless(
         wrote("reference.csv", rows.len());
         Ok(())
     };
+    let grass = || -> Result<()> {
+        use relief_eval::bench_grass as g;
+        use std::io::Write;
+        let path = dir.join("grass.csv");
+        let mut file = std::fs::File::create(&path).map_err(|e| Error::io(&path, e))?;
+        let mut write = |text: String| {
+            file.write_all(text.as_bytes())
+                .map_err(|e| Error::io(&path, e))
+        };
+        write(g::header(&device, size))?;
+        let rows = g::run(&gpu, params, &options, |row: &g::GrassRow| {
+            progress(&format!("grass: {} by {}", row.view, row.method));
+            write(g::line(row))
+        })?;
+        done();
+        wrote("grass.csv", rows.len());
+        for line in g::summary(&rows) {
+            println!("{line}");
+        }
+        Ok(())
+    };
     let result = match only {
         Some("look") => look(),
         Some("landscape") => sweep(),
         Some("arrival") => arrival(),
         Some("temporal") => temporal(),
         Some("reference") => reference(),
+        Some("grass") => grass(),
         _ => look().and_then(|()| sweep()).and_then(|()| arrival()),
     };
     if result.is_err() {

@@ -100,8 +100,9 @@ pub fn command() -> Command {
                         .help(format!(
                             "--world endless: run one part: look (the look's cost), landscape \
                              (the LOD sweep), arrival, temporal (the temporal service: still \
-                             views converging, moving frames, its cost) or reference (the \
-                             reference's rays a pixel) [default: look, landscape and arrival] \
+                             views converging, moving frames, its cost), reference (the \
+                             reference's rays a pixel) or grass (the grass's cost and blades on \
+                             a meadow's views) [default: look, landscape and arrival] \
                              [allowed: {}]",
                             BENCH_PARTS.allowed()
                         )),

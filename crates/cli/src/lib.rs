@@ -82,7 +82,14 @@ const FRAMES: Kind = Kind::Int {
 };
 
 /// `relief bench --world endless --only`'s parts.
-const BENCH_PARTS: Kind = Kind::Choice(&["look", "landscape", "arrival", "temporal", "reference"]);
+const BENCH_PARTS: Kind = Kind::Choice(&[
+    "look",
+    "landscape",
+    "arrival",
+    "temporal",
+    "reference",
+    "grass",
+]);
 
 /// `--raster`: where the visibility method rasterises.
 const RASTERS: Kind = Kind::Choice(&["hardware", "compute"]);

@@ -179,3 +179,53 @@ fn bench_measures_the_views_it_is_given_and_refuses_others() {
     );
     r.check(&["bench", "--view", "ridge"], &["--view", "endless"]);
 }
+
+#[test]
+#[ignore = "slow: a meadow drawn with grass and without, two ways, three views, on a software GPU (.ci/test runs it)"]
+fn bench_measures_the_grass_on_its_views() {
+    let dir = scratch("bench-grass");
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--only",
+        "grass",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("grass.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(2)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let views: Vec<&str> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(
+        views,
+        [
+            "meadow",
+            "meadow",
+            "meadow-10m",
+            "meadow-10m",
+            "flight-50m",
+            "flight-50m"
+        ],
+        "{csv}"
+    );
+    // On the meadow every method draws blades; each row has both frames' times.
+    for r in &rows[..4] {
+        let drawn: u32 = r[3].parse().unwrap();
+        let considered: u32 = r[2].parse().unwrap();
+        assert!(drawn > 100 && considered > drawn, "{csv}");
+        assert!(
+            r[4].parse::<f64>().is_ok() && r[5].parse::<f64>().is_ok(),
+            "{csv}"
+        );
+    }
+    assert!(
+        stdout.contains("6 rows") && stdout.contains("blades drawn of"),
+        "{stdout}"
+    );
+}

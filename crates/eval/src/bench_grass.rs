@@ -1,0 +1,193 @@
+//! `relief bench --world endless --only grass`: the grass ([`relief::grass`], the `grass` keys of
+//! the world's table) on the views where it matters: a sunlit meadow
+//! ([`relief::WorldParams::find_meadow`]) from 1.7 m looking nearly level, the same from 10 m
+//! looking 30 degrees down, and a low flight 50 m over it. For the default method (as
+//! [`crate::bench_temporal::method`]) and the forward mesh, with grass and without: the frame's
+//! median GPU time, the scatter's, and the blades considered and drawn.
+
+use crate::bench::{measure, Options};
+use crate::metrics::median;
+use glam::DVec3;
+use relief::error::{Error, Result};
+use relief::gpu::headless::{render_samples, Gpu, Offscreen};
+use relief::gpu::timing::{GpuTimer, Slot};
+use relief::world::WorldParams;
+use relief::{MethodConfig, World, WorldView};
+
+/// One view drawn one way, with grass and without.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrassRow {
+    /// The view.
+    pub view: &'static str,
+    /// How it was drawn.
+    pub method: String,
+    /// Blades considered (cells within the draw distance) and drawn.
+    pub blades: [u32; 2],
+    /// The frame's median GPU time without grass and with it, milliseconds.
+    pub frame_ms: [Option<f64>; 2],
+    /// The scatter's median, milliseconds.
+    pub scatter_ms: Option<f64>,
+}
+
+impl GrassRow {
+    /// What the grass adds to the frame, milliseconds.
+    pub fn grass_ms(&self) -> Option<f64> {
+        Some(self.frame_ms[1]? - self.frame_ms[0]?)
+    }
+}
+
+/// The grass's views of `params`' landscape at `size` (see the module docs), or an error
+/// where no sunlit meadow lies near (2000, -3000).
+pub fn grass_views(
+    params: &WorldParams,
+    size: (u32, u32),
+) -> Result<Vec<(&'static str, WorldView)>> {
+    let foot = params.find_meadow([2000.0, -3000.0]).ok_or_else(|| {
+        Error::invalid(
+            "the grass's views",
+            "no meadow",
+            "a sunlit meadow within 10 km of (2000, -3000): another seed, or grass elsewhere",
+        )
+    })?;
+    let fov = 45f32.to_radians();
+    let view = |up: f64, look: DVec3| {
+        let eye = foot + DVec3::new(0.0, up, 0.0);
+        WorldView::look_at(eye, eye + look, fov, size)
+    };
+    Ok(vec![
+        ("meadow", view(1.7, DVec3::new(30.0, -4.0, 10.0))),
+        ("meadow-10m", view(10.0, DVec3::new(17.0, -11.5, 6.0))),
+        ("flight-50m", view(50.0, DVec3::new(160.0, -40.0, 50.0))),
+    ])
+}
+
+/// Measures every view of [`grass_views`] for the default method and the forward mesh,
+/// handing each row to `sink` as it is measured.
+pub fn run(
+    gpu: &Gpu,
+    params: &WorldParams,
+    options: &Options,
+    mut sink: impl FnMut(&GrassRow) -> Result<()>,
+) -> Result<Vec<GrassRow>> {
+    let size = (options.width, options.height);
+    let timer = GpuTimer::new(&gpu.device, &gpu.queue);
+    let mut rows = Vec::new();
+    for (name, view) in grass_views(params, size)? {
+        for config in [crate::bench_temporal::method(), MethodConfig::MESH] {
+            let samples = render_samples(config.method);
+            let target = Offscreen::new(&gpu.device, size.0, size.1, samples)?;
+            let mut row = GrassRow {
+                view: name,
+                method: relief::choice::Candidate {
+                    method: config.method,
+                    samples: config.samples,
+                    raster: config.raster,
+                }
+                .to_string(),
+                blades: [0; 2],
+                frame_ms: [None; 2],
+                scatter_ms: None,
+            };
+            for (i, on) in [false, true].into_iter().enumerate() {
+                let mut p = *params;
+                p.grass.on = on;
+                let mut world =
+                    World::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), p)?;
+                world.set_method(&gpu.device, config)?;
+                target.accumulate_world(gpu, &mut world, &view, 0)?;
+                let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
+                    let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &view, timer);
+                    target.draw(encoder, &world, wgpu::Color::BLACK, timer);
+                })?;
+                row.frame_ms[i] = median(times.iter().filter_map(relief::choice::draw_ms));
+                if on {
+                    row.scatter_ms = median(times.iter().filter_map(|t| t[Slot::Grass as usize]));
+                    if let Some(counts) = world.grass_counts(&gpu.device, &gpu.queue) {
+                        let [considered, _, drawn] = counts?;
+                        row.blades = [considered, drawn];
+                    }
+                }
+            }
+            sink(&row)?;
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+/// `grass.csv`'s header: what was measured, where.
+pub fn header(device: &str, size: (u32, u32)) -> String {
+    format!(
+        "# relief bench --world endless --only grass on {device} at {}x{}: each view drawn \
+         without grass and with it (the grass's defaults); frame: the median GPU time of its \
+         passes, milliseconds\n\
+         view,method,blades_considered,blades_drawn,frame_ms_without,frame_ms_with,grass_ms,\
+         scatter_ms\n",
+        size.0, size.1
+    )
+}
+
+/// One row of `grass.csv`.
+pub fn line(r: &GrassRow) -> String {
+    let ms = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3}"));
+    format!(
+        "{},{},{},{},{},{},{},{}\n",
+        r.view,
+        r.method,
+        r.blades[0],
+        r.blades[1],
+        ms(r.frame_ms[0]),
+        ms(r.frame_ms[1]),
+        ms(r.grass_ms()),
+        ms(r.scatter_ms)
+    )
+}
+
+/// The lines `relief bench` prints: per view, what the grass costs the default method and how
+/// many blades it draws, against the issue's goals.
+pub fn summary(rows: &[GrassRow]) -> Vec<String> {
+    let default = crate::bench_temporal::method();
+    let name = relief::choice::Candidate {
+        method: default.method,
+        samples: default.samples,
+        raster: default.raster,
+    }
+    .to_string();
+    rows.iter()
+        .filter(|r| r.method == name)
+        .map(|r| {
+            let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
+            format!(
+                "{}: {} blades drawn of {} considered (goal on the meadow: 100k of 1M); the grass \
+                 {} ms (goal 0.5), the frame {} ms (goal 2)",
+                r.view,
+                r.blades[1],
+                r.blades[0],
+                ms(r.grass_ms()),
+                ms(r.frame_ms[1])
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_row_reads_as_its_columns() {
+        let r = GrassRow {
+            view: "meadow",
+            method: "mesh".into(),
+            blades: [100, 10],
+            frame_ms: [Some(1.0), Some(1.5)],
+            scatter_ms: Some(0.04),
+        };
+        let header = header("a GPU", (4, 2));
+        let columns = header.lines().nth(1).unwrap().split(',').count();
+        let l = line(&r);
+        assert_eq!(l.trim().split(',').count(), columns, "{l}");
+        assert_eq!(l, "meadow,mesh,100,10,1.000,1.500,0.500,0.040\n");
+        assert_eq!(r.grass_ms(), Some(0.5));
+    }
+}
