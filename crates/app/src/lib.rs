@@ -267,6 +267,16 @@ impl App {
         self.keep_camera_above();
         self.report.options(&self.options);
         self.report.accepted();
+        // Grass with a ray caster: said, not silently missing.
+        if let Some((world, _)) = &self.options.world {
+            let method = self.options.method;
+            if world.grass.on && method.ray_path().is_some() {
+                self.report.notice(&format!(
+                    "grass: the {method} casts rays, which draw no grass yet (M: a mesh-based \
+                     method draws it)"
+                ));
+            }
+        }
         self.changed();
         Ok(())
     }
