@@ -516,7 +516,7 @@ pub static WORLD_PARAMS: [WorldParam; 23] = [
         control: Control::Slider {
             min: 0.1,
             max: 1.5,
-            step: 0.05,
+            step: 0.1,
         },
         get: |p| Value::Float(p.grass.height),
         set: |p, v| {
