@@ -24,8 +24,8 @@
 mod present;
 mod targets;
 
-pub(crate) use self::targets::composite_pipeline;
 use self::targets::*;
+pub(crate) use self::targets::{composite_group, composite_pipeline};
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::temporal::{Resolve, TemporalUniforms};
@@ -561,15 +561,11 @@ impl Visibility {
         let composite_groups = shown
             .iter()
             .map(|view| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("relief:visibility:composite-group"),
-                    layout: &self.composite_layout,
-                    entries: &[
-                        entry(12, self.uniforms.as_entire_binding()),
-                        entry(13, TextureView(view)),
-                        entry(14, TextureView(&shaded_depth)),
-                    ],
-                })
+                composite_group(
+                    device,
+                    ("relief:visibility:composite-group", &self.composite_layout),
+                    (&self.uniforms, view, &shaded_depth),
+                )
             })
             .collect();
         let bytes = u64::from(present_pitch(size.0)) * u64::from(size.1);

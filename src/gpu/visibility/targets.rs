@@ -56,6 +56,25 @@ pub(crate) fn composite_pipeline(
     )
 }
 
+/// The composite's bind group (the layout of `composite_pipeline`'s shader): its uniforms at
+/// 12, the image shown at 13 and its depth at 14.
+pub(crate) fn composite_group(
+    device: &wgpu::Device,
+    (label, layout): (&str, &wgpu::BindGroupLayout),
+    (uniforms, shown, depth): (&wgpu::Buffer, &wgpu::TextureView, &wgpu::TextureView),
+) -> wgpu::BindGroup {
+    use wgpu::BindingResource::TextureView;
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &[
+            entry(12, uniforms.as_entire_binding()),
+            entry(13, TextureView(shown)),
+            entry(14, TextureView(depth)),
+        ],
+    })
+}
+
 pub(super) fn sampled_entry(
     binding: u32,
     sample_type: wgpu::TextureSampleType,

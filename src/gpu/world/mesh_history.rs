@@ -8,7 +8,7 @@
 
 use super::*;
 use crate::gpu::temporal::{Resolve, TemporalUniforms};
-use crate::gpu::visibility::{clip_w_from_depth, composite_pipeline};
+use crate::gpu::visibility::{clip_w_from_depth, composite_group, composite_pipeline};
 
 /// The mesh's own colour: linear, half precision is finer than an 8-bit step everywhere.
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -274,15 +274,14 @@ impl MeshHistory {
             .into_iter()
             .flatten()
             .map(|history| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("relief:mesh-history:composite-group"),
-                    layout: &self.composite_layout,
-                    entries: &[
-                        entry(12, self.own.as_entire_binding()),
-                        entry(13, TextureView(history)),
-                        entry(14, TextureView(&depth_copy)),
-                    ],
-                })
+                composite_group(
+                    device,
+                    (
+                        "relief:mesh-history:composite-group",
+                        &self.composite_layout,
+                    ),
+                    (&self.own, history, &depth_copy),
+                )
             })
             .collect();
         self.images = Some(Images {
