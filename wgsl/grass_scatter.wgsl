@@ -1,4 +1,4 @@
-// import: world, grass
+// import: world, grass, grass_blade
 // The grass's scatter pass (src/gpu/grass.rs): one thread a cell of the square of cells around
 // the eye that the draw distance reaches. Each cell's blade (grass.wgsl) is kept where the
 // ground under it is grass enough (`grass_cover` against the blade's own `keep`), within its
@@ -15,9 +15,9 @@ struct GrassFrame {
     eye_in_cell: vec2<f32>,
     distance: f32,
     side: u32,
-    // The most blades `blades` holds.
+    // The most blades `blades` holds; the image's height in pixels.
     capacity: u32,
-    _pad0: u32,
+    pixels_high: f32,
     _pad1: u32,
     _pad2: u32,
     // The wind: the direction it blows towards (x, z), its speed (m/s); the gust waves' phases
@@ -49,13 +49,16 @@ fn wind_tip(xz: vec2<f32>, height: f32) -> vec2<f32> {
 
 @group(1) @binding(0) var<uniform> gf: GrassFrame;
 // Per blade: root (camera-relative, metres) and facing; height, lean, curve, width; shade,
-// the sun's and the sky's occlusion at the root, and 0; the wind's push on the tip (x, z), 0, 0.
+// the sun's and the sky's occlusion at the root, and 0; the wind's push on the tip (x, z), the
+// segments it is drawn in, 0.
 @group(1) @binding(1) var<storage, read_write> blades: array<vec4<f32>>;
-// Blades considered (cells the square holds within the distance), kept, drawn: counted here,
-// the last clamped to the capacity by `finish`.
-@group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 4>;
-// The indirect draw's arguments: vertices, instances, first vertex, first instance.
-@group(1) @binding(3) var<storage, read_write> draw_args: array<u32, 4>;
+// Blades considered (cells the square holds within the distance), kept, appended, drawn (the
+// appended clamped to the capacity by `finish`), and the triangles of those appended.
+@group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 8>;
+// The indirect draw's arguments: vertices, instances, first vertex, first instance; then the
+// compute raster's indirect dispatch of a thread a blade (raster_blades.wgsl): workgroups of
+// 64 in x, 1, 1, and 0.
+@group(1) @binding(3) var<storage, read_write> draw_args: array<u32, 8>;
 
 // Vertices of a blade (grass_draw.wgsl): a strip of four segments and a tip.
 const BLADE_VERTICES: u32 = 9u;
@@ -122,6 +125,24 @@ fn ground_at(xz: vec2<f32>) -> Ground {
     return g;
 }
 
+// Within this distance (metres) a blade has all its segments; beyond it one a this many
+// pixels of its length on screen (at least one: a triangle).
+const FULL_DETAIL: f32 = 10.0;
+const SEGMENT_PIXELS: f32 = 12.0;
+
+// The segments a blade `height` metres tall rooted at camera-relative `root` is drawn in: its
+// level of detail, from its length on screen.
+fn blade_segments(root: vec3<f32>, height: f32) -> u32 {
+    let c = r.view_proj * vec4<f32>(root, 1.0);
+    if length(root) < FULL_DETAIL || !(c.w > 0.0) {
+        return BLADE_SEGMENTS;
+    }
+    // The projection's vertical scale (its row 1 is that times the view's up).
+    let focal = length(vec3<f32>(r.view_proj[0][1], r.view_proj[1][1], r.view_proj[2][1]));
+    let pixels = 0.5 * gf.pixels_high * focal * height / c.w;
+    return clamp(u32(ceil(pixels / SEGMENT_PIXELS)), 1u, BLADE_SEGMENTS);
+}
+
 // Whether a sphere at camera-relative `c` of radius `radius` touches the view's frustum.
 fn in_frustum(c: vec3<f32>, radius: f32) -> bool {
     let m = transpose(r.view_proj);
@@ -177,10 +198,13 @@ fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
     blades[4u * at] = vec4<f32>(ground.rel, b.facing);
     blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, b.width * fade);
     blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
-    blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), 0.0, 0.0);
+    let segments = blade_segments(ground.rel, height);
+    atomicAdd(&counts[4], 2u * segments - 1u);
+    blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), f32(segments), 0.0);
 }
 
-// The indirect draw of the blades the scatter kept (at most the capacity).
+// The indirect draw of the blades the scatter kept (at most the capacity), and the compute
+// raster's dispatch of them.
 @compute @workgroup_size(1)
 fn finish() {
     let drawn = min(atomicLoad(&counts[2]), gf.capacity);
@@ -189,4 +213,8 @@ fn finish() {
     draw_args[1] = drawn;
     draw_args[2] = 0u;
     draw_args[3] = 0u;
+    draw_args[4] = (drawn + 63u) / 64u;
+    draw_args[5] = 1u;
+    draw_args[6] = 1u;
+    draw_args[7] = 0u;
 }

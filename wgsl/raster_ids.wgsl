@@ -1,4 +1,4 @@
-// import: raster
+// import: raster, raster_blades
 // The compute raster's depth with each pixel's triangle (raster.wgsl; src/gpu/raster.rs), for
 // devices with a 64-bit atomic maximum (wgpu's SHADER_INT64_ATOMIC_MIN_MAX): per pixel, row by
 // row, the nearest depth's complemented bits above the id of its triangle (`Setup`), 0 where

@@ -51,6 +51,15 @@ fn rasterised_depth(id: vec2<u32>) -> f32 {
     return select(bitcast<f32>(~bits), 1.0, bits == 0u);
 }
 
+// The layer that kept pixel `id` in the compute raster (raster.wgsl's LAYER_SHIFT: 0 the
+// terrain, 1 a blade of grass); 0 where the raster keeps no ids.
+fn rasterised_layer(id: vec2<u32>) -> u32 {
+    if vis.depth_stride < 2u {
+        return 0u;
+    }
+    return raster_depth[(id.y * vis.size.x + id.x) * vis.depth_stride] >> 28u;
+}
+
 // The standard 4x MSAA sample positions within a pixel (WebGPU and Vulkan fix them).
 const SAMPLES: array<vec2<f32>, 4> = array<vec2<f32>, 4>(
     vec2<f32>(0.375, 0.125),

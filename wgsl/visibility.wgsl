@@ -1,4 +1,4 @@
-// import: world, vis_common, composite
+// import: world, vis_common, composite, grass_blade
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the
@@ -51,14 +51,28 @@ fn shade_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     store_pixel(px, sum, 4u, covered, nearest);
 }
 
-// Shades and stores the pixel `px` whose one sample has depth `d`.
-fn shade_pixel(px: vec2<i32>, d: f32) {
+// A blade's shade and the sun's and sky's occlusion, as raster_blades.wgsl packs them into
+// the valley's place.
+fn blade_look(packed: f32) -> vec3<f32> {
+    let q = u32(packed);
+    return vec3<f32>(vec3<u32>(q >> 16u, (q >> 8u) & 255u, q & 255u)) / 255.0;
+}
+
+// Shades and stores the pixel `px` whose one sample has depth `d`, kept by the layer `layer`
+// (`rasterised_layer`: 0 the terrain, 1 a blade of grass).
+fn shade_pixel(px: vec2<i32>, d: f32, layer: u32) {
     let covered = u32(d < 1.0);
     var color = vec3<f32>(0.0);
     if covered != 0u || vis.sky != 0u {
         let s = textureLoad(surface_1, px, 0);
         let valley = textureLoad(valley_1, px, 0).x;
-        color = shade_sample(linear_uniforms(), vec2<f32>(px) + 0.5, d, s, valley);
+        let pixel = vec2<f32>(px) + 0.5;
+        if layer == 1u && covered != 0u {
+            let lin = linear_uniforms();
+            color = blade_light(lin, point_at(sample_ray(pixel), d), s.xyz, s.w, blade_look(valley));
+        } else {
+            color = shade_sample(linear_uniforms(), pixel, d, s, valley);
+        }
     }
     store_pixel(px, color, 1u, covered, d);
 }
@@ -69,7 +83,7 @@ fn shade_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let px = vec2<i32>(id.xy);
-    shade_pixel(px, textureLoad(depth_1, px, 0));
+    shade_pixel(px, textureLoad(depth_1, px, 0), 0u);
 }
 
 @compute @workgroup_size(8, 8)
@@ -77,7 +91,7 @@ fn shade_rasterised(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= vis.size.x || id.y >= vis.size.y {
         return;
     }
-    shade_pixel(vec2<i32>(id.xy), rasterised_depth(id.xy));
+    shade_pixel(vec2<i32>(id.xy), rasterised_depth(id.xy), rasterised_layer(id.xy));
 }
 
 // The composite (composite.wgsl) encodes where the host's target is not sRGB.

@@ -53,7 +53,8 @@ struct GrassFrame {
     distance: f32,
     side: u32,
     capacity: u32,
-    _pad: [u32; 3],
+    pixels_high: f32,
+    _pad: [u32; 2],
     wind: [f32; 4],
     gust_phase: [f32; 4],
 }
@@ -63,6 +64,14 @@ pub const CAPACITY: u32 = 1 << 19;
 
 /// Bytes a blade takes in the draw's buffer.
 pub const BLADE_BYTES: u64 = 64;
+
+/// Bytes of the indirect arguments `finish` writes: the draw's (16), then the compute
+/// raster's dispatch of a thread a blade (16, at [`DISPATCH_OFFSET`]).
+const ARGS_BYTES: u64 = 32;
+/// Bytes of the scatter's counts: blades considered, kept, appended, drawn, the triangles of
+/// those drawn, and 3 unused.
+const COUNTS_BYTES: u64 = 32;
+const DISPATCH_OFFSET: u64 = 16;
 
 /// The grass of the endless world on the GPU: the scatter pass that keeps each frame's blades
 /// (`wgsl/grass_scatter.wgsl`, reading the world's bind group for the drawn surface) and their
@@ -134,12 +143,12 @@ impl GrassPass {
         );
         let counts = buffer(
             "relief:grass:counts",
-            16,
+            COUNTS_BYTES,
             storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
         );
         let args = buffer(
             "relief:grass:draw-args",
-            16,
+            ARGS_BYTES,
             storage | wgpu::BufferUsages::INDIRECT,
         );
         let scatter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -208,18 +217,22 @@ impl GrassPass {
 
     /// GPU memory of its buffers, bytes.
     pub fn bytes(&self) -> u64 {
-        u64::from(CAPACITY) * BLADE_BYTES + 32 + std::mem::size_of::<GrassFrame>() as u64
+        u64::from(CAPACITY) * BLADE_BYTES
+            + COUNTS_BYTES
+            + ARGS_BYTES
+            + std::mem::size_of::<GrassFrame>() as u64
     }
 
     /// Records the scatter of the blades around `eye` (world metres) over the landscape of
-    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), the
+    /// `seed` for an image `pixels_high` pixels high (each blade's level of detail follows its
+    /// length on screen), with the world's bind group `world` at 0 (its uniforms already written), the
     /// tips blown by the air's `velocity` (m/s, x and z) at `clock` seconds, timed as
     /// [`super::timing::Slot::Grass`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
+        (world, seed, eye, pixels_high): (&wgpu::BindGroup, u32, glam::DVec3, u32),
         (velocity, clock): (glam::DVec2, f64),
         timer: Option<&super::timing::GpuTimer>,
     ) {
@@ -242,7 +255,8 @@ impl GrassPass {
             distance: self.grass.distance,
             side: self.grass.side(),
             capacity: CAPACITY,
-            _pad: [0; 3],
+            pixels_high: pixels_high as f32,
+            _pad: [0; 2],
             wind: [dir.x as f32, dir.y as f32, speed as f32, 0.0],
             gust_phase: [phase(0), phase(1), 0.0, 0.0],
         };
@@ -261,26 +275,37 @@ impl GrassPass {
         pass.dispatch_workgroups(1, 1, 1);
     }
 
+    /// The blades for the compute raster with ids ([`super::raster::Blades`]).
+    pub fn raster_blades(&self) -> super::raster::Blades<'_> {
+        super::raster::Blades {
+            blades: &self.blades,
+            counts: &self.counts,
+            args: &self.args,
+            args_offset: DISPATCH_OFFSET,
+        }
+    }
+
     /// The last scatter's counts, read back (blocking): blades considered (cells within the
-    /// draw distance), kept (on grass, inside the view) and drawn (kept, up to [`CAPACITY`]).
+    /// draw distance), kept (on grass, inside the view), drawn (kept, up to [`CAPACITY`]) and
+    /// the drawn blades' triangles (each of `s` segments has `2 s - 1`).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn read_counts(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-    ) -> crate::Result<[u32; 3]> {
+    ) -> crate::Result<[u32; 4]> {
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("relief:grass:counts-staging"),
-            size: 16,
+            size: COUNTS_BYTES,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let mut encoder = device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(&self.counts, 0, &staging, 0, 16);
+        encoder.copy_buffer_to_buffer(&self.counts, 0, &staging, 0, COUNTS_BYTES);
         queue.submit([encoder.finish()]);
         let bytes = super::map_read(device, &staging)?;
         let c: &[u32] = bytemuck::cast_slice(&bytes);
-        Ok([c[0], c[1], c[3]])
+        Ok([c[0], c[1], c[3], c[4]])
     }
 
     /// The first `n` blades the last scatter kept, read back (blocking): 16 numbers each, as

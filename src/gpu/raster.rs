@@ -113,12 +113,25 @@ pub const ID_FEATURES: wgpu::Features =
 /// The mesh the raster draws: the world's bind group (its uniforms and level textures, group
 /// 0), how many patch instances of each kind (whole patches first, finest level first; the
 /// instances are bound by [`ComputeRaster::bind`]), the cells per side of a whole patch and of
-/// a sub-patch, and the whole patches drawn by the end of each depth pass but the last.
+/// a sub-patch, and the whole patches drawn by the end of each depth pass but the last; and the
+/// grass's blades drawn with it, where the raster keeps ids and the method draws them.
 pub(crate) struct Patches<'a> {
     pub group: &'a wgpu::BindGroup,
     pub counts: [u32; 2],
     pub cells: [u32; 2],
     pub passes: [u32; PASSES - 1],
+    pub blades: Option<Blades<'a>>,
+}
+
+/// The grass's blades for the raster with ids (`wgsl/raster_blades.wgsl`): the scatter's
+/// blades and counts, and the arguments of the indirect dispatch of a thread a blade, at
+/// `args_offset` in `args`.
+#[derive(Clone, Copy)]
+pub(crate) struct Blades<'a> {
+    pub blades: &'a wgpu::Buffer,
+    pub counts: &'a wgpu::Buffer,
+    pub args: &'a wgpu::Buffer,
+    pub args_offset: u64,
 }
 
 /// The whole patches of `levels` (each patch's level, finest first) drawn by the end of each
@@ -159,6 +172,11 @@ pub(crate) struct ComputeRaster {
     hiz_pipeline: wgpu::ComputePipeline,
     /// `raster_resolve` (the raster with ids only).
     resolve: Option<wgpu::ComputePipeline>,
+    /// With ids: the grass's blades' raster (`raster_blades`) and resolve (`resolve_blades`),
+    /// the layout of their blades (group 2), and its bind group for the last blades bound.
+    blade_pipelines: Option<[wgpu::ComputePipeline; 2]>,
+    blades_layout: wgpu::BindGroupLayout,
+    blades_group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
     /// The big triangles' list, their tiles', the counts of both (one a dispatch mode,
     /// cleared every frame), and `raster_big`'s indirect arguments.
     big: wgpu::Buffer,
@@ -245,6 +263,35 @@ impl ComputeRaster {
                 cache: None,
             })
         };
+        let blades_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:raster:blades-layout"),
+            entries: &[storage(0, true), storage(1, true)],
+        });
+        let blade_pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("relief:raster:blades-pipeline-layout"),
+                bind_group_layouts: &[Some(world_layout), Some(layout), Some(&blades_layout)],
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let blade_pipelines = ids.then(|| {
+            [
+                blade_pipeline("relief:raster:blades", "raster_blades", &layouts[0]),
+                blade_pipeline(
+                    "relief:raster:resolve-blades",
+                    "resolve_blades",
+                    &layouts[3],
+                ),
+            ]
+        });
         let buffer = |label, size| storage_buffer(device, label, size);
         let uniform_stride = (std::mem::size_of::<RasterUniforms>() as u32)
             .next_multiple_of(device.limits().min_uniform_buffer_offset_alignment);
@@ -273,6 +320,9 @@ impl ComputeRaster {
                 },
             ),
             layouts,
+            blade_pipelines,
+            blades_layout,
+            blades_group: None,
             attributes,
             ids,
             uniforms: device.create_buffer(&wgpu::BufferDescriptor {
@@ -316,6 +366,42 @@ impl ComputeRaster {
         let args = 2 * std::mem::size_of_val(&BIG_ARGS_CLEAR) as u64;
         let uniforms = u64::from(self.uniform_stride) * DISPATCHES as u64;
         pixels * 4 * u64::from(self.depth_stride()) + hiz_tiles(size) * 4 + lists + args + uniforms
+    }
+
+    /// Whether it draws the grass's blades with the terrain (the raster with ids).
+    pub(crate) fn draws_blades(&self) -> bool {
+        self.blade_pipelines.is_some()
+    }
+
+    /// Binds the grass's blades for the next [`ComputeRaster::encode`] (none: the bind group
+    /// is dropped).
+    pub(crate) fn bind_blades(&mut self, device: &wgpu::Device, blades: Option<Blades<'_>>) {
+        let Some(b) = blades.filter(|_| self.draws_blades()) else {
+            self.blades_group = None;
+            return;
+        };
+        if self
+            .blades_group
+            .as_ref()
+            .is_some_and(|(k, _)| k == b.blades)
+        {
+            return;
+        }
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:raster:blades-group"),
+            layout: &self.blades_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: b.blades.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: b.counts.as_entire_binding(),
+                },
+            ],
+        });
+        self.blades_group = Some((b.blades.clone(), group));
     }
 
     /// 32-bit words a pixel of the depth buffer: 2 with ids (the depth's the second), else 1.
@@ -422,6 +508,14 @@ impl ComputeRaster {
         if self.attributes && !self.ids {
             dispatches.push((1, 0, total, self.skip_hidden));
         }
+        // With ids the last slot is the blades' (their big triangles listed as mode 1's, drawn
+        // after the terrain's).
+        let blades = patches
+            .blades
+            .zip(self.blade_pipelines.as_ref())
+            .zip(self.blades_group.as_ref());
+        let blades_slot = dispatches.len();
+        debug_assert!(blades.is_none() || blades_slot < DISPATCHES);
         let stride = self.uniform_stride as usize;
         let mut slots = vec![0u8; stride * DISPATCHES];
         let split = |count: u32| {
@@ -443,6 +537,15 @@ impl ComputeRaster {
                 _pad: 0,
             };
             slots[k * stride..][..std::mem::size_of::<RasterUniforms>()]
+                .copy_from_slice(bytemuck::bytes_of(&u));
+        }
+        if blades.is_some() {
+            let u = RasterUniforms {
+                size: [size.0, size.1],
+                mode: 1,
+                ..Default::default()
+            };
+            slots[blades_slot * stride..][..std::mem::size_of::<RasterUniforms>()]
                 .copy_from_slice(bytemuck::bytes_of(&u));
         }
         queue.write_buffer(&self.uniforms, 0, &slots);
@@ -486,14 +589,28 @@ impl ComputeRaster {
                 pass.dispatch_workgroups_indirect(&self.big_args, 12 * u64::from(mode));
             }
         }
+        let resolve_groups = (size.0.div_ceil(RESOLVE_SIDE), size.1.div_ceil(RESOLVE_SIDE));
+        if let Some(((b, [raster_blades, _]), (_, blades_group))) = blades {
+            // The blades after the whole terrain, nearest kept; their big triangles after.
+            let offset = [(blades_slot * stride) as u32];
+            pass.set_pipeline(raster_blades);
+            pass.set_bind_group(1, cells_group, &offset);
+            pass.set_bind_group(2, blades_group, &[]);
+            pass.dispatch_workgroups_indirect(b.args, b.args_offset);
+            pass.set_pipeline(&self.big_pipeline);
+            pass.set_bind_group(1, big_group, &offset);
+            pass.dispatch_workgroups_indirect(&self.big_args, 12);
+        }
         if let Some(resolve) = &self.resolve {
             pass.set_pipeline(resolve);
             pass.set_bind_group(1, resolve_group, &[0]);
-            pass.dispatch_workgroups(
-                size.0.div_ceil(RESOLVE_SIDE),
-                size.1.div_ceil(RESOLVE_SIDE),
-                1,
-            );
+            pass.dispatch_workgroups(resolve_groups.0, resolve_groups.1, 1);
+        }
+        if let Some(((_, [_, resolve_blades]), (_, blades_group))) = blades {
+            pass.set_pipeline(resolve_blades);
+            pass.set_bind_group(1, resolve_group, &[0]);
+            pass.set_bind_group(2, blades_group, &[]);
+            pass.dispatch_workgroups(resolve_groups.0, resolve_groups.1, 1);
         }
     }
 }

@@ -157,11 +157,10 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
                     relief::gpu::world::mib(world.method_bytes())
                 );
                 if let Some(counts) = world.grass_counts(&gpu.device, &gpu.queue) {
-                    let [considered, _, drawn] = counts?;
+                    let [considered, _, drawn, triangles] = counts?;
                     println!("grass_blades_considered {considered}");
                     println!("grass_blades_drawn {drawn}");
-                    // Seven triangles a blade: a strip of four segments and a tip.
-                    println!("grass_triangles {}", 7 * u64::from(drawn));
+                    println!("grass_triangles {triangles}");
                     println!(
                         "grass_mib {:.1}",
                         relief::gpu::world::mib(world.grass_bytes())

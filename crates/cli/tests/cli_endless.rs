@@ -143,7 +143,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             let drawn = stat(&s, "grass_blades_drawn");
             assert!(drawn > 1000.0, "{s:?}");
             assert!(stat(&s, "grass_blades_considered") > drawn, "{s:?}");
-            assert_eq!(stat(&s, "grass_triangles"), 7.0 * drawn, "{s:?}");
+            // One to seven triangles a blade (one to four segments).
+            let triangles = stat(&s, "grass_triangles");
+            assert!(triangles >= drawn && triangles <= 7.0 * drawn, "{s:?}");
         }
         if row.key == "pixel_error" {
             assert!(

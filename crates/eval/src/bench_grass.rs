@@ -103,7 +103,7 @@ pub fn run(
                 if on {
                     row.scatter_ms = median(times.iter().filter_map(|t| t[Slot::Grass as usize]));
                     if let Some(counts) = world.grass_counts(&gpu.device, &gpu.queue) {
-                        let [considered, _, drawn] = counts?;
+                        let [considered, _, drawn, _] = counts?;
                         row.blades = [considered, drawn];
                     }
                 }

@@ -417,6 +417,17 @@ impl Visibility {
         }
     }
 
+    /// Whether it draws the grass's blades itself, in its compute raster with ids and its
+    /// shading (the visibility method's, where the device has 64-bit atomics); elsewhere the
+    /// world draws them after the composite.
+    pub fn draws_grass(&self) -> bool {
+        !self.hybrid
+            && self
+                .compute_raster
+                .as_ref()
+                .is_some_and(ComputeRaster::draws_blades)
+    }
+
     /// Whether the compute raster's later passes skip the blocks of cells the earlier ones
     /// hide (the default; off only to test that skipping changes nothing).
     pub(crate) fn set_raster_skips_hidden(&mut self, on: bool) {
@@ -642,7 +653,9 @@ impl Visibility {
         if let (Some(buffer), Some(rays)) = (&self.ray_uniforms, rays) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(rays));
         }
-        if let Some(raster) = &self.compute_raster {
+        let hybrid = self.hybrid;
+        if let Some(raster) = &mut self.compute_raster {
+            raster.bind_blades(device, patches.blades.filter(|_| !hybrid));
             raster.encode(
                 queue,
                 encoder,

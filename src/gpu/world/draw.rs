@@ -73,7 +73,9 @@ impl World {
         if let (Method::Visibility | Method::Hybrid, Some(vis)) = (self.method, &self.visibility) {
             // Its compute pass shaded the sky too: one full-screen draw.
             vis.composite(pass);
-            self.draw_grass(pass);
+            if !vis.draws_grass() {
+                self.draw_grass(pass);
+            }
             return;
         }
         // The forward mesh's history, where it accumulates (its own pass drew the sky and the

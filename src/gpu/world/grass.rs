@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::gpu::grass::GrassPass;
+use crate::{Method, Raster};
 
 impl World {
     /// Builds, rebuilds or drops the grass's passes for the parameters' grass
@@ -27,6 +28,22 @@ impl World {
         Ok(())
     }
 
+    /// What draws the blades: the visibility method's compute raster with ids
+    /// ([`Raster::Compute`]: with the terrain, into its visibility buffer, shaded in its compute
+    /// pass, where the device has 64-bit atomics), or the GPU's rasteriser after the terrain
+    /// (every other mesh-based method, and the page). `None` without grass, or for a ray
+    /// caster (which draws none).
+    pub fn grass_raster(&self) -> Option<Raster> {
+        self.grass.as_ref()?;
+        match self.method {
+            Method::Visibility if self.visibility.as_ref().is_some_and(|v| v.draws_grass()) => {
+                Some(Raster::Compute)
+            }
+            Method::Mesh | Method::Visibility | Method::Hybrid => Some(Raster::Hardware),
+            _ => None,
+        }
+    }
+
     /// GPU memory of the grass's buffers, bytes (0 without grass): 32 MiB of blades, whatever
     /// the density.
     pub fn grass_bytes(&self) -> u64 {
@@ -34,20 +51,22 @@ impl World {
     }
 
     /// The last frame's blades, read back (blocking; native only): considered (cells within
-    /// the draw distance), kept (on grass, inside the view) and drawn (up to the buffer's
-    /// [`crate::gpu::grass::CAPACITY`]). `None` without grass.
+    /// the draw distance), kept (on grass, inside the view), drawn (up to the buffer's
+    /// [`crate::gpu::grass::CAPACITY`]) and the drawn blades' triangles (fewer segments
+    /// farther away). `None` without grass.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn grass_counts(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-    ) -> Option<Result<[u32; 3]>> {
+    ) -> Option<Result<[u32; 4]>> {
         self.grass.as_ref().map(|g| g.read_counts(device, queue))
     }
 
     /// The first `n` blades the last frame kept, read back (blocking; native only): per blade
     /// its root (camera-relative, metres) and facing; height, lean, curve, width; shade and the
-    /// sun's and the sky's occlusion; the wind's push on its tip (x, z). `None` without grass.
+    /// sun's and the sky's occlusion; the wind's push on its tip (x, z) and its segments.
+    /// `None` without grass.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn grass_blades(
         &self,
@@ -72,10 +91,11 @@ impl World {
             return;
         };
         let seed = self.params.land.seed;
+        let high = self.target_size.unwrap_or(view.size).1;
         grass.encode(
             queue,
             encoder,
-            (&self.bind_group, seed, view.eye),
+            (&self.bind_group, seed, view.eye, high),
             wind,
             timer,
         );

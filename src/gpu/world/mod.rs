@@ -780,6 +780,10 @@ impl World {
             counts: self.instance_counts,
             cells: [self.map.patch, self.map.sub_cells()],
             passes: self.raster_passes,
+            blades: self
+                .grass
+                .as_ref()
+                .map(super::grass::GrassPass::raster_blades),
         };
         vis.encode(
             device,
