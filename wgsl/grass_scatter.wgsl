@@ -56,8 +56,8 @@ fn wind_tip(xz: vec2<f32>, height: f32) -> vec2<f32> {
 // appended clamped to the capacity by `finish`), and the triangles of those appended.
 @group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 8>;
 // The indirect draw's arguments: vertices, instances, first vertex, first instance; then the
-// compute raster's indirect dispatch of a thread a blade (raster_blades.wgsl): workgroups of
-// 64 in x, 1, 1, and 0.
+// compute raster's indirect dispatch of a thread a triangle, 8 a blade (raster_blades.wgsl):
+// workgroups of 128 in x, 1, 1, and 0.
 @group(1) @binding(3) var<storage, read_write> draw_args: array<u32, 8>;
 
 // Vertices of a blade (grass_draw.wgsl): a strip of four segments and a tip.
@@ -213,7 +213,7 @@ fn finish() {
     draw_args[1] = drawn;
     draw_args[2] = 0u;
     draw_args[3] = 0u;
-    draw_args[4] = (drawn + 63u) / 64u;
+    draw_args[4] = (drawn * 8u + 127u) / 128u;
     draw_args[5] = 1u;
     draw_args[6] = 1u;
     draw_args[7] = 0u;

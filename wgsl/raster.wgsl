@@ -82,7 +82,7 @@ const BIG_PIXELS: f32 = 256.0;
 const BIG_GROUP: u32 = 64u;
 const BIG_TILE: u32 = 16u;
 // Most workgroups of `raster_big` (src/gpu/raster.rs's BIG_GROUPS).
-const BIG_GROUPS: u32 = 1024u;
+const BIG_GROUPS: u32 = 4096u;
 
 // A RasterVertex as stored for `raster_big` (the valley in `extra.x`).
 struct BigVertex {
@@ -248,6 +248,64 @@ fn raster_pixel(t: Setup, x: f32, y: f32) {
     keep(t, e, x, y, u32(y) * ras.size.x + u32(x), ~bitcast<u32>(abs(z)));
 }
 
+// The least and greatest x of triangle `t` between the lines y = `ya` and y = `yb` (screen
+// pixels; empty, lo > hi, where it has no point there): of its corners between them and of its
+// edges' crossings of them.
+fn slab_span(t: Setup, ya: f32, yb: f32) -> vec2<f32> {
+    let p = array<vec2<f32>, 3>(t.s0.xy, t.s1.xy, t.s2.xy);
+    var span = vec2<f32>(3.0e38, -3.0e38);
+    for (var k = 0u; k < 3u; k++) {
+        let a = p[k];
+        let b = p[(k + 1u) % 3u];
+        if a.y >= ya && a.y <= yb {
+            span = vec2<f32>(min(span.x, a.x), max(span.y, a.x));
+        }
+        for (var j = 0u; j < 2u; j++) {
+            let yc = select(ya, yb, j == 1u);
+            if (a.y - yc) * (b.y - yc) < 0.0 {
+                let x = a.x + (yc - a.y) / (b.y - a.y) * (b.x - a.x);
+                span = vec2<f32>(min(span.x, x), max(span.y, x));
+            }
+        }
+    }
+    return span;
+}
+
+// Lists the tiles of big triangle `t` (entry `i` of `big`) that it can cover for `raster_big`:
+// a row of tiles at a time, the tiles under the triangle's span across the row's pixel
+// centres, grown by half a pixel (so no rounding of the span loses a covered pixel; a long
+// thin triangle, a blade of grass near the eye, touches few of its bounding box's tiles).
+// False where the list ran out of room (the caller then draws the triangle itself).
+fn list_tiles(t: Setup, i: u32) -> bool {
+    let size = vec2<u32>(t.hi - t.lo + 1.0);
+    let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
+    let down = (size.y + BIG_TILE - 1u) / BIG_TILE;
+    let room = arrayLength(&big_tiles);
+    let tile = f32(BIG_TILE);
+    var complete = true;
+    for (var ty = 0u; ty < down; ty++) {
+        let y0 = t.lo.y + f32(ty) * tile;
+        let y1 = min(y0 + tile - 1.0, t.hi.y);
+        // Pixel centres y + 0.5 for the rows y0..y1, grown by half a pixel.
+        let span = slab_span(t, y0, y1 + 1.0);
+        if span.x > span.y {
+            continue;
+        }
+        // Pixels x whose centre, grown by half a pixel, meets the span.
+        let first = u32(clamp(floor((span.x - 1.0 - t.lo.x) / tile), 0.0, f32(across - 1u)));
+        let last = u32(clamp(floor((span.y - t.lo.x) / tile), 0.0, f32(across - 1u)));
+        let count = last - first + 1u;
+        let at = atomicAdd(&big_count[2u + ras.mode], count);
+        let listed = min(count, room - min(at, room));
+        for (var k = 0u; k < listed; k++) {
+            big_tiles[at + k] = vec2<u32>(i, ty * across + first + k);
+        }
+        atomicMax(&big_args[3u * ras.mode], min(at + listed, BIG_GROUPS));
+        complete = complete && listed == count;
+    }
+    return complete;
+}
+
 fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex, id: u32) {
     let t = setup_triangle(v0, v1, v2, id);
     if !t.valid {
@@ -261,17 +319,7 @@ fn raster_triangle(v0: RasterVertex, v1: RasterVertex, v2: RasterVertex, id: u32
         let i = atomicAdd(&big_count[ras.mode], 1u);
         if i < arrayLength(&big) {
             big[i] = BigTriangle(to_big(v0), to_big(v1), to_big(v2), id);
-            let size = vec2<u32>(extent);
-            let across = (size.x + BIG_TILE - 1u) / BIG_TILE;
-            let tiles = across * ((size.y + BIG_TILE - 1u) / BIG_TILE);
-            let first = atomicAdd(&big_count[2u + ras.mode], tiles);
-            let room = arrayLength(&big_tiles);
-            let listed = min(tiles, room - min(first, room));
-            for (var k = 0u; k < listed; k++) {
-                big_tiles[first + k] = vec2<u32>(i, k);
-            }
-            atomicMax(&big_args[3u * ras.mode], min(first + listed, BIG_GROUPS));
-            if listed == tiles {
+            if list_tiles(t, i) {
                 return;
             }
         }

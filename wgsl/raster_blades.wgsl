@@ -1,16 +1,16 @@
 // import: grass_blade
 // part of: raster_ids (calls raster.wgsl's clip and setup, and the ids' `keep`)
 // The grass's blades in the compute raster with ids (src/gpu/raster.rs; the visibility method
-// where the device has a 64-bit atomic maximum): after the terrain's raster, a thread a blade
-// the scatter kept (grass_scatter.wgsl) builds its strip (grass_blade.wgsl) and rasterises its
-// triangles into the same depth buffer with ids, so each pixel keeps the nearest of terrain and
-// blades; big triangles go to the same list as the terrain's (dispatch mode 1, after the
-// terrain's list was drawn). `resolve_blades` then stores each pixel that a blade kept: its
+// where the device has a 64-bit atomic maximum): after the terrain's raster, a thread a
+// triangle of each blade the scatter kept (grass_scatter.wgsl) builds it from the blade's strip
+// (grass_blade.wgsl, in the segments the scatter chose) and rasterises it into the same depth
+// buffer with ids, so each pixel keeps the nearest of terrain and blades; big triangles go to
+// the same list as the terrain's (dispatch mode 1, after the terrain's list was drawn). `resolve_blades` then stores each pixel that a blade kept: its
 // normal and how far up the blade (interpolated, as the surface attributes), and the blade's
 // shade and occlusion (packed, as the valley), which visibility.wgsl shades as a blade.
 //
 // Why: on the H100 only two TPCs run vertex and pixel shaders; the blades drawn by the GPU's
-// rasteriser after the terrain cost over 1.6 ms for 20k blades at 1080p.
+// rasteriser after the terrain cost over 1.6 ms for 20k blades at 1080p, here about 0.35 ms.
 
 // The blades (4 vec4s each, grass_scatter.wgsl's layout) and the scatter's counts (the
 // fourth: how many `blades` holds).
@@ -33,21 +33,28 @@ fn blade_vertex(i: u32, segments: u32, vi: u32) -> RasterVertex {
     return RasterVertex(r.view_proj * vec4<f32>(q.p, 1.0), vec4<f32>(q.n, q.t), 0.0);
 }
 
-@compute @workgroup_size(64)
+// A thread a triangle: TRIANGLE_SLOTS threads a blade, those past its strip's 2 segments - 1
+// triangles idle. A thread a blade, looping over all its pixels, took 0.65 ms for 20k blades
+// on the H100 (the terrain's whole raster takes 0.85 ms); a thread a triangle, 0.25 ms.
+const TRIANGLE_SLOTS: u32 = 8u;
+
+@compute @workgroup_size(128)
 fn raster_blades(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
+    let i = id.x / TRIANGLE_SLOTS;
+    let k = id.x % TRIANGLE_SLOTS;
     if i >= blade_counts[3] {
         return;
     }
     let segments = blade_segments(i);
-    var v0 = blade_vertex(i, segments, 0u);
-    var v1 = blade_vertex(i, segments, 1u);
-    for (var k = 2u; k <= 2u * segments; k++) {
-        let v2 = blade_vertex(i, segments, k);
-        raster_clipped(v0, v1, v2, (LAYER_GRASS << LAYER_SHIFT) | (i << 4u) | ((k - 2u) << 1u));
-        v0 = v1;
-        v1 = v2;
+    if k + 1u >= 2u * segments {
+        return;
     }
+    raster_clipped(
+        blade_vertex(i, segments, k),
+        blade_vertex(i, segments, k + 1u),
+        blade_vertex(i, segments, k + 2u),
+        (LAYER_GRASS << LAYER_SHIFT) | (i << 4u) | (k << 1u),
+    );
 }
 
 // A blade's shade and the sun's and sky's occlusion, 8 bits each, as an integer below 2^24

@@ -66,7 +66,7 @@ pub const CAPACITY: u32 = 1 << 19;
 pub const BLADE_BYTES: u64 = 64;
 
 /// Bytes of the indirect arguments `finish` writes: the draw's (16), then the compute
-/// raster's dispatch of a thread a blade (16, at [`DISPATCH_OFFSET`]).
+/// raster's dispatch of a thread a triangle, eight a blade (16, at [`DISPATCH_OFFSET`]).
 const ARGS_BYTES: u64 = 32;
 /// Bytes of the scatter's counts: blades considered, kept, appended, drawn, the triangles of
 /// those drawn, and 3 unused.

@@ -66,10 +66,12 @@ pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Fl
 const BLOCK: u32 = 8;
 /// The side of the tiles of pixels whose farthest depth `raster_hiz` keeps (`HIZ_TILE`).
 const HIZ_TILE: u32 = 8;
-/// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 160 bytes each): a camera a
-/// few metres above the endless world's ground left some hundreds at 1080p. Past it a thread
-/// draws its triangle alone, as before the list (slow, not wrong).
-const BIG_TRIANGLES: u64 = 16_384;
+/// Triangles the list of big ones holds (`raster.wgsl`'s `big`; 160 bytes each, 10 MiB): a
+/// camera a few metres above the endless world's ground left some hundreds at 1080p; the
+/// grass's blades within a few metres of the eye add some thousands (more at a higher
+/// density). Past it a thread draws its triangle alone, as before the list (slow, not
+/// wrong).
+const BIG_TRIANGLES: u64 = 65_536;
 /// The tiles of `HIZ_TILE` pixels square over a frame of `size`.
 fn hiz_tiles(size: (u32, u32)) -> u64 {
     u64::from(size.0.div_ceil(HIZ_TILE)) * u64::from(size.1.div_ceil(HIZ_TILE))
@@ -84,7 +86,7 @@ const BIG_TILES: u64 = 262_144;
 const BIG_COUNT_BYTES: u64 = 16;
 /// The arguments of each mode's indirect dispatch of `raster_big` (`raster.wgsl`'s
 /// `big_args`) as a frame starts: (0, 1, 1). `raster_cells` raises the workgroups to the tiles
-/// listed, at most `BIG_GROUPS` (1024, in `raster.wgsl`), each then taking every 1024th tile;
+/// listed, at most `BIG_GROUPS` (4096, in `raster.wgsl`), each then taking every 4096th tile;
 /// a frame with no big triangle dispatches none.
 const BIG_ARGS_CLEAR: [u32; 6] = [0, 1, 1, 0, 1, 1];
 /// Most workgroups in one dimension of a dispatch (WebGPU's default limit).
@@ -124,8 +126,8 @@ pub(crate) struct Patches<'a> {
 }
 
 /// The grass's blades for the raster with ids (`wgsl/raster_blades.wgsl`): the scatter's
-/// blades and counts, and the arguments of the indirect dispatch of a thread a blade, at
-/// `args_offset` in `args`.
+/// blades and counts, and the arguments of the indirect dispatch of a thread a triangle (eight
+/// a blade), at `args_offset` in `args`.
 #[derive(Clone, Copy)]
 pub(crate) struct Blades<'a> {
     pub blades: &'a wgpu::Buffer,

@@ -19,8 +19,9 @@ impl World {
     /// which a compute pass packs the frame for and a copy fills. Both round each value in the
     /// shader; the stored one is the packed one wherever the device's 8-bit store rounds to
     /// the nearest, down or toward zero (lavapipe's and the H100's do).
-    /// Otherwise (and where layers or grass draw after the terrain) it records nothing and
-    /// returns false: draw with [`World::render`] in a render pass.
+    /// Otherwise (and where layers, or grass that the method does not draw in compute, draw
+    /// after the terrain: [`World::grass_raster`]) it records nothing and returns false: draw
+    /// with [`World::render`] in a render pass.
     pub fn present(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -28,9 +29,10 @@ impl World {
         timer: Option<&GpuTimer>,
     ) -> bool {
         match (self.method, &self.visibility) {
-            // The layers and the grass draw into a render pass: with any, the frame needs one.
+            // The layers, and grass drawn by the GPU's rasteriser, draw into a render pass:
+            // with any, the frame needs one.
             (Method::Visibility | Method::Hybrid, Some(vis))
-                if self.layers.is_empty() && self.grass.is_none() =>
+                if self.layers.is_empty() && (self.grass.is_none() || vis.draws_grass()) =>
             {
                 vis.present(encoder, target, timer)
             }
