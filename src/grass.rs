@@ -49,14 +49,15 @@ pub struct Grass {
 }
 
 impl Default for Grass {
-    /// Off; when on, 32 blades a square metre (a dense lawn; SimonDev's Quick_Grass draws about
-    /// 31), half a metre tall, to 40 m.
+    /// Off; when on, 96 blades a square metre (a meadow's sward; SimonDev's Quick_Grass draws
+    /// about 31, a lawn), half a metre tall, to 60 m: on a meadow from 1.7 m about a million
+    /// blades considered and 120k drawn, as the look wants (docs/results/grass.md).
     fn default() -> Self {
         Self {
             on: false,
-            density: 32.0,
+            density: 96.0,
             height: 0.5,
-            distance: 40.0,
+            distance: 60.0,
         }
     }
 }
@@ -316,8 +317,9 @@ mod tests {
             .to_string()
             .contains("grass_height"));
         let g = Grass::default();
-        assert!((g.cell() - 1.0 / 32f64.sqrt()).abs() < 1e-12);
-        assert_eq!(g.clump_cells(), 17);
+        assert!((g.cell() - 1.0 / 96f64.sqrt()).abs() < 1e-12);
+        // Clumps of about CLUMP_METRES: 3 m of 0.102 m cells.
+        assert_eq!(g.clump_cells(), 29);
         assert_eq!(g.cell_at(-0.01, 0.0), [-1, 0]);
     }
 

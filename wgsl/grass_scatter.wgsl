@@ -6,7 +6,10 @@
 // over its last metres so that no ring of blades pops) and inside the view's frustum; its
 // root stands on the triangle of the mesh the world draws there (the level that draws the
 // point, its vertices placed as world.wgsl's `place` places them, morph and the hybrid's raise
-// included). A kept blade is appended to `blades` for the draw (grass_draw.wgsl).
+// included). A kept blade is appended to `blades` for the draw (grass_draw.wgsl, or the compute
+// raster's raster_blades.wgsl) with its level of detail: its segments by its length on screen,
+// and a blade narrower than a pixel widened to one and thinned to keep the cover. A workgroup's
+// block of cells is skipped whole where it lies outside the distance or the view.
 
 struct GrassFrame {
     g: GrassUniforms,
@@ -137,9 +140,7 @@ fn blade_segments(root: vec3<f32>, height: f32) -> u32 {
     if length(root) < FULL_DETAIL || !(c.w > 0.0) {
         return BLADE_SEGMENTS;
     }
-    // The projection's vertical scale (its row 1 is that times the view's up).
-    let focal = length(vec3<f32>(r.view_proj[0][1], r.view_proj[1][1], r.view_proj[2][1]));
-    let pixels = 0.5 * gf.pixels_high * focal * height / c.w;
+    let pixels = height * pixels_per_metre(c.w);
     return clamp(u32(ceil(pixels / SEGMENT_PIXELS)), 1u, BLADE_SEGMENTS);
 }
 
@@ -158,49 +159,126 @@ fn in_frustum(c: vec3<f32>, radius: f32) -> bool {
     return true;
 }
 
-@compute @workgroup_size(8, 8)
-fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= gf.side || id.y >= gf.side {
-        return;
+// The tallest blade, as a multiple of the mean height (grass.wgsl's `blade_at`: 1.6 for
+// clumps, 1.2 for a blade's own), and the steepest ground that grows grass (`grass_cover`: none
+// where the normal's y is below 0.52, a slope of 1.65).
+const TALLEST: f32 = 1.92;
+const STEEPEST: f32 = 1.65;
+
+// Whether any blade of the workgroup's block of 8 x 8 cells, numbered `group`, can be drawn:
+// within the draw distance, and inside the view's frustum by a sphere holding the block's
+// ground (its height at the block's centre, give or take the steepest slope that grows grass
+// across the block) and its tallest blade, leaning or blown over. One ground read for 64
+// cells; at the default density three blocks in four lie outside a level view.
+fn block_in_view(group: vec2<u32>) -> bool {
+    let first = vec2<f32>(vec2<i32>(group * 8u) - vec2<i32>(i32(gf.side / 2u)));
+    let size = 8.0 * gf.g.cell;
+    let centre = (first + 4.0) * gf.g.cell - gf.eye_in_cell;
+    let radius = 0.7072 * size;
+    if length(centre) - radius > gf.distance {
+        return false;
     }
+    let top = TALLEST * gf.g.height;
+    let ground = ground_at(centre).rel.y;
+    let reach = radius * (1.0 + STEEPEST) + 2.0 * top;
+    return in_frustum(vec3<f32>(centre.x, ground, centre.y), reach);
+}
+
+// Pixels a metre at clip w `cw` (the projection's vertical scale: its row 1 is that times the
+// view's up).
+fn pixels_per_metre(cw: f32) -> f32 {
+    let focal = length(vec3<f32>(r.view_proj[0][1], r.view_proj[1][1], r.view_proj[2][1]));
+    return 0.5 * gf.pixels_high * focal / cw;
+}
+
+// Whether the workgroup's block can show a blade, and its counts of cells considered and blades
+// kept, added to `counts` once a workgroup.
+var<workgroup> block_visible: u32;
+var<workgroup> block_counts: array<atomic<u32>, 2>;
+
+@compute @workgroup_size(8, 8)
+fn scatter(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    if lane == 0u {
+        block_visible = u32(block_in_view(group.xy));
+    }
+    let visible = workgroupUniformLoad(&block_visible) != 0u;
     let half = i32(gf.side / 2u);
     let rel_cell = vec2<i32>(id.xy) - vec2<i32>(half);
+    let in_square = id.x < gf.side && id.y < gf.side;
+    // Considered: the cells whose centre lies within the draw distance (each holds a blade),
+    // in blocks culled or not.
+    let centre = (vec2<f32>(rel_cell) + 0.5) * gf.g.cell - gf.eye_in_cell;
+    if in_square && length(centre) <= gf.distance {
+        atomicAdd(&block_counts[0], 1u);
+    }
+    if visible && in_square && scatter_cell(rel_cell) {
+        atomicAdd(&block_counts[1], 1u);
+    }
+    workgroupBarrier();
+    if lane == 0u {
+        atomicAdd(&counts[0], atomicLoad(&block_counts[0]));
+        atomicAdd(&counts[1], atomicLoad(&block_counts[1]));
+    }
+}
+
+// The blade of cell `rel_cell` (relative to the eye's): appended to `blades` where it is kept
+// (true: on grass, inside the view; kept past the capacity too, though not stored).
+fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     let b = blade_at(gf.g, rel_cell);
     let xz = (vec2<f32>(rel_cell) + b.offset) * gf.g.cell - gf.eye_in_cell;
     let dist = length(xz);
     if dist > gf.distance {
-        return;
+        return false;
     }
-    atomicAdd(&counts[0], 1u);
     // Each blade's own distance, and the last metres over which it shrinks away.
     let own = gf.distance * (0.5 + 0.5 * b.far);
     let fade = 1.0 - smoothstep(own - 0.1 * gf.distance, own, dist);
     if fade <= 0.0 {
-        return;
+        return false;
     }
     let ground = ground_at(xz);
     let s = ground.sample;
     let slope = s.yz * w.peak;
     let n_y = inverseSqrt(1.0 + dot(slope, slope));
     if b.keep >= grass_cover(r, n_y, s.x, s.w) {
-        return;
+        return false;
     }
     let height = b.height * fade;
     if !in_frustum(ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
-        return;
+        return false;
     }
-    atomicAdd(&counts[1], 1u);
+    // A blade narrower than a pixel: widened to one, and kept with a chance of its width in
+    // pixels (its own number `thin`, independent of its others), so the field's cover stays
+    // and a distant blade is not a sliver that flickers. It narrows to nothing as its width
+    // nears its number, so none pops.
+    var width = b.width * fade;
+    let c = r.view_proj * vec4<f32>(ground.rel, 1.0);
+    if c.w > 0.0 {
+        let px = width * pixels_per_metre(c.w);
+        if px < 1.0 {
+            let thin = fract(b.facing * (16.0 / GRASS_TAU));
+            if thin >= px {
+                return false;
+            }
+            width *= clamp((px - thin) / (0.2 * px), 0.0, 1.0) / (0.9 * px);
+        }
+    }
     let at = atomicAdd(&counts[2], 1u);
     if at >= gf.capacity {
-        return;
+        return true;
     }
     let occl = occlusion(r, s.x, ground.light.x, ground.light.y);
     blades[4u * at] = vec4<f32>(ground.rel, b.facing);
-    blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, b.width * fade);
+    blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, width);
     blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
     let segments = blade_segments(ground.rel, height);
     atomicAdd(&counts[4], 2u * segments - 1u);
     blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), f32(segments), 0.0);
+    return true;
 }
 
 // The indirect draw of the blades the scatter kept (at most the capacity), and the compute
