@@ -1,9 +1,11 @@
 //! `relief bench --world endless --only grass`: the grass ([`relief::grass`], the `grass` keys of
 //! the world's table) on the views where it matters: a sunlit meadow
 //! ([`relief::WorldParams::find_meadow`]) from 1.7 m looking nearly level, the same from 10 m
-//! looking 30 degrees down, and a low flight 50 m over it. For the default method (as
-//! [`crate::bench_temporal::method`]) and the forward mesh, with grass and without: the frame's
-//! median GPU time, the scatter's, and the blades considered and drawn.
+//! looking 30 degrees down, and a low flight 50 m over it, for the default method (as
+//! [`crate::bench_temporal::method`]) and the forward mesh; then the random view set
+//! ([`crate::views::random_views`], fixed by a seed, mostly far above any grass) for the
+//! default method. Each with grass and without: the frame's median GPU time, the scatter's, and
+//! the blades considered and drawn.
 
 use crate::bench::{measure, Options};
 use crate::metrics::median;
@@ -61,8 +63,8 @@ pub fn grass_views(
     ])
 }
 
-/// Measures every view of [`grass_views`] for the default method and the forward mesh,
-/// handing each row to `sink` as it is measured.
+/// Measures every view of [`grass_views`] for the default method and the forward mesh, and the
+/// random views for the default method, handing each row to `sink` as it is measured.
 pub fn run(
     gpu: &Gpu,
     params: &WorldParams,
@@ -72,8 +74,16 @@ pub fn run(
     let size = (options.width, options.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let mut rows = Vec::new();
+    let default = crate::bench_temporal::method();
+    let mut runs: Vec<(&'static str, WorldView, WorldParams, Vec<MethodConfig>)> = Vec::new();
     for (name, view) in grass_views(params, size)? {
-        for config in [crate::bench_temporal::method(), MethodConfig::MESH] {
+        runs.push((name, view, *params, vec![default, MethodConfig::MESH]));
+    }
+    for v in crate::views::random_views(params, size) {
+        runs.push((v.name, v.view, v.params(params), vec![default]));
+    }
+    for (name, view, params, configs) in runs {
+        for config in configs {
             let samples = render_samples(config.method);
             let target = Offscreen::new(&gpu.device, size.0, size.1, samples)?;
             let mut row = GrassRow {
@@ -89,7 +99,7 @@ pub fn run(
                 scatter_ms: None,
             };
             for (i, on) in [false, true].into_iter().enumerate() {
-                let mut p = *params;
+                let mut p = params;
                 p.grass.on = on;
                 let mut world =
                     World::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), p)?;
