@@ -337,3 +337,95 @@ fn the_compute_raster_draws_the_blades_the_rasteriser_draws() {
         assert!(apart < hw_grass / 4, "{name}: {apart} of {hw_grass}");
     }
 }
+
+#[test]
+fn the_roots_stand_on_the_surface_the_mesh_draws() {
+    // The forward mesh at one sample: each kept blade's root (read back, camera-relative) against
+    // the depth the mesh drew without grass at the root's point on screen (the nearest pixel
+    // centre's depth carried to the point along the depth's gradient there, where the pixels
+    // around it lie on one plane). The root may stand above or below the drawn surface by at
+    // most max(1 cm, the height that spans 0.1 px there): the issue's bound.
+    use relief::gpu::headless::Offscreen;
+    use relief::{World, WorldView};
+    let gpu = common::gpu();
+    let mut params = relief::WorldParams::default();
+    params.grass.on = true;
+    let foot = meadow(&params);
+    let size = (320u32, 180u32);
+    let eye = foot + glam::DVec3::new(0.0, 10.0, 0.0);
+    let view = WorldView::look_at(eye, eye + glam::DVec3::new(17.0, -11.5, 6.0), 0.8, size);
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    let target = Offscreen::new(&gpu.device, size.0, size.1, 1)
+        .unwrap()
+        .keeping_depth();
+    target.render_world(&gpu, &mut world, &view, None).unwrap();
+    let blades = world
+        .grass_blades(&gpu.device, &gpu.queue, 4000)
+        .unwrap()
+        .unwrap();
+    let mut p = *world.params();
+    p.grass.on = false;
+    world.set_params(&gpu.device, p).unwrap();
+    target.render_world(&gpu, &mut world, &view, None).unwrap();
+    let depth = target.read_depth(&gpu).unwrap();
+    let m = world.relative_matrix();
+    let inverse = m.inverse();
+    let (w, h) = (size.0 as i64, size.1 as i64);
+    let at = |x: i64, y: i64| depth[(y * w + x) as usize];
+    let focal = 0.5 * size.1 as f32 * m.y_axis.y.hypot(m.y_axis.z.hypot(m.y_axis.x));
+    let (mut checked, mut within, mut worst) = (0, 0, 0.0f32);
+    let mut errors = Vec::new();
+    for b in &blades {
+        let root = glam::Vec3::new(b[0], b[1], b[2]);
+        let c = m * root.extend(1.0);
+        if c.w <= 0.0 {
+            continue;
+        }
+        let ndc = c.truncate() / c.w;
+        let (sx, sy) = (
+            (ndc.x * 0.5 + 0.5) * size.0 as f32,
+            (0.5 - ndc.y * 0.5) * size.1 as f32,
+        );
+        let (x, y) = (sx.floor() as i64, sy.floor() as i64);
+        if x < 1 || y < 1 || x >= w - 1 || y >= h - 1 {
+            continue;
+        }
+        // One plane around the pixel: the depth's differences agree on either side.
+        let (l, r, u, d, here) = (
+            at(x - 1, y),
+            at(x + 1, y),
+            at(x, y - 1),
+            at(x, y + 1),
+            at(x, y),
+        );
+        let planar =
+            |a: f32, b: f32| ((b - here) - (here - a)).abs() <= 1e-3 * (b - a).abs() + 1e-7;
+        if !(planar(l, r) && planar(u, d)) || here >= 1.0 {
+            continue;
+        }
+        let drawn = here
+            + 0.5 * (r - l) * (sx - (x as f32 + 0.5))
+            + 0.5 * (d - u) * (sy - (y as f32 + 0.5));
+        let q = inverse * glam::Vec4::new(ndc.x, ndc.y, drawn, 1.0);
+        let q = q.truncate() / q.w;
+        let error = (root.y - q.y).abs();
+        let bound = 0.01f32.max(0.1 * c.w / focal);
+        checked += 1;
+        within += usize::from(error <= bound);
+        worst = worst.max(error / bound);
+        errors.push(error);
+    }
+    errors.sort_by(f32::total_cmp);
+    let median = errors.get(errors.len() / 2).copied().unwrap_or(f32::NAN);
+    eprintln!(
+        "{checked} roots of {} checked: {within} within the bound, the median {median:.2e} m, \
+         the worst {worst:.2} bounds",
+        blades.len()
+    );
+    assert!(checked > 200, "{checked}");
+    assert!(
+        within as f64 >= 0.99 * checked as f64,
+        "{within} of {checked}"
+    );
+    assert!(median < 1e-3, "{median}");
+}
