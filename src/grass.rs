@@ -242,6 +242,29 @@ pub fn cover(p: &CoverParams, n_y: f32, h: f32, tint: f32) -> f32 {
     gentle * (1.0 - snow) * (1.0 - sand)
 }
 
+/// Terra's way with grass, written again from its description as the benchmark's peer: a fixed
+/// patch of instanced blades around the eye, every blade of it drawn in four segments (no
+/// culling to the view, no level of detail, no widening), thinning toward the patch's edge, at
+/// one of its presets of blades; drawn by the GPU's rasteriser (Terra's way) or, to tell the
+/// method from the chip, by relief's compute raster.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Peer {
+    /// Blades in the patch (at the grass's density: the patch's disc holds this many cells).
+    pub blades: u32,
+    /// Drawn by the GPU's rasteriser (else by the compute raster, where the method has one).
+    pub rasteriser: bool,
+}
+
+/// Terra's presets: blades in its patch.
+pub const PEER_PRESETS: [u32; 3] = [20_000, 84_000, 500_000];
+
+impl Peer {
+    /// The radius of the patch's disc for `grass`'s density, metres.
+    pub fn distance(&self, grass: &Grass) -> f32 {
+        (f64::from(self.blades) / (std::f64::consts::PI * f64::from(grass.density))).sqrt() as f32
+    }
+}
+
 /// The wind's gusts: waves along the wind of these wavelengths (metres), travelling downwind at
 /// these multiples of the wind's speed, with these amplitudes about a mean of one half.
 pub const GUSTS: [(f64, f64, f32); 2] = [(23.0, 1.0, 0.3), (9.0, 1.3, 0.2)];

@@ -21,7 +21,9 @@ struct GrassFrame {
     // The most blades `blades` holds; the image's height in pixels.
     capacity: u32,
     pixels_high: f32,
-    _pad1: u32,
+    // 1 for the benchmark's peer (src/grass.rs's Peer, Terra's way): every blade of the patch
+    // kept, in all its segments, with no culling to the view and no widening.
+    peer: u32,
     _pad2: u32,
     // The wind: the direction it blows towards (x, z), its speed (m/s); the gust waves' phases
     // at the eye, in turns (src/grass.rs: GUSTS).
@@ -178,6 +180,9 @@ fn block_in_view(group: vec2<u32>) -> bool {
     if length(centre) - radius > gf.distance {
         return false;
     }
+    if gf.peer != 0u {
+        return true;
+    }
     let top = TALLEST * gf.g.height;
     let ground = ground_at(centre).rel.y;
     let reach = radius * (1.0 + STEEPEST) + 2.0 * top;
@@ -248,7 +253,8 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
         return false;
     }
     let height = b.height * fade;
-    if !in_frustum(ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
+    let peer = gf.peer != 0u;
+    if !peer && !in_frustum(ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
         return false;
     }
     // A blade narrower than a pixel: widened to one, and kept with a chance of its width in
@@ -257,7 +263,7 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     // nears its number, so none pops.
     var width = b.width * fade;
     let c = r.view_proj * vec4<f32>(ground.rel, 1.0);
-    if c.w > 0.0 {
+    if c.w > 0.0 && !peer {
         let px = width * pixels_per_metre(c.w);
         if px < 1.0 {
             let thin = fract(b.facing * (16.0 / GRASS_TAU));
@@ -275,7 +281,7 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     blades[4u * at] = vec4<f32>(ground.rel, b.facing);
     blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, width);
     blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
-    let segments = blade_segments(ground.rel, height);
+    let segments = select(blade_segments(ground.rel, height), BLADE_SEGMENTS, peer);
     atomicAdd(&counts[4], 2u * segments - 1u);
     blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), f32(segments), 0.0);
     return true;

@@ -31,7 +31,9 @@ struct RenderUniforms {
     specular: f32,
     // The tile's texture reads less where it was baked, in tiles: the scroll without a bake.
     shift: vec2<f32>,
-    _pad_shift: vec2<u32>,
+    // The grass's draw distance where the frame draws grass (metres; 0: none): `grass_ground`.
+    grass_distance: f32,
+    _pad_grass: u32,
     // Inverse of view_proj: pixels to view directions for the sky.
     inv_view_proj: mat4x4<f32>,
     // Linear sky at the zenith (w: 1 for a flat sky of sky_horizon's colour) and the horizon.
@@ -308,13 +310,37 @@ const DRY_GRASS: vec3<f32> = vec3<f32>(0.22, 0.19, 0.08);
 
 // Rock where it is steep, grass where it is gentle (drier higher up), each edge moved by the
 // colour noise so that no edge follows a contour or a slope line.
-fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> vec3<f32> {
+// The ground where grass grows and the frame draws its blades (`grass_distance` > 0), `d`
+// metres from the eye, for the grass material `plain`: bare earth near the eye, where it shows
+// between the blades; from half the draw distance on, where the blades thin out to none, the
+// colour the field of blades shows from afar (FIELD_TINT times the plain grass), so that no
+// line marks where the blades end (tests/grass.rs fits and measures it).
+const DIRT: vec3<f32> = vec3<f32>(0.075, 0.06, 0.035);
+const FIELD_TINT: vec3<f32> = vec3<f32>(4.5, 2.47, 1.34);
+fn grass_ground(r: RenderUniforms, plain: vec3<f32>, d: f32) -> vec3<f32> {
+    if r.grass_distance <= 0.0 {
+        return plain;
+    }
+    let far = smoothstep(0.25 * r.grass_distance, 0.6 * r.grass_distance, d);
+    return mix(DIRT, FIELD_TINT * plain, far);
+}
+
+// The seed template's albedo `d` metres from the eye (the ground under the grass changes with
+// it: `grass_ground`).
+fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32, d: f32) -> vec3<f32> {
     let jitter = 2.0 * (tint - 0.5);
     let rock = mix(ROCK_DARK, ROCK_LIGHT, smoothstep(0.25, 0.75, tint));
     let alpine = smoothstep(r.snow_height - 0.12, r.snow_height, h + 0.1 * jitter);
-    let grass = mix(GRASS, DRY_GRASS, alpine);
-    let gentle = smoothstep(0.6, 0.95, n.y + 0.08 * jitter) * (1.0 - 0.6 * alpine);
-    return mix(rock, grass, gentle);
+    let grass = grass_ground(r, mix(GRASS, DRY_GRASS, alpine), d);
+    return mix(rock, grass, grass_share(r, n, h, tint));
+}
+
+// The grass material's share of the seed template's ground (its slope and height; before snow
+// and sand).
+fn grass_share(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> f32 {
+    let jitter = 2.0 * (tint - 0.5);
+    let alpine = smoothstep(r.snow_height - 0.12, r.snow_height, h + 0.1 * jitter);
+    return smoothstep(0.6, 0.95, n.y + 0.08 * jitter) * (1.0 - 0.6 * alpine);
 }
 
 // Colour of terrain at `world` with unit normal `n`, normalised height `h`, colour channel
@@ -332,7 +358,7 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     if blog {
         albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
     } else {
-        albedo = template_albedo(r, n, h, tint);
+        albedo = template_albedo(r, n, h, tint, length(world - r.camera_pos.xyz));
     }
     // Snow above the snow height, its edge jittered by the colour noise so it does not follow
     // a contour line, and thinning on steep slopes where it would not settle.
@@ -362,9 +388,12 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
         let sky = r.ambient_color.rgb * (0.75 + 0.25 * n.y);
         let away = vec3<f32>(-l.x, 0.0, -l.z);
         let back = r.sun_color.rgb * 0.1 * max(dot(n, away / max(length(away), 1e-4)), 0.0);
-        let rim = r.sky_horizon.rgb * 0.2 * pow(1.0 - clamp(dot(n, v), 0.0, 1.0), 5.0);
+        // Where the frame draws grass its ground is a field of blades: no smooth surface's
+        // rim or highlight (`grass_ground`).
+        let field = select(0.0, grass_share(r, n, h, tint) * (1.0 - snow), r.grass_distance > 0.0);
+        let rim = r.sky_horizon.rgb * 0.2 * pow(1.0 - clamp(dot(n, v), 0.0, 1.0), 5.0) * (1.0 - field);
         lit = albedo * ((sky + back) * ao + sun * ndl) + rim * ao
-            + sun * (spec * r.specular * (0.3 + 0.7 * snow));
+            + sun * (spec * r.specular * (0.3 + 0.7 * snow) * (1.0 - field));
     }
 
     // Terrain under water, seen from above it: the water's surface is what the ray meets.

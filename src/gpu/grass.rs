@@ -54,7 +54,8 @@ struct GrassFrame {
     side: u32,
     capacity: u32,
     pixels_high: f32,
-    _pad: [u32; 2],
+    peer: u32,
+    _pad: u32,
     wind: [f32; 4],
     gust_phase: [f32; 4],
 }
@@ -78,6 +79,8 @@ const DISPATCH_OFFSET: u64 = 16;
 /// draw (`wgsl/grass_draw.wgsl`), one indirect draw of a strip a blade.
 pub(crate) struct GrassPass {
     grass: Grass,
+    /// The benchmark's peer, where it is drawn in relief's place ([`crate::grass::Peer`]).
+    peer: Option<crate::grass::Peer>,
     scatter: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     frame: wgpu::Buffer,
@@ -192,6 +195,7 @@ impl GrassPass {
         });
         Self {
             grass,
+            peer: None,
             scatter: pipeline("scatter"),
             finish: pipeline("finish"),
             frame,
@@ -213,6 +217,17 @@ impl GrassPass {
     /// The grass it draws.
     pub fn grass(&self) -> Grass {
         self.grass
+    }
+
+    /// The benchmark's peer it draws instead of relief's grass, if any.
+    pub fn peer(&self) -> Option<crate::grass::Peer> {
+        self.peer
+    }
+
+    /// Draws the benchmark's `peer` (its patch's distance already in [`GrassPass::grass`])
+    /// instead of relief's grass, or relief's again.
+    pub fn set_peer(&mut self, peer: Option<crate::grass::Peer>) {
+        self.peer = peer;
     }
 
     /// GPU memory of its buffers, bytes.
@@ -256,7 +271,8 @@ impl GrassPass {
             side: self.grass.side(),
             capacity: CAPACITY,
             pixels_high: pixels_high as f32,
-            _pad: [0; 2],
+            peer: u32::from(self.peer.is_some()),
+            _pad: 0,
             wind: [dir.x as f32, dir.y as f32, speed as f32, 0.0],
             gust_phase: [phase(0), phase(1), 0.0, 0.0],
         };

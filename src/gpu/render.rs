@@ -44,8 +44,12 @@ pub struct RenderUniforms {
     /// Where the tile's textures are read, less where they were baked, in tiles (reduced to
     /// [0, 1)): the scroll animation moves the terrain without baking it again.
     pub shift: [f32; 2],
+    /// The grass's draw distance where the frame draws grass (metres; 0: none): the ground
+    /// under it is earth near the eye and the field's colour from half the distance on
+    /// (`grass_ground` in `wgsl/shade.wgsl`).
+    pub grass_distance: f32,
     /// Padding.
-    pub _pad: [u32; 2],
+    pub _pad: u32,
     /// Inverse of `view_proj`: what turns a pixel into a view direction for the sky.
     pub inv_view_proj: [[f32; 4]; 4],
     /// Linear sky radiance at the zenith; w: 1 for a flat sky of `sky_horizon`'s colour (no
@@ -116,7 +120,8 @@ impl RenderUniforms {
             encode_srgb: u32::from(encode_srgb),
             specular: s.specular,
             shift: [0.0; 2],
-            _pad: [0; 2],
+            grass_distance: 0.0,
+            _pad: 0,
             inv_view_proj: view.view_proj.inverse().to_cols_array_2d(),
             sky_zenith: [0.0; 4],
             sky_horizon: [0.0; 4],

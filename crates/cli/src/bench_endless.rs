@@ -167,7 +167,7 @@ pub(super) fn bench_endless(
                 .map_err(|e| Error::io(&path, e))
         };
         write(g::header(&device, size))?;
-        let rows = g::run(&gpu, params, &options, |row: &g::GrassRow| {
+        let rows = g::run(&gpu, params, (&options, quick), |row: &g::GrassRow| {
             progress(&format!("grass: {} by {}", row.view, row.method));
             write(g::line(row))
         })?;

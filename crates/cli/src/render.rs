@@ -157,9 +157,17 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
                     relief::gpu::world::mib(world.method_bytes())
                 );
                 if let Some(counts) = world.grass_counts(&gpu.device, &gpu.queue) {
-                    let [considered, _, drawn, triangles] = counts?;
+                    let [considered, kept, drawn, triangles] = counts?;
                     println!("grass_blades_considered {considered}");
                     println!("grass_blades_drawn {drawn}");
+                    if kept > drawn {
+                        // The blade buffer's cap: said in words, never a panic.
+                        eprintln!(
+                            "grass: {kept} blades in view, {drawn} drawn: the blade buffer holds                              {} ({} MiB); the rest are not drawn (lower grass_density or                              grass_distance)",
+                            relief::gpu::grass::CAPACITY,
+                            relief::gpu::world::mib(world.grass_bytes()).round()
+                        );
+                    }
                     println!("grass_triangles {triangles}");
                     println!(
                         "grass_mib {:.1}",

@@ -4,7 +4,10 @@
 //! looking 30 degrees down, and a low flight 50 m over it, for the default method (as
 //! [`crate::bench_temporal::method`]) and the forward mesh; then the random view set
 //! ([`crate::views::random_views`], fixed by a seed, mostly far above any grass) for the
-//! default method. Each with grass and without: the frame's median GPU time, the scatter's, and
+//! default method; and on the meadow from 1.7 m the peer, Terra's way with grass written again
+//! from its description ([`relief::grass::Peer`]: a fixed patch of instanced blades, all
+//! drawn), at its presets of 20k, 84k and 500k blades, drawn by the GPU's rasteriser and by the
+//! compute raster. Each with grass and without: the frame's median GPU time, the scatter's, and
 //! the blades considered and drawn.
 
 use crate::bench::{measure, Options};
@@ -13,6 +16,7 @@ use glam::DVec3;
 use relief::error::{Error, Result};
 use relief::gpu::headless::{render_samples, Gpu, Offscreen};
 use relief::gpu::timing::{GpuTimer, Slot};
+use relief::grass::{Peer, PEER_PRESETS};
 use relief::world::WorldParams;
 use relief::{MethodConfig, World, WorldView};
 
@@ -63,37 +67,66 @@ pub fn grass_views(
     ])
 }
 
-/// Measures every view of [`grass_views`] for the default method and the forward mesh, and the
-/// random views for the default method, handing each row to `sink` as it is measured.
+/// Measures every view of [`grass_views`] for the default method and the forward mesh, the
+/// peer on the meadow, and the random views for the default method, handing each row to `sink`
+/// as it is measured. `quick` (lavapipe in CI): the named views alone.
 pub fn run(
     gpu: &Gpu,
     params: &WorldParams,
-    options: &Options,
+    (options, quick): (&Options, bool),
     mut sink: impl FnMut(&GrassRow) -> Result<()>,
 ) -> Result<Vec<GrassRow>> {
     let size = (options.width, options.height);
     let timer = GpuTimer::new(&gpu.device, &gpu.queue);
     let mut rows = Vec::new();
     let default = crate::bench_temporal::method();
-    let mut runs: Vec<(&'static str, WorldView, WorldParams, Vec<MethodConfig>)> = Vec::new();
+    type Run = (
+        &'static str,
+        WorldView,
+        WorldParams,
+        Vec<(MethodConfig, Option<Peer>)>,
+    );
+    let mut runs: Vec<Run> = Vec::new();
     for (name, view) in grass_views(params, size)? {
-        runs.push((name, view, *params, vec![default, MethodConfig::MESH]));
+        let peers = PEER_PRESETS.iter().flat_map(|&blades| {
+            [true, false].map(|rasteriser| (default, Some(Peer { blades, rasteriser })))
+        });
+        let mut configs = vec![(default, None), (MethodConfig::MESH, None)];
+        if name == "meadow" && !quick {
+            configs.extend(peers);
+        }
+        runs.push((name, view, *params, configs));
     }
-    for v in crate::views::random_views(params, size) {
-        runs.push((v.name, v.view, v.params(params), vec![default]));
+    for v in crate::views::random_views(params, size)
+        .into_iter()
+        .filter(|_| !quick)
+    {
+        runs.push((v.name, v.view, v.params(params), vec![(default, None)]));
     }
     for (name, view, params, configs) in runs {
-        for config in configs {
+        for (config, peer) in configs {
             let samples = render_samples(config.method);
             let target = Offscreen::new(&gpu.device, size.0, size.1, samples)?;
+            let method = relief::choice::Candidate {
+                method: config.method,
+                samples: config.samples,
+                raster: config.raster,
+            }
+            .to_string();
             let mut row = GrassRow {
                 view: name,
-                method: relief::choice::Candidate {
-                    method: config.method,
-                    samples: config.samples,
-                    raster: config.raster,
-                }
-                .to_string(),
+                method: match peer {
+                    Some(p) => format!(
+                        "terra peer {}k by {} in {method}",
+                        p.blades / 1000,
+                        if p.rasteriser {
+                            "the rasteriser"
+                        } else {
+                            "the compute raster"
+                        }
+                    ),
+                    None => method,
+                },
                 blades: [0; 2],
                 frame_ms: [None; 2],
                 scatter_ms: None,
@@ -104,6 +137,7 @@ pub fn run(
                 let mut world =
                     World::new(&gpu.device, &gpu.queue, Offscreen::targets(samples), p)?;
                 world.set_method(&gpu.device, config)?;
+                world.set_grass_peer(&gpu.device, peer)?;
                 target.accumulate_world(gpu, &mut world, &view, 0)?;
                 let (times, _) = measure(gpu, options, timer.as_ref(), |encoder, timer| {
                     let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, &view, timer);
@@ -163,21 +197,40 @@ pub fn summary(rows: &[GrassRow]) -> Vec<String> {
         raster: default.raster,
     }
     .to_string();
-    rows.iter()
-        .filter(|r| r.method == name)
+    let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
+    let per_ms = |r: &GrassRow| {
+        r.grass_ms()
+            .filter(|&t| t > 0.0)
+            .map_or("-".to_owned(), |t| {
+                format!("{:.0}k", f64::from(r.blades[1]) / t / 1e3)
+            })
+    };
+    let ours = rows.iter().filter(|r| r.method == name).map(|r| {
+        format!(
+            "{}: {} blades drawn of {} considered (goal on the meadow: 100k of 1M); the grass {} \
+             ms (goal 0.5), the frame {} ms (goal 2); {} blades a ms",
+            r.view,
+            r.blades[1],
+            r.blades[0],
+            ms(r.grass_ms()),
+            ms(r.frame_ms[1]),
+            per_ms(r)
+        )
+    });
+    let peers = rows
+        .iter()
+        .filter(|r| r.method.starts_with("terra peer"))
         .map(|r| {
-            let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
             format!(
-                "{}: {} blades drawn of {} considered (goal on the meadow: 100k of 1M); the grass \
-                 {} ms (goal 0.5), the frame {} ms (goal 2)",
+                "{}, {}: {} blades drawn, the grass {} ms, {} blades a ms",
                 r.view,
+                r.method,
                 r.blades[1],
-                r.blades[0],
                 ms(r.grass_ms()),
-                ms(r.frame_ms[1])
+                per_ms(r)
             )
-        })
-        .collect()
+        });
+    ours.chain(peers).collect()
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@ impl World {
             // The layers, and grass drawn by the GPU's rasteriser, draw into a render pass:
             // with any, the frame needs one.
             (Method::Visibility | Method::Hybrid, Some(vis))
-                if self.layers.is_empty() && (self.grass.is_none() || vis.draws_grass()) =>
+                if self.layers.is_empty() && (self.grass.is_none() || self.grass_in_compute()) =>
             {
                 vis.present(encoder, target, timer)
             }
@@ -75,7 +75,7 @@ impl World {
         if let (Method::Visibility | Method::Hybrid, Some(vis)) = (self.method, &self.visibility) {
             // Its compute pass shaded the sky too: one full-screen draw.
             vis.composite(pass);
-            if !vis.draws_grass() {
+            if !self.grass_in_compute() {
                 self.draw_grass(pass);
             }
             return;

@@ -160,7 +160,12 @@ impl World {
                     clock: self.clock(),
                     ..self.params
                 };
-                render_uniforms(&now, &self.shading, (matrix, region, eye), encode)
+                let mut u = render_uniforms(&now, &self.shading, (matrix, region, eye), encode);
+                // The ground under the grass, where the method draws its blades.
+                if self.grass.is_some() && self.method.is_mesh() {
+                    u.grass_distance = self.params.grass.distance;
+                }
+                u
             }
         };
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));

@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::gpu::grass::GrassPass;
+use crate::grass::Peer;
 use crate::{Method, Raster};
 
 impl World {
@@ -15,17 +16,57 @@ impl World {
     /// terrain). Their roots stand on the mesh the levels draw (the hybrid's refined surface
     /// lies up to its raise below). The tile draws no grass.
     pub(super) fn update_grass(&mut self, device: &wgpu::Device) -> Result<()> {
-        let grass = self.params.grass;
+        let mut grass = self.params.grass;
         if !grass.on || self.tile.is_some() {
             self.grass = None;
             return Ok(());
         }
+        let peer = self.grass.as_ref().and_then(GrassPass::peer);
+        if let Some(p) = peer {
+            grass.distance = p.distance(&grass);
+        }
         if self.grass.as_ref().map(GrassPass::grass) != Some(grass) {
-            self.grass = Some(scoped(device, || {
-                GrassPass::new(device, &self.layout, grass)
-            })?);
+            let mut pass = scoped(device, || GrassPass::new(device, &self.layout, grass))?;
+            pass.set_peer(peer);
+            self.grass = Some(pass);
         }
         Ok(())
+    }
+
+    /// For the benchmark's peer: draws Terra's way with grass ([`Peer`], written again from its
+    /// description) in place of relief's, at the grass's density, while grass is on (`None`:
+    /// relief's again; turning grass off forgets the peer). Not for a picture: the peer culls
+    /// nothing to the view and has no level of detail.
+    pub fn set_grass_peer(&mut self, device: &wgpu::Device, peer: Option<Peer>) -> Result<()> {
+        let Some(pass) = &mut self.grass else {
+            return Ok(());
+        };
+        // The patch's distance is the pass's grass: set the peer, then build again for it.
+        pass.set_peer(peer);
+        let grass = pass.grass();
+        let mut want = self.params.grass;
+        if let Some(p) = peer {
+            want.distance = p.distance(&want);
+        }
+        if grass != want {
+            let mut pass = scoped(device, || GrassPass::new(device, &self.layout, want))?;
+            pass.set_peer(peer);
+            self.grass = Some(pass);
+        }
+        Ok(())
+    }
+
+    /// Whether the compute raster draws the frame's blades (the visibility method's, with
+    /// 64-bit atomics; not the peer drawn by the GPU's rasteriser).
+    pub(super) fn grass_in_compute(&self) -> bool {
+        let by_rasteriser = self
+            .grass
+            .as_ref()
+            .and_then(GrassPass::peer)
+            .is_some_and(|p| p.rasteriser);
+        self.method == Method::Visibility
+            && !by_rasteriser
+            && self.visibility.as_ref().is_some_and(|v| v.draws_grass())
     }
 
     /// What draws the blades: the visibility method's compute raster with ids
@@ -36,9 +77,7 @@ impl World {
     pub fn grass_raster(&self) -> Option<Raster> {
         self.grass.as_ref()?;
         match self.method {
-            Method::Visibility if self.visibility.as_ref().is_some_and(|v| v.draws_grass()) => {
-                Some(Raster::Compute)
-            }
+            Method::Visibility if self.grass_in_compute() => Some(Raster::Compute),
             Method::Mesh | Method::Visibility | Method::Hybrid => Some(Raster::Hardware),
             _ => None,
         }

@@ -756,6 +756,10 @@ impl World {
         } else {
             None
         };
+        let blades = self
+            .grass_in_compute()
+            .then_some(self.grass.as_ref())
+            .flatten();
         let Some(vis) = self.visibility.as_mut() else {
             return Ok(());
         };
@@ -780,10 +784,7 @@ impl World {
             counts: self.instance_counts,
             cells: [self.map.patch, self.map.sub_cells()],
             passes: self.raster_passes,
-            blades: self
-                .grass
-                .as_ref()
-                .map(super::grass::GrassPass::raster_blades),
+            blades: blades.map(super::grass::GrassPass::raster_blades),
         };
         vis.encode(
             device,
