@@ -163,7 +163,9 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
                     if kept > drawn {
                         // The blade buffer's cap: said in words, never a panic.
                         eprintln!(
-                            "grass: {kept} blades in view, {drawn} drawn: the blade buffer holds                              {} ({} MiB); the rest are not drawn (lower grass_density or                              grass_distance)",
+                            "grass: {kept} blades in view, {drawn} drawn: the blade buffer holds \
+                             {} ({} MiB); the rest are not drawn (lower grass_density or \
+                             grass_distance)",
                             relief::gpu::grass::CAPACITY,
                             relief::gpu::world::mib(world.grass_bytes()).round()
                         );
