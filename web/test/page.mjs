@@ -194,20 +194,26 @@ await withBrowser(webgpu, async (browser) => {
   check(errors3.length === 0, `no console errors with the blog and the metrics (${errors3.join(" | ") || "none"})`);
 
   // Grass on the page: a meadow from 1.7 m (the GPU's rasteriser draws the blades: the page's
-  // WebGPU has no 64-bit atomics for the compute raster). Its first frame on SwiftShader,
-  // labelled so in metrics.txt and docs/results/grass.md.
+  // WebGPU has no 64-bit atomics for the compute raster). Drawn without error, its first frame
+  // and the scatter's time a frame on SwiftShader (a CPU: not what a GPU's browser measures),
+  // into metrics.txt and docs/results/grass.md. The blades show once the levels under them are
+  // baked, which on SwiftShader takes minutes: the shot is the first frames' look.
   const errors4 = [];
   const meadow = "world=endless&grass=1&eye=2740,1111.7,-3000&look_at=2770,1107.7,-2990&paused=1";
   const g = await openPage(browser, `${base}/index.html?${meadow}`, errors4);
   await waitFrames(g, 1);
   const grassFirstMs = Number(await g.evaluate(() => document.body.dataset.first_frame_ms));
-  const grassShot = await shot(g, "page-grass.png");
+  const scatter = await g.waitForFunction(
+    () => (/grass ([0-9.]+) ms/.exec(document.querySelector("#readout").textContent) || [])[1],
+    null, { timeout: 120000 }).then((h) => h.jsonValue(), () => "");
+  await shot(g, "page-grass.png");
   const gerror = await g.evaluate(() => document.body.dataset.error || "");
   const gq = await g.evaluate(() => document.body.dataset.query || "");
-  fs.appendFileSync(path.join(out, "metrics.txt"), `grass_first_frame_ms ${grassFirstMs}\n`);
-  check(grassFirstMs > 0 && grassShot.length > 1000 && gerror === "" && gq.includes("grass=1")
+  fs.appendFileSync(path.join(out, "metrics.txt"),
+    `grass_first_frame_ms ${grassFirstMs}\ngrass_scatter_ms ${scatter}\n`);
+  check(grassFirstMs > 0 && scatter !== "" && gerror === "" && gq.includes("grass=1")
     && errors4.length === 0,
-    `grass on the page: a meadow drawn, first frame at ${grassFirstMs} ms on SwiftShader (error: ${gerror || errors4.join(" | ") || "none"})`);
+    `grass on the page: drawn without error, first frame at ${grassFirstMs} ms, the scatter ${scatter} ms a frame on SwiftShader (error: ${gerror || errors4.join(" | ") || "none"})`);
 
   // The picture for the docs (not a check, and only when asked: PAGE_PICTURES=1): the whole
   // page, controls included.
