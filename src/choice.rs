@@ -229,21 +229,22 @@ impl Choice {
 
 /// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
 /// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
-/// hybrid's) raster, shading and temporal resolve passes and the grass's scatter before it.
-/// `None` where neither was timed.
+/// hybrid's) raster, shading and temporal resolve passes, the grass's scatter before it and its
+/// blades' raster. `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade, resolve, grass] = [
+    let [render, present, raster, shade, resolve, grass, blades] = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
         Slot::Shade,
         Slot::Resolve,
         Slot::Grass,
+        Slot::Blades,
     ]
     .map(|s| t[s as usize]);
     render.or(present)?;
     Some(
-        [render, present, raster, shade, resolve, grass]
+        [render, present, raster, shade, resolve, grass, blades]
             .iter()
             .flatten()
             .sum(),

@@ -36,6 +36,7 @@
 //! triangles span much of the screen, and one thread looping over all their pixels held up the
 //! whole pass.
 
+use super::timing::{GpuTimer, Slot};
 pub(crate) use crate::method::Raster;
 
 /// Mirrors `RasterUniforms` in `wgsl/raster.wgsl`.
@@ -465,16 +466,19 @@ impl ComputeRaster {
 
     /// Records the raster of `patches` into an image of `size` (bound by
     /// [`ComputeRaster::bind`] at that size): clears the depth buffer, then one compute pass
-    /// (timed as `timestamps`): the depth's raster in [`PASSES`] passes, nearest levels first,
-    /// each after the first skipping what the ones before it hide; then, for the endless world,
-    /// either a dispatch a pixel that stores the kept triangles' attributes (with ids) or a
-    /// second raster that stores them.
+    /// (timed as [`Slot::Raster`]): the depth's raster in [`PASSES`] passes, nearest levels
+    /// first, each after the first skipping what the ones before it hide; then, for the endless
+    /// world, either a dispatch a pixel that stores the kept triangles' attributes (with ids) or
+    /// a second raster that stores them. The grass's blades bound ([`ComputeRaster::bind_blades`])
+    /// follow in a compute pass of their own (timed as [`Slot::Blades`]): their raster into the
+    /// same depth with ids, their big triangles, and their resolve (over the terrain's
+    /// attributes where a blade is nearer).
     pub(crate) fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (size, patches): ((u32, u32), &Patches<'_>),
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timer: Option<&GpuTimer>,
     ) {
         let (Some((w, h, depth, _)), Some(groups)) = (&self.depth, &self.groups) else {
             return;
@@ -558,7 +562,7 @@ impl ComputeRaster {
         encoder.copy_buffer_to_buffer(&self.big_args_clear, 0, &self.big_args, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:raster:pass"),
-            timestamp_writes: timestamps,
+            timestamp_writes: timer.map(|t| t.compute_writes(Slot::Raster)),
         });
         if cells == 0 {
             return;
@@ -592,26 +596,30 @@ impl ComputeRaster {
             }
         }
         let resolve_groups = (size.0.div_ceil(RESOLVE_SIDE), size.1.div_ceil(RESOLVE_SIDE));
-        if let Some(((b, [raster_blades, _]), (_, blades_group))) = blades {
-            // The blades after the whole terrain, nearest kept; their big triangles after.
-            let offset = [(blades_slot * stride) as u32];
-            pass.set_pipeline(raster_blades);
-            pass.set_bind_group(1, cells_group, &offset);
-            pass.set_bind_group(2, blades_group, &[]);
-            pass.dispatch_workgroups_indirect(b.args, b.args_offset);
-            pass.set_pipeline(&self.big_pipeline);
-            pass.set_bind_group(1, big_group, &offset);
-            pass.dispatch_workgroups_indirect(&self.big_args, 12);
-        }
         if let Some(resolve) = &self.resolve {
             pass.set_pipeline(resolve);
             pass.set_bind_group(1, resolve_group, &[0]);
             pass.dispatch_workgroups(resolve_groups.0, resolve_groups.1, 1);
         }
-        if let Some(((_, [_, resolve_blades]), (_, blades_group))) = blades {
+        drop(pass);
+        if let Some(((b, [raster_blades, resolve_blades]), (_, blades_group))) = blades {
+            // The blades after the whole terrain, nearest kept; their big triangles after; then
+            // their attributes where one is nearest.
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief:raster:blades-pass"),
+                timestamp_writes: timer.map(|t| t.compute_writes(Slot::Blades)),
+            });
+            let offset = [(blades_slot * stride) as u32];
+            pass.set_bind_group(0, patches.group, &[]);
+            pass.set_bind_group(2, blades_group, &[]);
+            pass.set_pipeline(raster_blades);
+            pass.set_bind_group(1, cells_group, &offset);
+            pass.dispatch_workgroups_indirect(b.args, b.args_offset);
+            pass.set_pipeline(&self.big_pipeline);
+            pass.set_bind_group(1, big_group, &offset);
+            pass.dispatch_workgroups_indirect(&self.big_args, 12);
             pass.set_pipeline(resolve_blades);
             pass.set_bind_group(1, resolve_group, &[0]);
-            pass.set_bind_group(2, blades_group, &[]);
             pass.dispatch_workgroups(resolve_groups.0, resolve_groups.1, 1);
         }
     }

@@ -28,11 +28,14 @@ pub enum Slot {
     Resolve = 8,
     /// The grass's scatter of the frame's blades (their draw is in the pass that draws them).
     Grass = 9,
+    /// The grass's blades in the visibility method's compute raster: their raster, big
+    /// triangles and resolve, a compute pass after the terrain's raster.
+    Blades = 10,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 10] = [
+    pub const ALL: [Slot; 11] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -43,6 +46,7 @@ impl Slot {
         Slot::Present,
         Slot::Resolve,
         Slot::Grass,
+        Slot::Blades,
     ];
 
     /// The slot's name as printed.
@@ -58,6 +62,7 @@ impl Slot {
             Slot::Present => "present",
             Slot::Resolve => "resolve",
             Slot::Grass => "grass",
+            Slot::Blades => "blades",
         }
     }
 }

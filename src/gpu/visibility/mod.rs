@@ -656,12 +656,7 @@ impl Visibility {
         let hybrid = self.hybrid;
         if let Some(raster) = &mut self.compute_raster {
             raster.bind_blades(device, patches.blades.filter(|_| !hybrid));
-            raster.encode(
-                queue,
-                encoder,
-                (size, patches),
-                timer.map(|t| t.compute_writes(Slot::Raster)),
-            );
+            raster.encode(queue, encoder, (size, patches), timer);
         }
         let Some(images) = &self.images else {
             return;
