@@ -567,25 +567,31 @@ impl WorldParams {
         }
     }
 
+    /// The grass's cover ([`crate::grass::cover`]) of the ground at world (x, z) by the CPU
+    /// twin: the landscape's height, slope and colour channel there, with `p` from
+    /// [`WorldParams::grass_cover`].
+    pub fn grass_cover_at(&self, p: &crate::grass::CoverParams, x: f64, z: f64) -> f32 {
+        use crate::noise::Channel;
+        let land = &self.land;
+        let s = land.sample(Channel::Height, x, z, land.octaves);
+        let t = land.sample(Channel::Color, x, z, land.octaves);
+        let g = [
+            s.gradient[0] * land.peak_height,
+            s.gradient[1] * land.peak_height,
+        ];
+        let n_y = 1.0 / (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
+        crate::grass::cover(p, n_y as f32, s.value as f32, t.value as f32)
+    }
+
     /// A sunlit meadow near `near` (x, z, world metres): the first point of a grid around it
     /// (37 m by 53 m steps, some 7 by 10 km) where the ground is grass all round (within 15 m:
     /// [`crate::grass::cover`] over 0.95, from the twin) and the sun reaches it, or `None`.
     /// The grass's benchmark views and tests stand there.
     pub fn find_meadow(&self, near: [f64; 2]) -> Option<glam::DVec3> {
-        use crate::noise::Channel;
         let land = &self.land;
         let p = self.grass_cover();
         let slope = *land.slope_bounds().last()?;
-        let cover_at = |x: f64, z: f64| {
-            let s = land.sample(Channel::Height, x, z, land.octaves);
-            let t = land.sample(Channel::Color, x, z, land.octaves);
-            let g = [
-                s.gradient[0] * land.peak_height,
-                s.gradient[1] * land.peak_height,
-            ];
-            let n_y = 1.0 / (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
-            crate::grass::cover(&p, n_y as f32, s.value as f32, t.value as f32)
-        };
+        let cover_at = |x: f64, z: f64| self.grass_cover_at(&p, x, z);
         let sun = (
             f64::from(self.sky.sun_azimuth).to_radians(),
             f64::from(self.sky.sun_elevation).to_radians(),

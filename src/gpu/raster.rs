@@ -251,10 +251,13 @@ impl ComputeRaster {
                 entries: &bindings.iter().map(|&b| entry(b)).collect::<Vec<_>>(),
             })
         });
-        let pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
+        // A pipeline of `module` with the world's group 0 and `groups` after it.
+        let pipeline_with = |label: &str, entry_point: &str, groups: &[&wgpu::BindGroupLayout]| {
+            let mut layouts = vec![Some(world_layout)];
+            layouts.extend(groups.iter().map(|&g| Some(g)));
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("relief:raster:pipeline-layout"),
-                bind_group_layouts: &[Some(world_layout), Some(layout)],
+                bind_group_layouts: &layouts,
                 immediate_size: 0,
             });
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -266,24 +269,15 @@ impl ComputeRaster {
                 cache: None,
             })
         };
+        let pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
+            pipeline_with(label, entry_point, &[layout])
+        };
         let blades_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:raster:blades-layout"),
             entries: &[storage(0, true), storage(1, true)],
         });
         let blade_pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("relief:raster:blades-pipeline-layout"),
-                bind_group_layouts: &[Some(world_layout), Some(layout), Some(&blades_layout)],
-                immediate_size: 0,
-            });
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry_point),
-                compilation_options: Default::default(),
-                cache: None,
-            })
+            pipeline_with(label, entry_point, &[layout, &blades_layout])
         };
         let blade_pipelines = ids.then(|| {
             [
