@@ -496,20 +496,9 @@ fn no_line_marks_where_the_blades_end() {
             ((c + 0.055) / 1.055).powf(2.4)
         }
     };
-    // The grass's cover by the CPU twin (as `WorldParams::find_meadow` reads it).
-    let land = params.land;
+    // The grass's cover by the CPU twin.
     let cover_params = params.grass_cover();
-    let cover_at = |x: f64, z: f64| {
-        use relief::noise::Channel;
-        let s = land.sample(Channel::Height, x, z, land.octaves);
-        let c = land.sample(Channel::Color, x, z, land.octaves);
-        let g = [
-            s.gradient[0] * land.peak_height,
-            s.gradient[1] * land.peak_height,
-        ];
-        let n_y = 1.0 / (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
-        cover(&cover_params, n_y as f32, s.value as f32, c.value as f32)
-    };
+    let cover_at = |x: f64, z: f64| params.grass_cover_at(&cover_params, x, z);
     // The pixels of ground wholly grass (by the twin) between `lo` and `hi` draw distances (the
     // depth is the bare frame's: the ground's).
     let mut bands = Vec::new();
@@ -563,4 +552,62 @@ fn no_line_marks_where_the_blades_end() {
     assert!(bands[0].len() > 100 && bands[1].len() > 100);
     assert!(stand_in < 2.0, "{stand_in}");
     assert!(seam < 2.0, "{seam}");
+}
+
+#[test]
+fn the_peer_draws_its_whole_patch_by_the_raster_asked_and_goes_away() {
+    // Terra's way (relief::grass::Peer): a patch of the preset's cells, every blade on grass
+    // kept (none culled to the view) in four segments, by the raster asked; `None` is relief's
+    // grass again, as it was.
+    use relief::gpu::headless::Offscreen;
+    use relief::grass::Peer;
+    use relief::{Method, MethodConfig, Raster, World, WorldView};
+    let gpu = common::gpu();
+    let mut params = relief::WorldParams::default();
+    params.grass.on = true;
+    params.grass.density = 32.0;
+    let foot = meadow(&params);
+    let size = (128u32, 72u32);
+    let eye = foot + glam::DVec3::new(0.0, 1.7, 0.0);
+    let view = WorldView::look_at(eye, eye + glam::DVec3::new(30.0, -4.0, 10.0), 0.8, size);
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
+    let config = MethodConfig::new(Method::Visibility)
+        .with_samples(1)
+        .with_raster(Raster::Compute);
+    world.set_method(&gpu.device, config).unwrap();
+    let target = Offscreen::new(&gpu.device, size.0, size.1, 1).unwrap();
+    let counts = |world: &mut World| {
+        target.render_world(&gpu, world, &view, None).unwrap();
+        world
+            .grass_counts(&gpu.device, &gpu.queue)
+            .unwrap()
+            .unwrap()
+    };
+    let ours = counts(&mut world);
+    let ours_raster = world.grass_raster();
+    for rasteriser in [true, false] {
+        let peer = Peer {
+            blades: 20_000,
+            rasteriser,
+        };
+        world.set_grass_peer(&gpu.device, Some(peer)).unwrap();
+        let [considered, _, drawn, triangles] = counts(&mut world);
+        eprintln!("{peer:?}: {considered} considered, {drawn} drawn, {triangles} triangles");
+        assert!((19_000..21_000).contains(&considered), "{considered}");
+        // Most of the patch is kept, behind the eye too (relief keeps what is in view).
+        assert!(
+            drawn > considered / 2 && drawn > ours[2],
+            "{drawn} vs {ours:?}"
+        );
+        assert_eq!(triangles, 7 * drawn);
+        let by = if rasteriser || ours_raster != Some(Raster::Compute) {
+            Raster::Hardware
+        } else {
+            Raster::Compute
+        };
+        assert_eq!(world.grass_raster(), Some(by));
+    }
+    world.set_grass_peer(&gpu.device, None).unwrap();
+    assert_eq!(counts(&mut world), ours);
+    assert_eq!(world.grass_raster(), ours_raster);
 }
