@@ -38,22 +38,11 @@ impl World {
     /// relief's again; turning grass off forgets the peer). Not for a picture: the peer culls
     /// nothing to the view and has no level of detail.
     pub fn set_grass_peer(&mut self, device: &wgpu::Device, peer: Option<Peer>) -> Result<()> {
-        let Some(pass) = &mut self.grass else {
-            return Ok(());
-        };
-        // The patch's distance is the pass's grass: set the peer, then build again for it.
-        pass.set_peer(peer);
-        let grass = pass.grass();
-        let mut want = self.params.grass;
-        if let Some(p) = peer {
-            want.distance = p.distance(&want);
-        }
-        if grass != want {
-            let mut pass = scoped(device, || GrassPass::new(device, &self.layout, want))?;
+        // The pass keeps its peer; `update_grass` builds it again for the patch's distance.
+        if let Some(pass) = &mut self.grass {
             pass.set_peer(peer);
-            self.grass = Some(pass);
         }
-        Ok(())
+        self.update_grass(device)
     }
 
     /// Whether the compute raster draws the frame's blades (the visibility method's, with
