@@ -66,6 +66,29 @@ pub fn tone_map(x: f32) -> f32 {
     }
 }
 
+/// CIE L*a*b* (D65) of a linear sRGB colour: what colour differences are measured in.
+pub fn cie_lab(c: [f64; 3]) -> [f64; 3] {
+    let [r, g, b] = c;
+    let x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
+    let y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    let z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
+    let f = |t: f64| {
+        if t > 216.0 / 24389.0 {
+            t.cbrt()
+        } else {
+            (24389.0 / 27.0 * t + 16.0) / 116.0
+        }
+    };
+    let (fx, fy, fz) = (f(x), f(y), f(z));
+    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
+}
+
+/// The CIE76 difference (ΔE) of two linear sRGB colours: about 2.3 is just noticeable.
+pub fn delta_e(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (p, q) = (cie_lab(a), cie_lab(b));
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

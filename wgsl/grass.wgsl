@@ -126,3 +126,41 @@ fn grass_cover(r: RenderUniforms, n_y: f32, h: f32, tint: f32) -> f32 {
     }
     return gentle * (1.0 - snow) * (1.0 - sand);
 }
+
+// The gust waves (src/grass.rs: GUSTS): wavelength in metres, amplitude.
+const GUST_WAVES: array<vec2<f32>, 2> = array<vec2<f32>, 2>(vec2<f32>(23.0, 0.3), vec2<f32>(9.0, 0.2));
+const BEND_PER_SPEED: f32 = 0.03;
+const MAX_BEND: f32 = 0.6;
+
+// Where the wind blows the tip of a blade `height` metres tall rooted at camera-relative `xz`,
+// in the `wind` (the direction it blows towards, x and z; its speed, m/s) with its gust waves
+// at these phases at the eye (turns).
+fn wind_tip(wind: vec4<f32>, gust_phase: vec4<f32>, xz: vec2<f32>, height: f32) -> vec2<f32> {
+    let speed = wind.z;
+    if speed <= 0.0 {
+        return vec2<f32>(0.0);
+    }
+    let along = dot(xz, wind.xy);
+    var g = 0.5;
+    for (var i = 0; i < 2; i++) {
+        let turns = fract(gust_phase[i] + along / GUST_WAVES[i].x);
+        g += GUST_WAVES[i].y * sin(6.28318530717958648 * turns);
+    }
+    let bend = min(BEND_PER_SPEED * speed * (0.5 + g), MAX_BEND);
+    return wind.xy * bend * height;
+}
+
+// Whether a sphere at camera-relative `c` of radius `radius` touches the frustum of `view_proj`.
+fn in_frustum(view_proj: mat4x4<f32>, c: vec3<f32>, radius: f32) -> bool {
+    let m = transpose(view_proj);
+    let planes = array<vec4<f32>, 6>(
+        m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]
+    );
+    for (var k = 0; k < 6; k++) {
+        let pl = planes[k];
+        if dot(pl.xyz, c) + pl.w < -radius * length(pl.xyz) {
+            return false;
+        }
+    }
+    return true;
+}

@@ -31,27 +31,6 @@ struct GrassFrame {
     gust_phase: vec4<f32>,
 }
 
-// The gust waves (src/grass.rs: GUSTS): wavelength in metres, amplitude.
-const GUST_WAVES: array<vec2<f32>, 2> = array<vec2<f32>, 2>(vec2<f32>(23.0, 0.3), vec2<f32>(9.0, 0.2));
-const BEND_PER_SPEED: f32 = 0.03;
-const MAX_BEND: f32 = 0.6;
-
-// Where the wind blows the tip of a blade `height` metres tall rooted at camera-relative `xz`.
-fn wind_tip(xz: vec2<f32>, height: f32) -> vec2<f32> {
-    let speed = gf.wind.z;
-    if speed <= 0.0 {
-        return vec2<f32>(0.0);
-    }
-    let along = dot(xz, gf.wind.xy);
-    var g = 0.5;
-    for (var i = 0; i < 2; i++) {
-        let turns = fract(gf.gust_phase[i] + along / GUST_WAVES[i].x);
-        g += GUST_WAVES[i].y * sin(6.28318530717958648 * turns);
-    }
-    let bend = min(BEND_PER_SPEED * speed * (0.5 + g), MAX_BEND);
-    return gf.wind.xy * bend * height;
-}
-
 @group(1) @binding(0) var<uniform> gf: GrassFrame;
 // Per blade: root (camera-relative, metres) and facing; height, lean, curve, width; shade,
 // the sun's and the sky's occlusion at the root, and 0; the wind's push on the tip (x, z), the
@@ -146,21 +125,6 @@ fn blade_segments(root: vec3<f32>, height: f32) -> u32 {
     return clamp(u32(ceil(pixels / SEGMENT_PIXELS)), 1u, BLADE_SEGMENTS);
 }
 
-// Whether a sphere at camera-relative `c` of radius `radius` touches the view's frustum.
-fn in_frustum(c: vec3<f32>, radius: f32) -> bool {
-    let m = transpose(r.view_proj);
-    let planes = array<vec4<f32>, 6>(
-        m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]
-    );
-    for (var k = 0; k < 6; k++) {
-        let pl = planes[k];
-        if dot(pl.xyz, c) + pl.w < -radius * length(pl.xyz) {
-            return false;
-        }
-    }
-    return true;
-}
-
 // The tallest blade, as a multiple of the mean height (grass.wgsl's `blade_at`: 1.6 for
 // clumps, 1.2 for a blade's own), and the steepest ground that grows grass (`grass_cover`: none
 // where the normal's y is below 0.52, a slope of 1.65).
@@ -186,7 +150,7 @@ fn block_in_view(group: vec2<u32>) -> bool {
     let top = TALLEST * gf.g.height;
     let ground = ground_at(centre).rel.y;
     let reach = radius * (1.0 + STEEPEST) + 2.0 * top;
-    return in_frustum(vec3<f32>(centre.x, ground, centre.y), reach);
+    return in_frustum(r.view_proj, vec3<f32>(centre.x, ground, centre.y), reach);
 }
 
 // Pixels a metre at clip w `cw` (the projection's vertical scale: its row 1 is that times the
@@ -254,7 +218,7 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     }
     let height = b.height * fade;
     let peer = gf.peer != 0u;
-    if !peer && !in_frustum(ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
+    if !peer && !in_frustum(r.view_proj, ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
         return false;
     }
     // A blade narrower than a pixel: widened to one, and kept with a chance of its width in
@@ -283,7 +247,7 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
     let segments = select(blade_segments(ground.rel, height), BLADE_SEGMENTS, peer);
     atomicAdd(&counts[4], 2u * segments - 1u);
-    blades[4u * at + 3u] = vec4<f32>(wind_tip(xz, height), f32(segments), 0.0);
+    blades[4u * at + 3u] = vec4<f32>(wind_tip(gf.wind, gf.gust_phase, xz, height), f32(segments), 0.0);
     return true;
 }
 

@@ -31,9 +31,10 @@ struct RenderUniforms {
     specular: f32,
     // The tile's texture reads less where it was baked, in tiles: the scroll without a bake.
     shift: vec2<f32>,
-    // The grass's draw distance where the frame draws grass (metres; 0: none): `grass_ground`.
+    // The grass's draw distance where the frame draws grass (metres; 0: none), and 1 where it
+    // is the reference's, which draws every blade to that distance: `grass_ground`.
     grass_distance: f32,
-    _pad_grass: u32,
+    grass_reference: u32,
     // Inverse of view_proj: pixels to view directions for the sky.
     inv_view_proj: mat4x4<f32>,
     // Linear sky at the zenith (w: 1 for a flat sky of sky_horizon's colour) and the horizon.
@@ -314,14 +315,18 @@ const DRY_GRASS: vec3<f32> = vec3<f32>(0.22, 0.19, 0.08);
 // metres from the eye, for the grass material `plain`: bare earth near the eye, where it shows
 // between the blades; from half the draw distance on, where the blades thin out to none, the
 // colour the field of blades shows from afar (FIELD_TINT times the plain grass), so that no
-// line marks where the blades end (tests/grass.rs fits and measures it).
+// line marks where the blades end (tests/grass.rs fits and measures it). Under the reference's
+// blades, which stand at full density to `grass_distance`, the ground is earth throughout.
 const DIRT: vec3<f32> = vec3<f32>(0.075, 0.06, 0.035);
-const FIELD_TINT: vec3<f32> = vec3<f32>(4.5, 2.47, 1.34);
+const FIELD_TINT: vec3<f32> = vec3<f32>(4.28, 2.37, 1.49);
 fn grass_ground(r: RenderUniforms, plain: vec3<f32>, d: f32) -> vec3<f32> {
     if r.grass_distance <= 0.0 {
         return plain;
     }
-    let far = smoothstep(0.25 * r.grass_distance, 0.6 * r.grass_distance, d);
+    if r.grass_reference != 0u {
+        return select(plain, DIRT, d < r.grass_distance);
+    }
+    let far = clamp((d - 0.45 * r.grass_distance) / (0.55 * r.grass_distance), 0.0, 1.0);
     return mix(DIRT, FIELD_TINT * plain, far);
 }
 

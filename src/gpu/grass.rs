@@ -176,23 +176,7 @@ impl GrassPass {
                 },
             ],
         });
-        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("relief:grass:draw-layout"),
-            entries: &[
-                super::uniform_entry::<super::RenderUniforms>(0, vf),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-            ],
-        });
+        let draw_layout = draw_layout(device);
         Self {
             grass,
             peer: None,
@@ -203,11 +187,7 @@ impl GrassPass {
             counts,
             args,
             scatter_group,
-            draw_module: super::shader::module(
-                device,
-                "relief:grass:draw",
-                &super::shader::source("grass_draw"),
-            ),
+            draw_module: draw_module(device),
             draw_layout,
             pipelines: Vec::new(),
             groups: Vec::new(),
@@ -251,14 +231,7 @@ impl GrassPass {
         (velocity, clock): (glam::DVec2, f64),
         timer: Option<&super::timing::GpuTimer>,
     ) {
-        let speed = velocity.length();
-        let dir = if speed > 0.0 {
-            velocity / speed
-        } else {
-            glam::DVec2::ZERO
-        };
-        let along = eye.x * dir.x + eye.z * dir.y;
-        let phase = |i| crate::grass::gust_phase(i, along, clock, speed) as f32;
+        let (wind, gust_phase) = wind_uniforms(velocity, clock, eye);
         let s = self.grass.cell();
         let eye_cell = self.grass.cell_at(eye.x, eye.z);
         let frame = GrassFrame {
@@ -273,8 +246,8 @@ impl GrassPass {
             pixels_high: pixels_high as f32,
             peer: u32::from(self.peer.is_some()),
             _pad: 0,
-            wind: [dir.x as f32, dir.y as f32, speed as f32, 0.0],
-            gust_phase: [phase(0), phase(1), 0.0, 0.0],
+            wind,
+            gust_phase,
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
         encoder.clear_buffer(&self.counts, 0, None);
@@ -362,39 +335,14 @@ impl GrassPass {
         uniforms: &wgpu::Buffer,
     ) {
         if !self.pipelines.iter().any(|(t, _)| t == targets) {
-            let pipeline = super::render_pipeline(
-                device,
-                (
-                    "relief:grass:draw",
-                    &self.draw_layout,
-                    &self.draw_module,
-                    ("blade_vs", "blade_fs"),
-                ),
-                targets,
-                wgpu::PrimitiveTopology::TriangleStrip,
-                &[],
-                (true, wgpu::CompareFunction::Less),
-            );
+            let pipeline = draw_pipeline(device, (&self.draw_layout, &self.draw_module), targets);
             self.pipelines.push((*targets, pipeline));
             if self.pipelines.len() > 4 {
                 self.pipelines.remove(0);
             }
         }
         if !self.groups.iter().any(|(b, _)| b == uniforms) {
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("relief:grass:draw-group"),
-                layout: &self.draw_layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniforms.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: self.blades.as_entire_binding(),
-                    },
-                ],
-            });
+            let group = draw_group(device, &self.draw_layout, uniforms, &self.blades);
             self.groups.push((uniforms.clone(), group));
             if self.groups.len() > 4 {
                 self.groups.remove(0);
@@ -424,13 +372,110 @@ impl GrassPass {
     }
 }
 
+/// The wind as `wgsl/grass.wgsl`'s `wind_tip` reads it: the direction the air of `velocity`
+/// (m/s, x and z) blows towards and its speed; the gust waves' phases at `eye` at `clock`
+/// seconds (turns).
+pub(crate) fn wind_uniforms(
+    velocity: glam::DVec2,
+    clock: f64,
+    eye: glam::DVec3,
+) -> ([f32; 4], [f32; 4]) {
+    let speed = velocity.length();
+    let dir = if speed > 0.0 {
+        velocity / speed
+    } else {
+        glam::DVec2::ZERO
+    };
+    let along = eye.x * dir.x + eye.z * dir.y;
+    let phase = |i| crate::grass::gust_phase(i, along, clock, speed) as f32;
+    (
+        [dir.x as f32, dir.y as f32, speed as f32, 0.0],
+        [phase(0), phase(1), 0.0, 0.0],
+    )
+}
+
+/// The layout of the blades' draw by the rasteriser (`wgsl/grass_draw.wgsl`): the render
+/// uniforms, and the blades as the scatter writes them.
+pub(crate) fn draw_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("relief:grass:draw-layout"),
+        entries: &[
+            super::uniform_entry::<super::RenderUniforms>(0, vf),
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: true },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The module of the blades' draw by the rasteriser.
+pub(crate) fn draw_module(device: &wgpu::Device) -> wgpu::ShaderModule {
+    super::shader::module(
+        device,
+        "relief:grass:draw",
+        &super::shader::source("grass_draw"),
+    )
+}
+
+/// The blades' draw into `targets`: a strip of nine vertices an instance, depth-tested and
+/// written.
+pub(crate) fn draw_pipeline(
+    device: &wgpu::Device,
+    (layout, module): (&wgpu::BindGroupLayout, &wgpu::ShaderModule),
+    targets: &super::Targets,
+) -> wgpu::RenderPipeline {
+    super::render_pipeline(
+        device,
+        (
+            "relief:grass:draw",
+            layout,
+            module,
+            ("blade_vs", "blade_fs"),
+        ),
+        targets,
+        wgpu::PrimitiveTopology::TriangleStrip,
+        &[],
+        (true, wgpu::CompareFunction::Less),
+    )
+}
+
+/// The draw's bind group: the render uniforms in `uniforms`, the blades in `blades`.
+pub(crate) fn draw_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    uniforms: &wgpu::Buffer,
+    blades: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("relief:grass:draw-group"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniforms.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: blades.as_entire_binding(),
+            },
+        ],
+    })
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
     fn the_twin_reads_the_shaders_constants() {
         let grass = crate::gpu::shader::file("grass").unwrap();
         let shade = crate::gpu::shader::file("shade").unwrap();
-        let scatter = crate::gpu::shader::file("grass_scatter").unwrap();
         for (text, line) in [
             (
                 shade,
@@ -445,17 +490,17 @@ mod tests {
                 format!("const BLADE_WIDTH: f32 = {};", crate::grass::BLADE_WIDTH),
             ),
             (
-                scatter,
+                grass,
                 format!(
                     "const BEND_PER_SPEED: f32 = {};",
                     crate::grass::BEND_PER_SPEED
                 ),
             ),
             (
-                scatter,
+                grass,
                 format!("const MAX_BEND: f32 = {};", crate::grass::MAX_BEND),
             ),
-            (scatter, {
+            (grass, {
                 let w = crate::grass::GUSTS.map(|(l, _, a)| format!("vec2<f32>({l:.1}, {a})"));
                 format!("array<vec2<f32>, 2>({}, {})", w[0], w[1])
             }),

@@ -6,6 +6,8 @@ pub mod blit;
 pub mod blog;
 pub mod grass;
 #[cfg(not(target_arch = "wasm32"))]
+pub(crate) mod grass_reference;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod headless;
 pub mod landscape;
 pub mod layer;
@@ -704,6 +706,16 @@ pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<V
     Ok(bytes)
 }
 
+/// The sRGB 8-bit value of the linear `l` (0 to 1), rounded to the nearest.
+pub(crate) fn srgb8(l: f64) -> u8 {
+    let c = if l <= 0.003_130_8 {
+        l * 12.92
+    } else {
+        1.055 * l.powf(1.0 / 2.4) - 0.055
+    };
+    (c * 255.0).round().clamp(0.0, 255.0) as u8
+}
+
 /// Averages `factor` x `factor` blocks of an sRGB RGBA8 image in linear light: a
 /// supersampled image down to its display size, as MSAA resolves do.
 pub fn downsample_srgb(rgba: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
@@ -714,14 +726,7 @@ pub fn downsample_srgb(rgba: &[u8], width: u32, height: u32, factor: u32) -> Vec
         .map(|c| f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0)))
         .collect();
     let lin = |c: u8| table[usize::from(c)];
-    let enc = |l: f64| {
-        let c = if l <= 0.003_130_8 {
-            l * 12.92
-        } else {
-            1.055 * l.powf(1.0 / 2.4) - 0.055
-        };
-        (c * 255.0).round().clamp(0.0, 255.0) as u8
-    };
+    let enc = srgb8;
     let mut out = Vec::with_capacity((w * h * 4) as usize);
     for y in 0..h {
         for x in 0..w {

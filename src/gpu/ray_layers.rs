@@ -58,7 +58,7 @@ pub(crate) fn encode(
     encoder: &mut wgpu::CommandEncoder,
     caster: &RayMarcher,
     frame: &RayLayerFrame<'_>,
-    layers: &mut [Box<dyn Layer>],
+    layers: &mut [&mut (dyn Layer + 'static)],
 ) {
     if layers.is_empty() {
         return;

@@ -48,8 +48,9 @@ pub struct RenderUniforms {
     /// under it is earth near the eye and the field's colour from half the distance on
     /// (`grass_ground` in `wgsl/shade.wgsl`).
     pub grass_distance: f32,
-    /// Padding.
-    pub _pad: u32,
+    /// 1 where the frame is the reference's, which draws every blade to `grass_distance`
+    /// over bare earth ([`crate::gpu::grass_reference`]).
+    pub grass_reference: u32,
     /// Inverse of `view_proj`: what turns a pixel into a view direction for the sky.
     pub inv_view_proj: [[f32; 4]; 4],
     /// Linear sky radiance at the zenith; w: 1 for a flat sky of `sky_horizon`'s colour (no
@@ -121,7 +122,7 @@ impl RenderUniforms {
             specular: s.specular,
             shift: [0.0; 2],
             grass_distance: 0.0,
-            _pad: 0,
+            grass_reference: 0,
             inv_view_proj: view.view_proj.inverse().to_cols_array_2d(),
             sky_zenith: [0.0; 4],
             sky_horizon: [0.0; 4],

@@ -26,6 +26,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     grass_blade,
     grass_draw,
     grass_probe,
+    grass_reference,
     grass_scatter,
     horizon_probe,
     hybrid,

@@ -272,8 +272,9 @@ impl App {
             let method = self.options.method;
             if world.grass.on && method.ray_path().is_some() {
                 self.report.notice(&format!(
-                    "grass: the {method} casts rays, which draw no grass yet (M: a mesh-based \
-                     method draws it)"
+                    "grass: the {method} casts rays, which draw no grass here (M: a mesh-based \
+                     method draws it; relief render --method reference draws the grass's \
+                     reference)"
                 ));
             }
         }

@@ -85,10 +85,10 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             if let Some(method) = method.own_path() {
-                if params.grass.on {
+                if params.grass.on && method != relief::Method::Reference {
                     return Err(Error::Usage(format!(
-                        "--grass: the {method} casts rays, which draw no grass yet: give --method \
-                         mesh, visibility or hybrid (or leave grass off)"
+                        "--grass: the {method} casts rays, which draw no grass: give --method \
+                         mesh, visibility, hybrid or reference (or leave grass off)"
                     )));
                 }
                 if frames > 1 {
@@ -113,6 +113,14 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
                     // Rays draw the continuous surface: no mesh, nothing baked.
                     println!("triangles 0\ntexels_baked 0\ntexels_pending 0\nlevels 0");
                     println!("unresolved_rays {}", image.unresolved);
+                    if params.grass.on {
+                        // The reference draws every blade it keeps in four segments.
+                        let blades = u64::from(image.blades);
+                        println!(
+                            "grass_blades_drawn {blades}\ngrass_triangles {}",
+                            7 * blades
+                        );
+                    }
                 }
                 if image.unresolved > 0 {
                     eprintln!(

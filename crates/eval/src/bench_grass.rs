@@ -8,17 +8,19 @@
 //! from its description ([`relief::grass::Peer`]: a fixed patch of instanced blades, all
 //! drawn), at its presets of 20k, 84k and 500k blades, drawn by the GPU's rasteriser and by the
 //! compute raster. Each with grass and without: the frame's median GPU time, the scatter's, and
-//! the blades considered and drawn.
+//! the blades considered and drawn; with grass, FLIP against the grass reference (`--method
+//! reference` with grass: every blade to twice the draw distance, 9x9 samples a pixel) and
+//! the seam at the draw distance against it.
 
 use crate::bench::{measure, Options};
-use crate::metrics::median;
+use crate::metrics::{band_delta_e, image_error, median, rgb};
 use glam::DVec3;
 use relief::error::{Error, Result};
-use relief::gpu::headless::{render_samples, Gpu, Offscreen};
+use relief::gpu::headless::{render_samples, render_world_rays, Gpu, Offscreen, RayImage};
 use relief::gpu::timing::{GpuTimer, Slot};
 use relief::grass::{Peer, PEER_PRESETS};
 use relief::world::WorldParams;
-use relief::{MethodConfig, World, WorldView};
+use relief::{MethodConfig, Temporal, World, WorldView};
 
 /// One view drawn one way, with grass and without.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,7 +35,17 @@ pub struct GrassRow {
     pub frame_ms: [Option<f64>; 2],
     /// The scatter's median, milliseconds.
     pub scatter_ms: Option<f64>,
+    /// FLIP of the frame with grass against the grass reference: one frame, and (the default
+    /// method) [`CONVERGED`] frames of the temporal service. Not measured for the peer or in
+    /// a quick run.
+    pub flip: [Option<f64>; 2],
+    /// The seam at the draw distance: the colour difference (ΔE) between the one frame and
+    /// the reference within 10% of the draw distance ([`crate::metrics::band_delta_e`]).
+    pub seam: Option<f64>,
 }
+
+/// Frames the temporal service accumulates for the converged FLIP.
+pub const CONVERGED: u32 = 16;
 
 impl GrassRow {
     /// What the grass adds to the frame, milliseconds.
@@ -87,6 +99,7 @@ pub fn run(
         Vec<(MethodConfig, Option<Peer>)>,
     );
     let mut runs: Vec<Run> = Vec::new();
+    let mut truths: Vec<(&'static str, RayImage)> = Vec::new();
     for (name, view) in grass_views(params, size)? {
         let peers = PEER_PRESETS.iter().flat_map(|&blades| {
             [true, false].map(|rasteriser| (default, Some(Peer { blades, rasteriser })))
@@ -130,6 +143,8 @@ pub fn run(
                 blades: [0; 2],
                 frame_ms: [None; 2],
                 scatter_ms: None,
+                flip: [None; 2],
+                seam: None,
             };
             for (i, on) in [false, true].into_iter().enumerate() {
                 let mut p = params;
@@ -150,6 +165,28 @@ pub fn run(
                         let [considered, _, drawn, _] = counts?;
                         row.blades = [considered, drawn];
                     }
+                    // Where the frame draws no blade, its FLIP is the terrain's (bench_world's).
+                    if peer.is_none() && !quick && row.blades[1] > 0 {
+                        let at = match truths.iter().position(|(n, _)| *n == name) {
+                            Some(at) => at,
+                            None => {
+                                let shading = relief::Shading::default();
+                                let truth = render_world_rays(
+                                    gpu,
+                                    &p,
+                                    &shading,
+                                    &view,
+                                    relief::Method::Reference,
+                                    None,
+                                )?;
+                                truths.push((name, truth));
+                                truths.len() - 1
+                            }
+                        };
+                        let converge = config == default;
+                        let truth = &truths[at].1;
+                        accuracy(gpu, (&target, &mut world, &view), truth, converge, &mut row)?;
+                    }
                 }
             }
             sink(&row)?;
@@ -159,14 +196,43 @@ pub fn run(
     Ok(rows)
 }
 
+/// Fills `row`'s FLIP and seam: `world` (grass on, measured) drawn into `target` through
+/// `view` against the grass reference `truth`, once, and (`converge`) accumulated over
+/// [`CONVERGED`] frames of the temporal service.
+fn accuracy(
+    gpu: &Gpu,
+    (target, world, view): (&Offscreen, &mut World, &WorldView),
+    truth: &RayImage,
+    converge: bool,
+    row: &mut GrassRow,
+) -> Result<()> {
+    let size = view.size;
+    let flip = |image: &[u8]| image_error(&rgb(&truth.rgba), &rgb(image), size.0, size.1).0;
+    let (one, _) = target.render_world(gpu, world, view, None)?;
+    row.flip[0] = Some(flip(&one));
+    let d = world.params().grass.distance;
+    row.seam = band_delta_e(&one, &truth.rgba, &truth.distance, (0.9 * d, 1.1 * d)).map(|s| s.0);
+    if converge {
+        world.set_temporal(&gpu.device, Temporal { frames: CONVERGED })?;
+        target.accumulate_world(gpu, world, view, 0)?;
+        target.advance_world(gpu, world, view, CONVERGED - 1)?;
+        let (many, _) = target.render_world(gpu, world, view, None)?;
+        row.flip[1] = Some(flip(&many));
+        world.set_temporal(&gpu.device, Temporal { frames: 1 })?;
+    }
+    Ok(())
+}
+
 /// `grass.csv`'s header: what was measured, where.
 pub fn header(device: &str, size: (u32, u32)) -> String {
     format!(
         "# relief bench --world endless --only grass on {device} at {}x{}: each view drawn \
          without grass and with it (the grass's defaults); frame: the median GPU time of its \
-         passes, milliseconds\n\
+         passes, milliseconds; FLIP against the grass reference (9x9 samples a pixel, every \
+         blade to twice the draw distance) of one frame and of {CONVERGED} accumulated; the \
+         seam: CIE76 colour difference of the mean colours within 10% of the draw distance\n\
          view,method,blades_considered,blades_drawn,frame_ms_without,frame_ms_with,grass_ms,\
-         scatter_ms\n",
+         scatter_ms,flip,flip_converged,seam\n",
         size.0, size.1
     )
 }
@@ -174,8 +240,9 @@ pub fn header(device: &str, size: (u32, u32)) -> String {
 /// One row of `grass.csv`.
 pub fn line(r: &GrassRow) -> String {
     let ms = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3}"));
+    let x = |v: Option<f64>, digits: usize| v.map_or(String::new(), |v| format!("{v:.digits$}"));
     format!(
-        "{},{},{},{},{},{},{},{}\n",
+        "{},{},{},{},{},{},{},{},{},{},{}\n",
         r.view,
         r.method,
         r.blades[0],
@@ -183,7 +250,10 @@ pub fn line(r: &GrassRow) -> String {
         ms(r.frame_ms[0]),
         ms(r.frame_ms[1]),
         ms(r.grass_ms()),
-        ms(r.scatter_ms)
+        ms(r.scatter_ms),
+        x(r.flip[0], 4),
+        x(r.flip[1], 4),
+        x(r.seam, 2)
     )
 }
 
@@ -208,13 +278,18 @@ pub fn summary(rows: &[GrassRow]) -> Vec<String> {
     let ours = rows.iter().filter(|r| r.method == name).map(|r| {
         format!(
             "{}: {} blades drawn of {} considered (goal on the meadow: 100k of 1M); the grass {} \
-             ms (goal 0.5), the frame {} ms (goal 2); {} blades a ms",
+             ms (goal 0.5), the frame {} ms (goal 2); {} blades a ms; FLIP {} ({} frames: {}), \
+             the seam {} (goal 2)",
             r.view,
             r.blades[1],
             r.blades[0],
             ms(r.grass_ms()),
             ms(r.frame_ms[1]),
-            per_ms(r)
+            per_ms(r),
+            ms(r.flip[0]),
+            CONVERGED,
+            ms(r.flip[1]),
+            r.seam.map_or("-".to_owned(), |s| format!("{s:.2}"))
         )
     });
     let peers = rows
@@ -245,12 +320,17 @@ mod tests {
             blades: [100, 10],
             frame_ms: [Some(1.0), Some(1.5)],
             scatter_ms: Some(0.04),
+            flip: [Some(0.1), None],
+            seam: Some(1.5),
         };
         let header = header("a GPU", (4, 2));
         let columns = header.lines().nth(1).unwrap().split(',').count();
         let l = line(&r);
         assert_eq!(l.trim().split(',').count(), columns, "{l}");
-        assert_eq!(l, "meadow,mesh,100,10,1.000,1.500,0.500,0.040\n");
+        assert_eq!(
+            l,
+            "meadow,mesh,100,10,1.000,1.500,0.500,0.040,0.1000,,1.50\n"
+        );
         assert_eq!(r.grass_ms(), Some(0.5));
     }
 }

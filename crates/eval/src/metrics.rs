@@ -306,6 +306,34 @@ pub fn rgb(rgba: &[u8]) -> Vec<u8> {
 
 pub use relief::gpu::downsample_srgb;
 
+/// The colour difference (CIE76 ΔE) between the mean linear colours of two sRGB RGBA8 images
+/// over the pixels whose `distance` (the reference's, metres along the pixel's ray) lies
+/// within `band`, and how many pixels that is; `None` where none does. What a seam at a
+/// distance shows, whatever the noise of single pixels.
+pub fn band_delta_e(
+    a: &[u8],
+    b: &[u8],
+    distance: &[f32],
+    band: (f32, f32),
+) -> Option<(f64, usize)> {
+    let linear = |c: u8| f64::from(relief::params::srgb_to_linear(f32::from(c) / 255.0));
+    let mut sums = [[0.0; 3]; 2];
+    let mut n = 0;
+    for (i, &d) in distance.iter().enumerate() {
+        if d < band.0 || d > band.1 {
+            continue;
+        }
+        n += 1;
+        for (sum, image) in sums.iter_mut().zip([a, b]) {
+            for (c, s) in sum.iter_mut().enumerate() {
+                *s += linear(image[4 * i + c]);
+            }
+        }
+    }
+    let mean = |s: [f64; 3]| s.map(|v| v / n as f64);
+    (n > 0).then(|| (relief::palette::delta_e(mean(sums[0]), mean(sums[1])), n))
+}
+
 /// Bound on the Hessian's spectral norm of one octave of the noise, in lattice units.
 pub const NOISE_MAX_HESSIAN: f64 = 12.0;
 

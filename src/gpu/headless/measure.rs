@@ -192,8 +192,10 @@ pub struct RayImage {
     pub distance: Vec<f32>,
     /// Rays (of every subsample) that ran out of steps.
     pub unresolved: usize,
-    /// The cast's GPU time, when a timer was given.
+    /// The cast's GPU time, when a timer was given (with grass, the last of its casts').
     pub timings: Option<Timings>,
+    /// The reference's blades of grass drawn (0 without grass).
+    pub blades: u32,
 }
 
 /// Draws one image with a ray-cast `method` (see [`crate::Method`]): its own colour and
@@ -276,38 +278,102 @@ fn world_rays(
     layers: &mut [Box<dyn crate::gpu::layer::Layer>],
     timer: Option<&GpuTimer>,
 ) -> Result<RayImage> {
+    use crate::gpu::grass_reference::{GrassReference, JITTERS};
     use crate::gpu::{ray_layers, world_rays};
     let Some(rays) = method.ray_method(params.land.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
+    if params.grass.on && method != crate::Method::Reference {
+        return Err(Error::invalid(
+            "grass",
+            true,
+            format!("off for the {method}, which casts rays and draws no grass"),
+        ));
+    }
     let region = world_rays::drawn_region(params, view);
-    let ray_matrix = world_rays::ray_matrix(view);
-    let layer_matrix = ray_layers::layer_matrix(params, view, region);
-    let render = |matrix| {
-        crate::gpu::world::render_uniforms(params, shading, (matrix, region, view.eye), true)
+    let render = |view: &WorldView, matrix| {
+        let mut u =
+            crate::gpu::world::render_uniforms(params, shading, (matrix, region, view.eye), true);
+        if params.grass.on {
+            u.grass_distance = crate::gpu::grass_reference::REACH * params.grass.distance;
+            u.grass_reference = 1;
+        }
+        u
     };
-    let layer_render = render(layer_matrix);
-    cast(
-        gpu,
-        view.size,
-        (method, supersample),
-        RayScene::World,
-        timer,
-        |caster, size| {
-            let ray = world_rays::WorldRayUniforms::new(params, view, rays, size, region)?;
-            caster.prepare_world(&gpu.queue, &render(ray_matrix), &ray)
-        },
-        |caster, encoder| {
-            let frame = ray_layers::RayLayerFrame {
-                eye: view.eye,
-                ray_matrix,
-                layer_matrix,
-                render: &layer_render,
-                method,
-            };
-            ray_layers::encode(&gpu.device, &gpu.queue, encoder, caster, &frame, layers);
-        },
-    )
+    let mut grass = if params.grass.on {
+        let ray = world_rays::WorldRayUniforms::new(params, view, rays, view.size, region)?;
+        let layer_render = render(view, ray_layers::layer_matrix(params, view, region));
+        Some(GrassReference::new(
+            gpu,
+            params,
+            view,
+            (&ray, &layer_render),
+        )?)
+    } else {
+        None
+    };
+    // With grass, the cast's samples at JITTERS x JITTERS sub-pixel offsets (N x N samples a
+    // pixel), averaged in linear light; the distance is the unmoved cast's.
+    let jitters = if grass.is_some() { JITTERS } else { 1 };
+    let mut sum: Vec<f64> = Vec::new();
+    let mut out: Option<RayImage> = None;
+    let mut unresolved = 0;
+    for k in 0..jitters * jitters {
+        let (jx, jy) = (k % jitters, k / jitters);
+        let step = 1.0 / (jitters * supersample.max(1)) as f32;
+        let offset = |j: u32| (j as f32 - (jitters / 2) as f32) * step;
+        let mut v = *view;
+        v.crop = crate::temporal::jitter_matrix([offset(jx), offset(jy)], view.size) * view.crop;
+        let ray_matrix = world_rays::ray_matrix(&v);
+        let layer_matrix = ray_layers::layer_matrix(params, &v, region);
+        let layer_render = render(&v, layer_matrix);
+        let mut all: Vec<&mut (dyn crate::gpu::layer::Layer + 'static)> = grass
+            .iter_mut()
+            .map(|g| g as &mut (dyn crate::gpu::layer::Layer + 'static))
+            .chain(layers.iter_mut().map(|l| l.as_mut()))
+            .collect();
+        let image = cast(
+            gpu,
+            view.size,
+            (method, supersample),
+            RayScene::World,
+            timer,
+            |caster, size| {
+                let ray = world_rays::WorldRayUniforms::new(params, &v, rays, size, region)?;
+                caster.prepare_world(&gpu.queue, &render(&v, ray_matrix), &ray)
+            },
+            |caster, encoder| {
+                let frame = ray_layers::RayLayerFrame {
+                    eye: v.eye,
+                    ray_matrix,
+                    layer_matrix,
+                    render: &layer_render,
+                    method,
+                };
+                ray_layers::encode(&gpu.device, &gpu.queue, encoder, caster, &frame, &mut all);
+            },
+        )?;
+        unresolved += image.unresolved;
+        if jitters == 1 {
+            return Ok(RayImage { blades: 0, ..image });
+        }
+        sum.resize(image.rgba.len(), 0.0);
+        for (acc, &c) in sum.iter_mut().zip(&image.rgba) {
+            *acc += f64::from(crate::params::srgb_to_linear(f32::from(c) / 255.0));
+        }
+        if (jx, jy) == (jitters / 2, jitters / 2) {
+            out = Some(image);
+        }
+    }
+    let mut image = out.expect("the unmoved cast is one of the jitters");
+    let n = f64::from(jitters * jitters);
+    image.rgba = sum.iter().map(|&l| crate::gpu::srgb8(l / n)).collect();
+    for alpha in image.rgba.chunks_exact_mut(4) {
+        alpha[3] = 255;
+    }
+    image.unresolved = unresolved;
+    image.blades = grass.as_ref().map_or(0, GrassReference::count);
+    Ok(image)
 }
 
 /// The terrain's horizon towards the sun (radians above the horizontal) at each point `(x, z)`
@@ -528,5 +594,6 @@ pub(super) fn cast(
         distance,
         unresolved,
         timings,
+        blades: 0,
     })
 }
