@@ -99,6 +99,16 @@ impl Grass {
         ((CLUMP_METRES / self.cell()).round() as u32).max(1)
     }
 
+    /// The blades a ray crosses on average in a field of them per unit of the cotangent of
+    /// its elevation above the ground: the density times a mean blade's area (its width and
+    /// height, halved as it tapers to its tip) times 2/pi for their random facing. Seen at an
+    /// elevation θ the field hides `1 - exp(-field_cover / tan θ)` of the ground: nearly all of
+    /// it at a grazing angle, some two fifths from 40 degrees up at the defaults. What the
+    /// ground where the blades end shows (`field_share` in `wgsl/shade.wgsl`).
+    pub fn field_cover(&self) -> f32 {
+        self.density * BLADE_WIDTH * self.height / std::f32::consts::PI
+    }
+
     /// The cell holding the point (x, z), world metres.
     pub fn cell_at(&self, x: f64, z: f64) -> [i64; 2] {
         let s = self.cell();

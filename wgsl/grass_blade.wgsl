@@ -5,11 +5,6 @@
 // root (camera-relative) and facing; height, lean, curve, width; shade and the sun's and the
 // sky's occlusion at the root; the wind's push on its tip.
 
-// Lush and dry blades (linear albedos), the lighter towards the tips.
-const BLADE_LUSH: vec3<f32> = vec3<f32>(0.07, 0.16, 0.03);
-const BLADE_DRY: vec3<f32> = vec3<f32>(0.22, 0.21, 0.08);
-// What light through a blade takes on: yellower.
-const THROUGH: vec3<f32> = vec3<f32>(0.9, 0.85, 0.35);
 // Segments of a blade at most (near the eye): a strip of 2 * segments + 1 vertices, the last
 // the tip.
 const BLADE_SEGMENTS: u32 = 4u;
@@ -56,28 +51,10 @@ fn blade_point(a: vec4<f32>, b: vec4<f32>, tip: vec2<f32>, segments: u32, vi: u3
 
 // The colour of a blade's point at camera-relative `rel` with normal `normal`, `along` of the
 // way up, its shade and the sun's and sky's occlusion at its root in `look`, as `to_target`
-// gives it for `lin`: lit as a thin leaf (the sun through either side, |N.L|, warmer where it
-// shines through from behind; the sky's light; a little sheen; darker toward the root), then
-// through the air as the terrain is.
+// gives it for `lin`: lit as `blade_radiance` (shade.wgsl) lights it, then through the air as
+// the terrain is.
 fn blade_light(lin: RenderUniforms, rel: vec3<f32>, normal: vec3<f32>, along: f32, look: vec3<f32>) -> vec3<f32> {
-    let l = lin.sun_dir.xyz;
-    let v = normalize(lin.camera_pos.xyz - rel);
-    // The side the eye sees, its normal bent towards the sky: a blade is rounded, and a
-    // meadow's blades face every way, so more of it faces up than a flat strip does.
-    var n = normalize(normal);
-    n = select(n, -n, dot(n, v) < 0.0);
-    let rounded = normalize(n + vec3<f32>(0.0, 0.8, 0.0));
-    let shade = look.x;
-    let sun = lin.sun_color.rgb * look.y;
-    let ao = look.z * mix(0.4, 1.0, along);
-    let albedo = mix(BLADE_LUSH, BLADE_DRY, shade * shade) * mix(0.55, 1.2, along);
-    // The sun on the side seen, and through the blade from the other side.
-    let front = max(dot(rounded, l), 0.0);
-    let back = 0.6 * max(dot(-n, l), 0.0);
-    let sky = lin.ambient_color.rgb * (0.75 + 0.25 * rounded.y);
-    let half_vec = normalize(l + v);
-    let sheen = 0.06 * pow(max(dot(rounded, half_vec), 0.0), 24.0) * along;
-    let lit = albedo * (sky * ao + sun * (front + back * THROUGH)) + sun * sheen;
+    let lit = blade_radiance(lin, rel, normal, along, look);
     let air = air_at(lin, rel);
     return to_target(lin, lit * air.keep + air.light);
 }

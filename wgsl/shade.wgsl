@@ -65,6 +65,12 @@ struct RenderUniforms {
     sand_band: f32,
     // The palette: PALETTE_BLOG or PALETTE_TEMPLATE (src/palette.rs).
     palette: u32,
+    // Where the frame draws grass, the blades a ray crosses in its field per unit of the
+    // cotangent of its elevation (src/grass.rs: field_cover): `grass_ground`.
+    grass_cover: f32,
+    _pad_end0: f32,
+    _pad_end1: f32,
+    _pad_end2: f32,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.
@@ -311,32 +317,112 @@ const DRY_GRASS: vec3<f32> = vec3<f32>(0.22, 0.19, 0.08);
 
 // Rock where it is steep, grass where it is gentle (drier higher up), each edge moved by the
 // colour noise so that no edge follows a contour or a slope line.
-// The ground where grass grows and the frame draws its blades (`grass_distance` > 0), `d`
-// metres from the eye, for the grass material `plain`: bare earth near the eye, where it shows
-// between the blades; from half the draw distance on, where the blades thin out to none, the
-// colour the field of blades shows from afar (FIELD_TINT times the plain grass), so that no
-// line marks where the blades end (tests/grass.rs fits and measures it). Under the reference's
-// blades, which stand at full density to `grass_distance`, the ground is earth throughout.
+// Lush and dry blades of grass (linear albedos), the lighter towards the tips.
+const BLADE_LUSH: vec3<f32> = vec3<f32>(0.07, 0.16, 0.03);
+const BLADE_DRY: vec3<f32> = vec3<f32>(0.22, 0.21, 0.08);
+// What light through a blade takes on: yellower.
+const THROUGH: vec3<f32> = vec3<f32>(0.9, 0.85, 0.35);
+
+// The light leaving a blade of grass (grass_blade.wgsl) at camera-relative `rel` with normal
+// `normal`, `along` of the way up, its shade and the sun's and sky's occlusion at its root in
+// `look`, for `lin`: lit as a thin leaf (the sun through either side, |N.L|, warmer where it
+// shines through from behind; the sky's light; a little sheen; darker toward the root).
+fn blade_radiance(lin: RenderUniforms, rel: vec3<f32>, normal: vec3<f32>, along: f32, look: vec3<f32>) -> vec3<f32> {
+    let l = lin.sun_dir.xyz;
+    let v = normalize(lin.camera_pos.xyz - rel);
+    // The side the eye sees, its normal bent towards the sky: a blade is rounded, and a
+    // meadow's blades face every way, so more of it faces up than a flat strip does.
+    var n = normalize(normal);
+    n = select(n, -n, dot(n, v) < 0.0);
+    let rounded = normalize(n + vec3<f32>(0.0, 0.8, 0.0));
+    let shade = look.x;
+    let sun = lin.sun_color.rgb * look.y;
+    let ao = look.z * mix(0.4, 1.0, along);
+    let albedo = mix(BLADE_LUSH, BLADE_DRY, shade * shade) * mix(0.55, 1.2, along);
+    // The sun on the side seen, and through the blade from the other side.
+    let front = max(dot(rounded, l), 0.0);
+    let back = 0.6 * max(dot(-n, l), 0.0);
+    let sky = lin.ambient_color.rgb * (0.75 + 0.25 * rounded.y);
+    let half_vec = normalize(l + v);
+    let sheen = 0.06 * pow(max(dot(rounded, half_vec), 0.0), 24.0) * along;
+    return albedo * (sky * ao + sun * (front + back * THROUGH)) + sun * sheen;
+}
+
+// The light leaving the field of blades at camera-relative `rel` (where the ground's normal is
+// `n`) where single blades are no longer drawn, under the sun's and the sky's occlusion `occl`:
+// `blade_radiance` over the blades' facings (each blade turns its face to
+// the eye, so their normals span the half circle facing it: two at 45 degrees either side
+// stand for them), at the middle shade of the blades' spread, at the height up the blades
+// that shows: their middle by area (a third of the way up, as they taper) seen from above,
+// higher (FIELD_ALONG) at a grazing angle, where the blades in front hide the lower parts.
+const FIELD_ALONG: f32 = 0.6;
+fn field_radiance(r: RenderUniforms, rel: vec3<f32>, n: vec3<f32>, occl: vec2<f32>) -> vec3<f32> {
+    let to_eye = r.camera_pos.xyz - rel;
+    let s = clamp(dot(n, to_eye) / max(length(to_eye), 1e-6), 0.0, 1.0);
+    let along = mix(FIELD_ALONG, 1.0 / 3.0, s);
+    let e = to_eye.xz / max(length(to_eye.xz), 1e-6);
+    let l = r.sun_dir.xyz;
+    // The two normals, horizontal, 45 degrees either side of the way to the eye; bent up as
+    // `blade_radiance` bends them (y 0.8 before normalising: 1 / sqrt(1.64)).
+    let k = 0.70710678;
+    let n1 = vec2<f32>(k * (e.x - e.y), k * (e.x + e.y));
+    let n2 = vec2<f32>(k * (e.x + e.y), k * (e.y - e.x));
+    let bent = 0.78086881;
+    let r1 = vec3<f32>(n1.x, 0.8, n1.y) * bent;
+    let r2 = vec3<f32>(n2.x, 0.8, n2.y) * bent;
+    let front = max(dot(r1, l), 0.0) + max(dot(r2, l), 0.0);
+    let back = 0.6 * (max(-dot(n1, l.xz), 0.0) + max(-dot(n2, l.xz), 0.0));
+    let h = normalize(l + to_eye / max(length(to_eye), 1e-6));
+    let sheen = 0.06 * along * (pow(max(dot(r1, h), 0.0), 24.0) + pow(max(dot(r2, h), 0.0), 24.0));
+    // The blades' shade is uniform in [0, 1] and their albedo follows its square: a third.
+    let albedo = mix(BLADE_LUSH, BLADE_DRY, 1.0 / 3.0) * mix(0.55, 1.2, along);
+    let sky = r.ambient_color.rgb * (0.75 + 0.25 * 0.8 * bent);
+    let ao = occl.y * mix(0.4, 1.0, along);
+    let sun = r.sun_color.rgb * occl.x;
+    return albedo * (sky * ao + 0.5 * sun * (front + back * THROUGH)) + 0.5 * sun * sheen;
+}
+
+// The ground where grass grows and the frame draws its blades (`grass_distance` > 0), at `rel`
+// from the eye, for the grass material `plain`: bare earth, where it shows between the blades.
+// Under the reference's blades, which stand at full density to `grass_distance` (horizontally),
+// earth to there and the plain material beyond. Where the frame's blades thin out the field
+// stands in for them (`field_share`).
 const DIRT: vec3<f32> = vec3<f32>(0.075, 0.06, 0.035);
-const FIELD_TINT: vec3<f32> = vec3<f32>(4.28, 2.37, 1.49);
-fn grass_ground(r: RenderUniforms, plain: vec3<f32>, d: f32) -> vec3<f32> {
+fn grass_ground(r: RenderUniforms, plain: vec3<f32>, rel: vec3<f32>) -> vec3<f32> {
     if r.grass_distance <= 0.0 {
         return plain;
     }
     if r.grass_reference != 0u {
-        return select(plain, DIRT, d < r.grass_distance);
+        return select(plain, DIRT, length(rel.xz) < r.grass_distance);
     }
-    let far = clamp((d - 0.45 * r.grass_distance) / (0.55 * r.grass_distance), 0.0, 1.0);
-    return mix(DIRT, FIELD_TINT * plain, far);
+    return DIRT;
 }
 
-// The seed template's albedo `d` metres from the eye (the ground under the grass changes with
-// it: `grass_ground`).
-fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32, d: f32) -> vec3<f32> {
+// How much of the frame's grass ground at `rel` from the eye, where the surface's normal is
+// `n`, shows the field of blades (`field_radiance`) rather than its earth: from where the blades
+// begin to thin out (0.45 of the draw distance, horizontally) to where the last goes, more and
+// more of the share of the ground the blades hide at the ray's elevation θ, 1 - exp(-c / tan θ)
+// (c: src/grass.rs's field_cover). So no line marks where the blades end
+// (crates/eval/tests/grass_reference.rs measures it against the reference). None in the
+// reference, whose blades stand to twice the distance.
+fn field_share(r: RenderUniforms, rel: vec3<f32>, n: vec3<f32>) -> f32 {
+    if r.grass_distance <= 0.0 || r.grass_reference != 0u {
+        return 0.0;
+    }
+    let s = clamp(-dot(n, rel) / max(length(rel), 1e-6), 1e-3, 1.0);
+    let hidden = 1.0 - exp(-r.grass_cover * sqrt(1.0 - s * s) / s);
+    let d = length(rel.xz);
+    let far = clamp((d - 0.45 * r.grass_distance) / (0.55 * r.grass_distance), 0.0, 1.0);
+    return far * hidden;
+}
+
+// The seed template's albedo at `rel` from the eye (the ground under the grass changes with it:
+// `grass_ground`).
+fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32, rel: vec3<f32>) -> vec3<f32> {
     let jitter = 2.0 * (tint - 0.5);
     let rock = mix(ROCK_DARK, ROCK_LIGHT, smoothstep(0.25, 0.75, tint));
     let alpine = smoothstep(r.snow_height - 0.12, r.snow_height, h + 0.1 * jitter);
-    let grass = grass_ground(r, mix(GRASS, DRY_GRASS, alpine), d);
+    let grass = grass_ground(r, mix(GRASS, DRY_GRASS, alpine), rel);
     return mix(rock, grass, grass_share(r, n, h, tint));
 }
 
@@ -363,7 +449,7 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     if blog {
         albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
     } else {
-        albedo = template_albedo(r, n, h, tint, length(world - r.camera_pos.xyz));
+        albedo = template_albedo(r, n, h, tint, world - r.camera_pos.xyz);
     }
     // Snow above the snow height, its edge jittered by the colour noise so it does not follow
     // a contour line, and thinning on steep slopes where it would not settle.
@@ -371,9 +457,11 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     let snow = smoothstep(line - SNOW_EDGE, line + SNOW_EDGE, h) * smoothstep(0.45, 0.75, n.y);
     albedo = mix(albedo, r.snow_color.rgb, snow);
     // Sand along the shore, its upper edge jittered by the colour noise as the snow line is.
+    var sand = 0.0;
     if r.water_on != 0u {
         let top = r.water_level + r.sand_band * (0.6 + tint);
-        albedo = mix(albedo, SAND, 1.0 - smoothstep(top - 0.5 * r.sand_band, top, h));
+        sand = 1.0 - smoothstep(top - 0.5 * r.sand_band, top, h);
+        albedo = mix(albedo, SAND, sand);
     }
 
     let ao = occl.y;
@@ -399,6 +487,11 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
         let rim = r.sky_horizon.rgb * 0.2 * pow(1.0 - clamp(dot(n, v), 0.0, 1.0), 5.0) * (1.0 - field);
         lit = albedo * ((sky + back) * ao + sun * ndl) + rim * ao
             + sun * (spec * r.specular * (0.3 + 0.7 * snow) * (1.0 - field));
+        // Where the frame's blades thin out, the field of them stands in.
+        let stand_in = field * (1.0 - sand) * field_share(r, world - r.camera_pos.xyz, n);
+        if stand_in > 0.0 {
+            lit = mix(lit, field_radiance(r, world - r.camera_pos.xyz, n, occl), stand_in);
+        }
     }
 
     // Terrain under water, seen from above it: the water's surface is what the ray meets.

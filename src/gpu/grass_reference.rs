@@ -174,7 +174,9 @@ impl GrassReference {
         };
         let (_, count) = run(0)?;
         let limits = device.limits();
-        let most = (limits.max_storage_buffer_binding_size as u64).min(limits.max_buffer_size)
+        let most = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size)
             / BLADE_BYTES;
         if u64::from(count) > most {
             return Err(Error::invalid(

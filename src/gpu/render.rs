@@ -49,7 +49,7 @@ pub struct RenderUniforms {
     /// (`grass_ground` in `wgsl/shade.wgsl`).
     pub grass_distance: f32,
     /// 1 where the frame is the reference's, which draws every blade to `grass_distance`
-    /// over bare earth ([`crate::gpu::grass_reference`]).
+    /// over bare earth (`src/gpu/grass_reference.rs`).
     pub grass_reference: u32,
     /// Inverse of `view_proj`: what turns a pixel into a view direction for the sky.
     pub inv_view_proj: [[f32; 4]; 4],
@@ -86,6 +86,12 @@ pub struct RenderUniforms {
     /// The palette ([`crate::palette::Palette::code`]: 0 the blog's, 1 the seed template's
     /// materials and lighting, tone-mapped).
     pub palette: u32,
+    /// Where the frame draws grass, the blades a ray crosses in its field per unit of the
+    /// cotangent of the ray's elevation above the ground ([`crate::grass::Grass::field_cover`]):
+    /// how much of the ground the field hides, seen from the eye (`grass_ground`).
+    pub grass_cover: f32,
+    /// Padding.
+    pub _pad: [f32; 3],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -139,6 +145,8 @@ impl RenderUniforms {
             ripple_origin: [0.0; 2],
             sand_band: 0.0,
             palette: 0,
+            grass_cover: 0.0,
+            _pad: [0.0; 3],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(

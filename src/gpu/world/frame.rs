@@ -164,6 +164,7 @@ impl World {
                 // The ground under the grass, where the method draws its blades.
                 if self.grass.is_some() && self.method.is_mesh() {
                     u.grass_distance = self.params.grass.distance;
+                    u.grass_cover = self.params.grass.field_cover();
                 }
                 u
             }
