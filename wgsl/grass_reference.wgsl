@@ -53,9 +53,10 @@ fn scatter_reference(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let h0 = s.x * ray.peak;
     let root = vec3<f32>(xz.x, h0 - ray.eye.y, xz.y);
-    // The sphere holds the blade however it leans or is blown (the cast's sub-pixel jitter
-    // moves the frustum by far less).
-    if !in_frustum(r.view_proj, root + vec3<f32>(0.0, 0.5 * b.height, 0.0), b.height) {
+    // The sphere holds the blade however far it leans (half its height) and is blown (0.6 of
+    // it) from its middle, as the frame's scatter tests it (the cast's sub-pixel jitter moves
+    // the frustum by far less).
+    if !in_frustum(r.view_proj, root + vec3<f32>(0.0, 0.5 * b.height, 0.0), 1.25 * b.height) {
         return;
     }
     let at = atomicAdd(&ref_counts[0], 1u);

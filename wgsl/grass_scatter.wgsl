@@ -218,7 +218,9 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     }
     let height = b.height * fade;
     let peer = gf.peer != 0u;
-    if !peer && !in_frustum(r.view_proj, ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), height) {
+    // The sphere holds the blade however far it leans (half its height) and is blown (0.6 of
+    // it) from its middle: 1.25 of its height.
+    if !peer && !in_frustum(r.view_proj, ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), 1.25 * height) {
         return false;
     }
     // A blade narrower than a pixel: widened to one, and kept with a chance of its width in

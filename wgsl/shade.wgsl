@@ -382,47 +382,43 @@ fn field_radiance(r: RenderUniforms, rel: vec3<f32>, n: vec3<f32>, occl: vec2<f3
     return albedo * (sky * ao + 0.5 * sun * (front + back * THROUGH)) + 0.5 * sun * sheen;
 }
 
-// The ground where grass grows and the frame draws its blades (`grass_distance` > 0), at `rel`
-// from the eye, for the grass material `plain`: bare earth, where it shows between the blades.
-// Under the reference's blades, which stand at full density to `grass_distance` (horizontally),
-// earth to there and the plain material beyond. Where the frame's blades thin out the field
-// stands in for them (`field_share`).
+// The ground where grass grows and the frame (or the reference) draws its blades
+// (`grass_distance` > 0), for the grass material `plain`: bare earth, where it shows between
+// the blades. Where the blades thin out, and beyond, the field stands in for them
+// (`field_share`).
 const DIRT: vec3<f32> = vec3<f32>(0.075, 0.06, 0.035);
-fn grass_ground(r: RenderUniforms, plain: vec3<f32>, rel: vec3<f32>) -> vec3<f32> {
-    if r.grass_distance <= 0.0 {
-        return plain;
-    }
-    if r.grass_reference != 0u {
-        return select(plain, DIRT, length(rel.xz) < r.grass_distance);
-    }
-    return DIRT;
+fn grass_ground(r: RenderUniforms, plain: vec3<f32>) -> vec3<f32> {
+    return select(plain, DIRT, r.grass_distance > 0.0);
 }
 
 // How much of the frame's grass ground at `rel` from the eye, where the surface's normal is
-// `n`, shows the field of blades (`field_radiance`) rather than its earth: from where the blades
-// begin to thin out (0.45 of the draw distance, horizontally) to where the last goes, more and
-// more of the share of the ground the blades hide at the ray's elevation θ, 1 - exp(-c / tan θ)
+// `n`, shows the field of blades (`field_radiance`) rather than its earth: from 0.45 of the draw
+// distance (horizontally; the blades thin out from 0.4 of it, most of them past the middle) to
+// where the last goes, more and more of the share of the ground the blades hide at the ray's elevation θ, 1 - exp(-c / tan θ)
 // (c: src/grass.rs's field_cover). So no line marks where the blades end
-// (crates/eval/tests/grass_reference.rs measures it against the reference). None in the
-// reference, whose blades stand to twice the distance.
+// (crates/eval/tests/grass_reference.rs measures it against the reference). The reference's
+// blades stand at full density to its `grass_distance` (twice the frame's): the field only
+// beyond, where it has no blades (the frame's stand-in there, not a truth).
 fn field_share(r: RenderUniforms, rel: vec3<f32>, n: vec3<f32>) -> f32 {
-    if r.grass_distance <= 0.0 || r.grass_reference != 0u {
+    if r.grass_distance <= 0.0 {
         return 0.0;
     }
     let s = clamp(-dot(n, rel) / max(length(rel), 1e-6), 1e-3, 1.0);
     let hidden = 1.0 - exp(-r.grass_cover * sqrt(1.0 - s * s) / s);
     let d = length(rel.xz);
-    let far = clamp((d - 0.45 * r.grass_distance) / (0.55 * r.grass_distance), 0.0, 1.0);
+    var far = clamp((d - 0.45 * r.grass_distance) / (0.55 * r.grass_distance), 0.0, 1.0);
+    if r.grass_reference != 0u {
+        far = select(0.0, 1.0, d >= r.grass_distance);
+    }
     return far * hidden;
 }
 
-// The seed template's albedo at `rel` from the eye (the ground under the grass changes with it:
-// `grass_ground`).
-fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32, rel: vec3<f32>) -> vec3<f32> {
+// The seed template's albedo (earth under the grass where blades are drawn: `grass_ground`).
+fn template_albedo(r: RenderUniforms, n: vec3<f32>, h: f32, tint: f32) -> vec3<f32> {
     let jitter = 2.0 * (tint - 0.5);
     let rock = mix(ROCK_DARK, ROCK_LIGHT, smoothstep(0.25, 0.75, tint));
     let alpine = smoothstep(r.snow_height - 0.12, r.snow_height, h + 0.1 * jitter);
-    let grass = grass_ground(r, mix(GRASS, DRY_GRASS, alpine), rel);
+    let grass = grass_ground(r, mix(GRASS, DRY_GRASS, alpine));
     return mix(rock, grass, grass_share(r, n, h, tint));
 }
 
@@ -449,7 +445,7 @@ fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint
     if blog {
         albedo = mix(r.color_a.rgb, r.color_b.rgb, smoothstep(0.2, 0.8, tint));
     } else {
-        albedo = template_albedo(r, n, h, tint, world - r.camera_pos.xyz);
+        albedo = template_albedo(r, n, h, tint);
     }
     // Snow above the snow height, its edge jittered by the colour noise so it does not follow
     // a contour line, and thinning on steep slopes where it would not settle.

@@ -170,7 +170,7 @@ impl GrassReference {
                 gpu.queue.submit([encoder.finish()]);
             })?;
             let bytes = super::map_read(device, &staging)?;
-            Ok((blades, bytemuck::cast_slice::<u8, u32>(&bytes)[0]))
+            Ok((blades, bytemuck::pod_read_unaligned::<u32>(&bytes[..4])))
         };
         let (_, count) = run(0)?;
         let limits = device.limits();

@@ -233,6 +233,30 @@ pub fn stability(
             }),
         ));
     }
+    if on(Axis::Grass) {
+        let options = sweeps.grass.clone();
+        println!(
+            "grass under a moving eye: walks of {:?} m/s over the meadow at 1.7 m{}, {} frame-to-frame changes each, {}x{}, against the grass reference (9x9 samples a pixel)",
+            options.speeds,
+            if options.flight { " and the fly-through" } else { "" },
+            options.frames,
+            options.size.0,
+            options.size.1,
+        );
+        restart(options.speeds.len() + usize::from(options.flight));
+        let rows = stability::grass::grass(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::grass::grass_table(&rows));
+        let csv = stability::grass::grass_csv(&rows, &device, &backend);
+        let title = format!("relief: grass flicker against its reference on {device} ({backend})");
+        outputs.push((
+            "grass.csv",
+            csv,
+            Box::new(move || stability::grass::grass_chart(&rows, (&title, &dir.join("grass")))),
+        ));
+    }
     if on(Axis::Detail) {
         // Detail against resolution, on the CPU twin, then FLIP on the GPU.
         let options = sweeps.detail.clone();

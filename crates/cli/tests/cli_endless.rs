@@ -699,3 +699,48 @@ fn endless_scene_files_and_camera_tables_round_trip() {
         render_tile("tile-flags", &["--seed", "3", "--eye", "0,2,2.5"])
     );
 }
+
+#[test]
+fn the_reference_draws_the_grass_and_counts_its_blades() {
+    // `render --method reference --grass`: the grass's reference (every blade to twice the draw
+    // distance over the continuous surface, 9x9 samples a pixel), its blades counted by
+    // --stats; a sparse, near meadow keeps it quick on a software GPU.
+    let dir = scratch("grass-reference");
+    let render = |name: &str, grass: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "--world",
+            "endless",
+            "--method",
+            "reference",
+            "--eye",
+            "2740,1111.7,-3000",
+            "--look-at",
+            "2770,1107.7,-2990",
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "48",
+            "--height",
+            "27",
+            "--stats",
+        ];
+        args.extend_from_slice(grass);
+        let (code, stdout, err) = relief(&args);
+        assert_eq!(code, 0, "{grass:?}: {err}");
+        (
+            image::open(&out).unwrap().into_rgb8().into_raw(),
+            stats_of(&stdout),
+        )
+    };
+    let (bare, s) = render("bare", &[]);
+    assert!(s.iter().all(|(k, _)| !k.starts_with("grass")), "{s:?}");
+    let grass = ["--grass", "--grass-density", "8", "--grass-distance", "10"];
+    let (grassy, s) = render("grass", &grass);
+    let blades = stat(&s, "grass_blades_drawn");
+    assert!(blades > 100.0, "{s:?}");
+    // Every blade in four segments: seven triangles.
+    assert_eq!(stat(&s, "grass_triangles"), 7.0 * blades, "{s:?}");
+    assert_ne!(grassy, bare);
+}

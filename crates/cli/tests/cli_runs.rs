@@ -331,6 +331,9 @@ fn tiny_sweeps() -> relief_eval::stability::Sweeps {
     s.temporal.frames = 2;
     s.temporal.turns = vec![90.0];
     s.temporal.strafes = Vec::new();
+    s.grass.size = (48, 27);
+    s.grass.frames = 1;
+    s.grass.distance = Some(8.0);
     s
 }
 
@@ -354,6 +357,9 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
             "distance.csv",
             "distance.png",
             "distance.svg",
+            "grass.csv",
+            "grass.png",
+            "grass.svg",
             "grazing-hs0p5.png",
             "grazing-hs0p5.svg",
             "grazing-hs2.png",
@@ -391,6 +397,8 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
     assert_eq!(lines("shadow.csv"), 1 + 3);
     assert_eq!(lines("motion.csv"), 1 + 4);
     assert_eq!(lines("temporal.csv"), 1 + 1);
+    // The grass: a walk over the meadow, against the grass reference.
+    assert_eq!(lines("grass.csv"), 1 + 1);
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance

@@ -13,7 +13,7 @@
 //! the seam at the draw distance against it.
 
 use crate::bench::{measure, Options};
-use crate::metrics::{band_delta_e, image_error, median, rgb};
+use crate::metrics::{band_delta_e, horizontal_distance, image_error, median, rgb};
 use glam::DVec3;
 use relief::error::{Error, Result};
 use relief::gpu::headless::{render_samples, render_world_rays, Gpu, Offscreen, RayImage};
@@ -165,8 +165,7 @@ pub fn run(
                         let [considered, _, drawn, _] = counts?;
                         row.blades = [considered, drawn];
                     }
-                    // Where the frame draws no blade, its FLIP is the terrain's (bench_world's).
-                    if peer.is_none() && !quick && row.blades[1] > 0 {
+                    if peer.is_none() && !quick {
                         let at = match truths.iter().position(|(n, _)| *n == name) {
                             Some(at) => at,
                             None => {
@@ -211,7 +210,8 @@ fn accuracy(
     let (one, _) = target.render_world(gpu, world, view, None)?;
     row.flip[0] = Some(flip(&one));
     let d = world.params().grass.distance;
-    row.seam = band_delta_e(&one, &truth.rgba, &truth.distance, (0.9 * d, 1.1 * d)).map(|s| s.0);
+    let horizontal = horizontal_distance(view, &truth.distance);
+    row.seam = band_delta_e(&one, &truth.rgba, &horizontal, (0.9 * d, 1.1 * d)).map(|s| s.0);
     if converge {
         world.set_temporal(&gpu.device, Temporal { frames: CONVERGED })?;
         target.accumulate_world(gpu, world, view, 0)?;

@@ -306,8 +306,31 @@ pub fn rgb(rgba: &[u8]) -> Vec<u8> {
 
 pub use relief::gpu::downsample_srgb;
 
+/// Each pixel's `distance` along its centre's ray through `view` (as a ray cast gives it;
+/// negative where it found none) as a horizontal distance from the eye: what the grass's draw
+/// distance is measured in.
+pub fn horizontal_distance(view: &relief::WorldView, distance: &[f32]) -> Vec<f32> {
+    let inverse = relief::gpu::world_rays::ray_matrix(view).inverse();
+    let (w, h) = (view.size.0.max(1), view.size.1.max(1));
+    distance
+        .iter()
+        .enumerate()
+        .map(|(i, &d)| {
+            if d < 0.0 {
+                return d;
+            }
+            let (x, y) = ((i as u32 % w) as f32 + 0.5, (i as u32 / w) as f32 + 0.5);
+            let ndc = glam::Vec2::new(2.0 * x / w as f32 - 1.0, 1.0 - 2.0 * y / h as f32);
+            let near = inverse.project_point3(ndc.extend(0.0));
+            let far = inverse.project_point3(ndc.extend(1.0));
+            let dir = (far - near).normalize_or_zero();
+            d * dir.x.hypot(dir.z)
+        })
+        .collect()
+}
+
 /// The colour difference (CIE76 ΔE) between the mean linear colours of two sRGB RGBA8 images
-/// over the pixels whose `distance` (the reference's, metres along the pixel's ray) lies
+/// over the pixels whose `distance` (metres, [`horizontal_distance`] for the grass) lies
 /// within `band`, and how many pixels that is; `None` where none does. What a seam at a
 /// distance shows, whatever the noise of single pixels.
 pub fn band_delta_e(

@@ -480,3 +480,24 @@ fn scrolled_far_the_blogs_terrain_turns_to_stripes_and_reliefs_tile_holds_to_its
         "scroll axis, the blog 1e9 tiles out: {flat:?}"
     );
 }
+
+#[test]
+#[ignore = "slow: a stability sweep (.ci/test runs it)"]
+fn walking_over_the_meadow_the_grass_flickers_no_more_than_its_reference_plus_a_margin() {
+    use relief_eval::stability::grass::{grass, grass_table, GrassOptions};
+    let gpu = common::gpu();
+    let options = GrassOptions::quick();
+    let rows = grass(&gpu, &relief::WorldParams::default(), &options, |_, _| {}).unwrap();
+    eprintln!("{}", grass_table(&rows));
+    for r in &rows {
+        let at = format!("grass axis, {}", r.path.name());
+        // The walk sees blades, and both pictures change as the eye moves.
+        assert!(r.blades > 1000, "{at}: {r:?}");
+        let [frame, truth] = r.flicker();
+        assert!(frame > 0.0 && truth > 0.0, "{at}: {r:?}");
+        // At 96x54 a pixel holds dozens of blades: the frame's one sample a pixel flickers
+        // more than the 9x9 reference. The goal (0.005 at 480x270 and up) is the bench's;
+        // here the excess stays under the pictures' own change.
+        assert!(r.excess() < truth, "{at}: {r:?}");
+    }
+}

@@ -192,7 +192,8 @@ pub struct RayImage {
     pub distance: Vec<f32>,
     /// Rays (of every subsample) that ran out of steps.
     pub unresolved: usize,
-    /// The cast's GPU time, when a timer was given (with grass, the last of its casts').
+    /// The cast's GPU time, when a timer was given (with blades of grass, the unmoved cast's,
+    /// one of nine).
     pub timings: Option<Timings>,
     /// The reference's blades of grass drawn (0 without grass).
     pub blades: u32,
@@ -297,6 +298,7 @@ fn world_rays(
         if params.grass.on {
             u.grass_distance = crate::gpu::grass_reference::REACH * params.grass.distance;
             u.grass_reference = 1;
+            u.grass_cover = params.grass.field_cover();
         }
         u
     };
@@ -312,15 +314,20 @@ fn world_rays(
     } else {
         None
     };
-    // With grass, the cast's samples at JITTERS x JITTERS sub-pixel offsets (N x N samples a
-    // pixel), averaged in linear light; the distance is the unmoved cast's.
-    let jitters = if grass.is_some() { JITTERS } else { 1 };
+    // With blades to draw, the cast's samples at JITTERS x JITTERS sub-pixel offsets (N x N
+    // samples a pixel), averaged in linear light; the distance is the unmoved cast's.
+    let jitters = if grass.as_ref().is_some_and(|g| g.count() > 0) {
+        JITTERS
+    } else {
+        1
+    };
+    let ss = supersample_for(gpu, view.size, supersample);
     let mut sum: Vec<f64> = Vec::new();
     let mut out: Option<RayImage> = None;
     let mut unresolved = 0;
     for k in 0..jitters * jitters {
         let (jx, jy) = (k % jitters, k / jitters);
-        let step = 1.0 / (jitters * supersample.max(1)) as f32;
+        let step = 1.0 / (jitters * ss) as f32;
         let offset = |j: u32| (j as f32 - (jitters / 2) as f32) * step;
         let mut v = *view;
         v.crop = crate::temporal::jitter_matrix([offset(jx), offset(jy)], view.size) * view.crop;
@@ -537,6 +544,18 @@ pub fn world_light_horizons(
     Ok(out)
 }
 
+/// The rays a pixel each way a cast of `size` takes for `ss` asked: `ss`, or 1 where the device's
+/// largest texture cannot hold the supersampled image.
+fn supersample_for(gpu: &Gpu, (width, height): (u32, u32), ss: u32) -> u32 {
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let ss = ss.max(1);
+    if width * ss <= max && height * ss <= max {
+        ss
+    } else {
+        1
+    }
+}
+
 /// Casts `method`'s rays at `scene` into a `width` x `height` image, `ss` rays per pixel each
 /// way where the device allows; `prepare(caster, cast size)` writes the uniforms, and `after`
 /// records what is drawn over the cast before it is read (the frame's layers).
@@ -552,13 +571,7 @@ pub(super) fn cast(
     let Some(path) = method.ray_path() else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
-    let max = gpu.device.limits().max_texture_dimension_2d;
-    let ss = ss.max(1);
-    let ss = if width * ss <= max && height * ss <= max {
-        ss
-    } else {
-        1
-    };
+    let ss = supersample_for(gpu, (width, height), ss);
     let size = (width * ss, height * ss);
     let caster = RayMarcher::for_scene(&gpu.device, size.0, size.1, scene)?;
     prepare(&caster, size)?;

@@ -37,10 +37,14 @@
 //! The eighth is the temporal service under a moving eye ([`temporal`]), on the endless world:
 //! flicker and ghosting with a history and without, against the reference of each frame.
 //!
+//! The ninth is grass under a moving eye ([`grass`]), on the endless world: the frame's flicker
+//! and pops against the grass reference's own.
+//!
 //! Each is an [`Axis`], by the name `relief stability --axis` takes.
 
 pub mod detail;
 pub mod distance;
+pub mod grass;
 pub mod motion;
 mod precision;
 pub mod scroll;
@@ -84,6 +88,8 @@ pub struct Sweeps {
     pub temporal: temporal::TemporalOptions,
     /// Detail against resolution.
     pub detail: detail::DetailOptions,
+    /// Grass under a moving eye.
+    pub grass: grass::GrassOptions,
     /// The side in texels of the storage-precision axis.
     pub storage_side: u32,
 }
@@ -101,6 +107,7 @@ impl Sweeps {
             motion: motion::MotionOptions::full(),
             temporal: temporal::TemporalOptions::full(),
             detail: detail::DetailOptions::full(),
+            grass: grass::GrassOptions::full(),
             storage_side: STORAGE_SIZE,
         }
     }
@@ -118,6 +125,7 @@ impl Sweeps {
             motion: motion::MotionOptions::quick(),
             temporal: temporal::TemporalOptions::quick(),
             detail: detail::DetailOptions::quick(),
+            grass: grass::GrassOptions::quick(),
             storage_side: 256,
         }
     }
@@ -144,11 +152,13 @@ pub enum Axis {
     Storage,
     /// The temporal service under a moving eye ([`temporal`]).
     Temporal,
+    /// Grass under a moving eye, against its reference ([`grass`]).
+    Grass,
 }
 
 impl Axis {
     /// Every axis, in the order `relief stability` runs them.
-    pub const ALL: [Axis; 9] = [
+    pub const ALL: [Axis; 10] = [
         Axis::Grazing,
         Axis::WorldGrazing,
         Axis::Shadow,
@@ -158,6 +168,7 @@ impl Axis {
         Axis::Detail,
         Axis::Storage,
         Axis::Temporal,
+        Axis::Grass,
     ];
 
     /// Its name on the command line (`--axis`).
@@ -172,6 +183,7 @@ impl Axis {
             Axis::Detail => "detail",
             Axis::Storage => "storage",
             Axis::Temporal => "temporal",
+            Axis::Grass => "grass",
         }
     }
 
