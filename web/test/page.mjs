@@ -105,7 +105,9 @@ async function waitFrames(page, n) {
 // A screenshot of the canvas alone: the controls that float over it are hidden meanwhile.
 async function shot(page, file) {
   const tag = await page.addStyleTag({ content: "#controls { display: none !important; }" });
-  const png = await page.locator("#relief").screenshot();
+  // Playwright waits for the canvas to hold still over two animation frames; with grass on
+  // SwiftShader a frame takes seconds, so the wait gets as long as the frames' own (120 s).
+  const png = await page.locator("#relief").screenshot({ timeout: 120000 });
   await tag.evaluate((t) => t.remove());
   fs.writeFileSync(path.join(out, file), png);
   return png;
