@@ -11,6 +11,19 @@ use relief::gpu::headless::{self, Offscreen};
 use relief::{Method, Shading, World, WorldParams, WorldView};
 use relief_eval::metrics::{band_delta_e, horizontal_distance, image_error, rgb};
 
+/// The reference's image of `params`' world through `view` (with its grass where it is on).
+fn reference(gpu: &headless::Gpu, params: &WorldParams, view: &WorldView) -> headless::RayImage {
+    headless::render_world_rays(
+        gpu,
+        params,
+        &Shading::default(),
+        view,
+        Method::Reference,
+        None,
+    )
+    .unwrap()
+}
+
 fn meadow(params: &WorldParams) -> DVec3 {
     params
         .find_meadow([2000.0, -3000.0])
@@ -33,15 +46,7 @@ fn the_reference_keeps_the_blades_the_twin_keeps() {
     let size = (64u32, 36u32);
     let eye = foot + DVec3::new(0.0, 1.7, 0.0);
     let view = WorldView::look_at(eye, eye + DVec3::new(30.0, -4.0, 10.0), 0.8, size);
-    let image = headless::render_world_rays(
-        &gpu,
-        &params,
-        &Shading::default(),
-        &view,
-        Method::Reference,
-        None,
-    )
-    .unwrap();
+    let image = reference(&gpu, &params, &view);
     let land = &params.land;
     let altitude = eye.y - land.height_at(eye.x, eye.z);
     let near = (altitude as f32 * 0.1).clamp(0.05, 20.0);
@@ -102,15 +107,7 @@ fn the_frame_meets_the_reference_with_no_seam_at_the_draw_distance() {
     let size = (160u32, 90u32);
     let eye = foot + DVec3::new(0.0, 10.0, 0.0);
     let view = WorldView::look_at(eye, eye + DVec3::new(30.0, -5.6, 10.0), 0.8, size);
-    let truth = headless::render_world_rays(
-        &gpu,
-        &params,
-        &Shading::default(),
-        &view,
-        Method::Reference,
-        None,
-    )
-    .unwrap();
+    let truth = reference(&gpu, &params, &view);
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
     let config = relief::MethodConfig::new(Method::Visibility).with_samples(1);
     world.set_method(&gpu.device, config).unwrap();
@@ -124,15 +121,7 @@ fn the_frame_meets_the_reference_with_no_seam_at_the_draw_distance() {
     // The bare terrain (no grass in either) for scale.
     let mut bare_params = params;
     bare_params.grass.on = false;
-    let bare_truth = headless::render_world_rays(
-        &gpu,
-        &bare_params,
-        &Shading::default(),
-        &view,
-        Method::Reference,
-        None,
-    )
-    .unwrap();
+    let bare_truth = reference(&gpu, &bare_params, &view);
     let (bare_seam, _) = band_delta_e(&frame, &bare_truth.rgba, &horizontal, band).unwrap();
     eprintln!(
         "{} blades in the reference; the seam {seam:.2} over {pixels} pixels (against the bare \
