@@ -124,6 +124,9 @@ pub(crate) struct Step {
     /// Clip space of the last frame (unjittered) from this frame's normalised device
     /// coordinates (unjittered), camera-relative both.
     pub reproject: DMat4,
+    /// The last frame's own matrix (unjittered, camera-relative): what a point that moved
+    /// since (a blade in the wind) is carried back through.
+    pub last: DMat4,
 }
 
 /// What the last frame was drawn from.
@@ -181,6 +184,11 @@ impl History {
         }
     }
 
+    /// The clock of the last frame, seconds (`None`: no frame yet).
+    pub fn last_clock(&self) -> Option<f64> {
+        self.last.map(|l| l.clock)
+    }
+
     /// Frames the last one accumulates (1: fresh; counts up to `cap`).
     pub fn frames(&self, cap: u32) -> u32 {
         self.frames.min(cap)
@@ -205,16 +213,19 @@ impl History {
             (None, Some(last)) if last == now => Step {
                 mode: Mode::Still,
                 reproject: DMat4::IDENTITY,
+                last: unjittered,
             },
             (None, Some(last)) => Step {
                 mode: Mode::Moved,
                 reproject: last.unjittered
                     * DMat4::from_translation(eye - last.eye)
                     * unjittered.inverse(),
+                last: last.unjittered,
             },
             _ => Step {
                 mode: Mode::Fresh,
                 reproject: DMat4::IDENTITY,
+                last: unjittered,
             },
         };
         self.frames = if fresh.is_some() {
@@ -340,6 +351,19 @@ mod tests {
                 "{} {}",
                 carried.w * cb.w,
                 ca.w
+            );
+            // A point that moved by `moved` since (a blade in the wind) is carried back along
+            // it, as wgsl/temporal.wgsl takes it off: in the last frame's clip space over this
+            // frame's w.
+            let moved = DVec3::new(0.03, -0.01, 0.02);
+            let was = clip(ma, a.eye) - step.last * moved.extend(0.0);
+            let carried = step.reproject * ndc_b - step.last * (moved / cb.w).extend(0.0);
+            let (got, want) = (carried / carried.w, was / was.w);
+            assert!((got - want).length() < 1e-9, "{got} {want}");
+            let before = ma * (p - moved - a.eye).extend(1.0);
+            assert!(
+                (was - before).length() < 1e-9 * before.length(),
+                "{was} {before}"
             );
         }
     }

@@ -215,7 +215,7 @@ fn image_out(name: &str, (w, h): (u32, u32), rgba: &[u8]) {
 }
 
 #[test]
-fn the_wind_blows_the_tips_downwind_as_the_twin_does() {
+fn the_wind_blows_the_tips_downwind_as_the_twin_does_and_says_how_they_moved() {
     use relief::gpu::headless::{self, Offscreen};
     use relief::{World, WorldView};
     let gpu = common::gpu();
@@ -231,8 +231,18 @@ fn the_wind_blows_the_tips_downwind_as_the_twin_does() {
     let size = (96, 54);
     let eye = foot + glam::DVec3::new(0.0, 1.7, 0.0);
     let view = WorldView::look_at(eye, eye + glam::DVec3::new(30.0, -6.0, 10.0), 0.8, size);
+    // With the temporal service each blade also says how far its tip moved since the last
+    // frame, a tenth of a second before (its history is carried along that).
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
-    headless::render_world_image(&gpu, &mut world, &view, size, headless::TILE, None).unwrap();
+    world
+        .set_temporal(&gpu.device, relief::Temporal::INTERACTIVE)
+        .unwrap();
+    let step = 0.1;
+    for time in [0.0, step] {
+        world.set_time(time);
+        headless::render_world_image(&gpu, &mut world, &view, size, headless::TILE, None).unwrap();
+    }
+    let clock = params.clock + step;
     let blades = world
         .grass_blades(&gpu.device, &gpu.queue, 4000)
         .unwrap()
@@ -240,22 +250,36 @@ fn the_wind_blows_the_tips_downwind_as_the_twin_does() {
     assert!(blades.len() > 500, "{} blades", blades.len());
     let v = params.wind.velocity();
     let (mut got, mut want, mut worst) = (0.0f64, 0.0f64, 0.0f32);
+    let (mut moved, mut worst_moved) = (0.0f64, 0.0f32);
     for b in &blades {
         let root = [eye.x + f64::from(b[0]), eye.z + f64::from(b[2])];
-        let twin = relief::grass::wind_tip([v.x, v.y], params.clock, root, b[4]);
+        let twin = relief::grass::wind_tip([v.x, v.y], clock, root, b[4]);
+        let before = relief::grass::wind_tip([v.x, v.y], clock - step, root, b[4]);
         assert!(b[12] > 0.0 && b[13].abs() < 1e-6, "downwind: {b:?}");
         got += f64::from(b[12]);
         want += f64::from(twin[0]);
         worst = worst.max((b[12] - twin[0]).abs() / twin[0]);
+        // The push's change along x (the 12th number) and z (the 16th: none, the wind is west).
+        let change = twin[0] - before[0];
+        moved += f64::from(change.abs());
+        worst_moved = worst_moved.max((b[11] - change).abs());
+        assert!(b[15].abs() < 1e-6, "across the wind: {b:?}");
     }
+    let n = blades.len() as f64;
     eprintln!(
-        "{} blades: mean tip push {:.4} m, the twin's {:.4} m, worst {worst:.2e} relative",
+        "{} blades: mean tip push {:.4} m, the twin's {:.4} m, worst {worst:.2e} relative; \
+         moved {:.2e} m on average in {step} s, worst {worst_moved:.1e} m off the twin",
         blades.len(),
-        got / blades.len() as f64,
-        want / blades.len() as f64
+        got / n,
+        want / n,
+        moved / n,
     );
     assert!((got / want - 1.0).abs() < 0.2, "{got} against {want}");
     assert!(worst < 0.01, "{worst}");
+    // The gusts move the tips by millimetres to centimetres a tenth of a second; the GPU's
+    // change matches the twin's to a hundredth of the mean (f32 phases).
+    assert!(moved / n > 1e-3, "{moved}");
+    assert!(f64::from(worst_moved) < 0.01 * moved / n, "{worst_moved}");
 }
 
 #[test]

@@ -133,9 +133,9 @@ const BEND_PER_SPEED: f32 = 0.03;
 const MAX_BEND: f32 = 0.6;
 
 // Where the wind blows the tip of a blade `height` metres tall rooted at camera-relative `xz`,
-// in the `wind` (the direction it blows towards, x and z; its speed, m/s) with its gust waves
-// at these phases at the eye (turns).
-fn wind_tip(wind: vec4<f32>, gust_phase: vec4<f32>, xz: vec2<f32>, height: f32) -> vec2<f32> {
+// in the `wind` (the direction it blows towards, x and z; its speed, m/s) with its two gust
+// waves at these phases at the eye (turns).
+fn wind_tip(wind: vec4<f32>, gust_phase: vec2<f32>, xz: vec2<f32>, height: f32) -> vec2<f32> {
     let speed = wind.z;
     if speed <= 0.0 {
         return vec2<f32>(0.0);

@@ -17,6 +17,20 @@ struct BladePoint {
     t: f32,
 }
 
+// How much lower a blade `height` tall stands with its tip pushed by `tip`: its height times
+// this.
+fn blade_droop(tip: vec2<f32>, height: f32) -> f32 {
+    return sqrt(max(1.0 - dot(tip, tip) / (height * height), 0.3));
+}
+
+// How far the point `along` of the way up a blade `height` tall moved since the last frame, the
+// wind's push on its tip now `tip` and `moved` more than then: camera-relative metres, for the
+// temporal service (the eye's own move is the reprojection's). What `blade_point` moves.
+fn blade_motion(height: f32, tip: vec2<f32>, moved: vec2<f32>, along: f32) -> vec3<f32> {
+    let sink = blade_droop(tip, height) - blade_droop(tip - moved, height);
+    return vec3<f32>(moved.x * along * along, height * along * sink, moved.y * along * along);
+}
+
 // Vertex `vi` of the strip of blade (`a`, `b`, `tip`: its first, second and fourth vec4s) drawn
 // in `segments` segments: vertices 2k and 2k + 1 the two edges at k / segments of the way up,
 // vertex 2 segments the tip. Fewer segments sample the same curve.
@@ -35,7 +49,7 @@ fn blade_point(a: vec4<f32>, b: vec4<f32>, tip: vec2<f32>, segments: u32, vi: u3
     let bend = lean * pow(t, k);
     // The wind pushes the blade over more toward its tip; a bent blade stands lower.
     let pushed = tip * t * t;
-    let droop = sqrt(max(1.0 - dot(tip, tip) / (height * height), 0.3));
+    let droop = blade_droop(tip, height);
     var out: BladePoint;
     out.p = root + vec3<f32>(
         facing.x * bend + across.x * side * width + pushed.x,

@@ -75,6 +75,6 @@ fn scatter_reference(@builtin(global_invocation_id) id: vec3<u32>) {
     ref_blades[4u * at] = vec4<f32>(root, b.facing);
     ref_blades[4u * at + 1u] = vec4<f32>(b.height, b.lean, b.curve, b.width);
     ref_blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
-    let tip = wind_tip(rf.wind, rf.gust_phase, xz, b.height);
+    let tip = wind_tip(rf.wind, rf.gust_phase.xy, xz, b.height);
     ref_blades[4u * at + 3u] = vec4<f32>(tip, f32(BLADE_SEGMENTS), 0.0);
 }

@@ -26,15 +26,18 @@ struct GrassFrame {
     peer: u32,
     _pad2: u32,
     // The wind: the direction it blows towards (x, z), its speed (m/s); the gust waves' phases
-    // at the eye, in turns (src/grass.rs: GUSTS).
+    // at the eye, in turns (src/grass.rs: GUSTS), at this frame's clock (x, y) and at the last
+    // frame's (z, w).
     wind: vec4<f32>,
     gust_phase: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> gf: GrassFrame;
 // Per blade: root (camera-relative, metres) and facing; height, lean, curve, width; shade,
-// the sun's and the sky's occlusion at the root, and 0; the wind's push on the tip (x, z), the
-// segments it is drawn in, 0.
+// the sun's and the sky's occlusion at the root, and how far the wind's push on the tip moved
+// since the last frame along x; the wind's push on the tip (x, z), the segments it is drawn in,
+// and how far the push moved along z (the temporal service's motion, grass_blade.wgsl's
+// `blade_motion`).
 @group(1) @binding(1) var<storage, read_write> blades: array<vec4<f32>>;
 // Blades considered (cells the square holds within the distance), kept, appended, drawn (the
 // appended clamped to the capacity by `finish`), and the triangles of those appended.
@@ -246,10 +249,12 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
     let occl = occlusion(r, s.x, ground.light.x, ground.light.y);
     blades[4u * at] = vec4<f32>(ground.rel, b.facing);
     blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, width);
-    blades[4u * at + 2u] = vec4<f32>(b.shade, occl, 0.0);
+    let tip = wind_tip(gf.wind, gf.gust_phase.xy, xz, height);
+    let moved = tip - wind_tip(gf.wind, gf.gust_phase.zw, xz, height);
+    blades[4u * at + 2u] = vec4<f32>(b.shade, occl, moved.x);
     let segments = select(blade_segments(ground.rel, height), BLADE_SEGMENTS, peer);
     atomicAdd(&counts[4], 2u * segments - 1u);
-    blades[4u * at + 3u] = vec4<f32>(wind_tip(gf.wind, gf.gust_phase, xz, height), f32(segments), 0.0);
+    blades[4u * at + 3u] = vec4<f32>(tip, f32(segments), moved.y);
     return true;
 }
 

@@ -16,6 +16,9 @@
 // fourth: how many `blades` holds).
 @group(2) @binding(0) var<storage, read> blades: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read> blade_counts: array<u32, 4>;
+// How far each pixel's point moved since the last frame (camera-relative metres; w 1 where it
+// is a blade's), for the temporal service: only the wind moves a blade, and nothing else moves.
+@group(1) @binding(11) var motion_out: texture_storage_2d<rgba16float, write>;
 
 // The grass's layer in a visibility-buffer id: a blade's number times 16, plus its
 // triangle's number in the strip times 2, plus 1 for the second triangle of its cut to the
@@ -65,12 +68,15 @@ fn pack_look(look: vec3<f32>) -> f32 {
 }
 
 // Each pixel a blade kept, a thread a pixel: its triangle set up again from the id, its normal
-// and height up the blade interpolated at the pixel's centre, its look packed.
+// and height up the blade interpolated at the pixel's centre, its look packed, its motion; every
+// other pixel still.
 @compute @workgroup_size(8, 8)
 fn resolve_blades(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= ras.size.x || id.y >= ras.size.y {
         return;
     }
+    let px = vec2<i32>(id.xy);
+    textureStore(motion_out, px, vec4<f32>(0.0));
     let kept = raster_ids[id.y * ras.size.x + id.x];
     if kept.y == 0u || (kept.x >> LAYER_SHIFT) != LAYER_GRASS {
         return;
@@ -94,7 +100,11 @@ fn resolve_blades(@builtin(global_invocation_id) id: vec3<u32>) {
     let e = pixel_edges(t, x, y);
     let q = e / vec3<f32>(t.v0.clip.w, t.v1.clip.w, t.v2.clip.w);
     let w3 = q / (q.x + q.y + q.z);
-    let px = vec2<i32>(id.xy);
-    textureStore(surface_out, px, w3.x * t.v0.surface + w3.y * t.v1.surface + w3.z * t.v2.surface);
-    textureStore(valley_out, px, vec4<f32>(pack_look(blades[4u * i + 2u].xyz), 0.0, 0.0, 0.0));
+    let surface = w3.x * t.v0.surface + w3.y * t.v1.surface + w3.z * t.v2.surface;
+    textureStore(surface_out, px, surface);
+    let look = blades[4u * i + 2u];
+    textureStore(valley_out, px, vec4<f32>(pack_look(look.xyz), 0.0, 0.0, 0.0));
+    let tip = blades[4u * i + 3u];
+    let moved = blade_motion(blades[4u * i + 1u].x, tip.xy, vec2<f32>(look.w, tip.w), surface.w);
+    textureStore(motion_out, px, vec4<f32>(moved, 1.0));
 }

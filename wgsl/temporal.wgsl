@@ -4,10 +4,11 @@
 // - fresh: the frame is shown as drawn, and starts the history;
 // - still (the same view as the last frame): each pixel's running mean of up to `cap` frames,
 //   so a still view converges to the mean of its jittered frames;
-// - moved: each pixel's point is carried to where the last frame saw it (`reproject`); the
-//   history there is read bilinearly from the texels whose depth agrees with the point's
-//   (none: a disocclusion, the frame is shown as drawn), clamped into the range of this
-//   frame's 3x3 neighbourhood, and blended in.
+// - moved: each pixel's point is carried to where the last frame saw it (`reproject`, and
+//   back along its own motion where it moved: a blade of grass in the wind); the history there
+//   is read bilinearly from the texels whose depth agrees with the point's (none: a
+//   disocclusion, the frame is shown as drawn), clamped into the range of this frame's 3x3
+//   neighbourhood, and blended in. A point that moved in a still view is carried so too.
 //
 // The history holds premultiplied linear colour and coverage (as the shaded image does) and,
 // beside it, the nearest and farthest clip w of each pixel's 3x3 neighbourhood and the frames
@@ -17,8 +18,11 @@ struct TemporalUniforms {
     // The last frame's clip space (unjittered) from this frame's normalised device coordinates
     // (unjittered), both camera-relative.
     reproject: mat4x4<f32>,
+    // The last frame's clip space (unjittered) from a camera-relative point: what carries a
+    // point's own motion back.
+    last: mat4x4<f32>,
     // x, y: clip w from depth d is y / (d + x); z: how far the history's w may differ from the
-    // point's, as a fraction of it; w unused.
+    // point's, as a fraction of it; w: 1 where `current_motion` holds this frame's motion.
     depth: vec4<f32>,
     size: vec2<u32>,
     // The most frames a pixel's mean holds.
@@ -34,6 +38,9 @@ struct TemporalUniforms {
 @group(0) @binding(4) var history_info: texture_2d<f32>;
 @group(0) @binding(5) var out_color: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(6) var out_info: texture_storage_2d<rgba32float, write>;
+// How far each pixel's point moved since the last frame besides the eye's move (camera-relative
+// metres), where `t.depth.w` says the frame wrote it.
+@group(0) @binding(7) var current_motion: texture_2d<f32>;
 
 const STILL: u32 = 1u;
 const MOVED: u32 = 2u;
@@ -157,15 +164,22 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     let w = t.depth.y / (d + t.depth.x);
     var color = now;
     var frames = 1.0;
-    if t.mode == STILL {
+    var motion = vec3<f32>(0.0);
+    if t.depth.w != 0.0 {
+        motion = textureLoad(current_motion, px, 0).xyz;
+    }
+    let moving = any(motion != vec3<f32>(0.0));
+    if t.mode == STILL && !moving {
         let info = textureLoad(history_info, px, 0);
         frames = min(info.z + 1.0, f32(t.cap));
         color = mix(textureLoad(history, px, 0), now, 1.0 / frames);
-    } else if t.mode == MOVED {
+    } else if t.mode == MOVED || t.mode == STILL {
         let size = vec2<f32>(t.size);
         let centre = vec2<f32>(id.xy) + 0.5;
         let ndc = vec2<f32>(centre.x / size.x * 2.0 - 1.0, 1.0 - centre.y / size.y * 2.0);
-        let clip = t.reproject * vec4<f32>(ndc, d, 1.0);
+        // Where the point was: (ndc, d, 1) is its clip position over its clip w, and its own
+        // motion is taken off in the last frame's clip space over the same w.
+        let clip = t.reproject * vec4<f32>(ndc, d, 1.0) - t.last * vec4<f32>(motion / w, 0.0);
         if clip.w > 0.0 {
             let then = clip.xy / clip.w;
             let at = vec2<f32>(then.x * 0.5 + 0.5, 0.5 - then.y * 0.5) * size - 0.5;

@@ -221,17 +221,18 @@ impl GrassPass {
     /// Records the scatter of the blades around `eye` (world metres) over the landscape of
     /// `seed` for an image `pixels_high` pixels high (each blade's level of detail follows its
     /// length on screen), with the world's bind group `world` at 0 (its uniforms already written), the
-    /// tips blown by the air's `velocity` (m/s, x and z) at `clock` seconds, timed as
+    /// tips blown by the air's `velocity` (m/s, x and z) at `clock` seconds (and how far they
+    /// moved since the last frame's clock `before`, for the temporal service), timed as
     /// [`super::timing::Slot::Grass`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (world, seed, eye, pixels_high): (&wgpu::BindGroup, u32, glam::DVec3, u32),
-        (velocity, clock): (glam::DVec2, f64),
+        (velocity, clock, before): (glam::DVec2, f64, f64),
         timer: Option<&super::timing::GpuTimer>,
     ) {
-        let (wind, gust_phase) = wind_uniforms(velocity, clock, eye);
+        let (wind, gust_phase) = wind_uniforms(velocity, (clock, before), eye);
         let s = self.grass.cell();
         let eye_cell = self.grass.cell_at(eye.x, eye.z);
         let frame = GrassFrame {
@@ -377,7 +378,7 @@ impl GrassPass {
 /// seconds (turns).
 pub(crate) fn wind_uniforms(
     velocity: glam::DVec2,
-    clock: f64,
+    (clock, before): (f64, f64),
     eye: glam::DVec3,
 ) -> ([f32; 4], [f32; 4]) {
     let speed = velocity.length();
@@ -387,10 +388,15 @@ pub(crate) fn wind_uniforms(
         glam::DVec2::ZERO
     };
     let along = eye.x * dir.x + eye.z * dir.y;
-    let phase = |i| crate::grass::gust_phase(i, along, clock, speed) as f32;
+    let phase = |i, clock| crate::grass::gust_phase(i, along, clock, speed) as f32;
     (
         [dir.x as f32, dir.y as f32, speed as f32, 0.0],
-        [phase(0), phase(1), 0.0, 0.0],
+        [
+            phase(0, clock),
+            phase(1, clock),
+            phase(0, before),
+            phase(1, before),
+        ],
     )
 }
 

@@ -68,7 +68,7 @@ impl GrassReference {
         let distance = REACH * grass.distance;
         let side = 2 * (f64::from(distance) / s).ceil() as u32 + 3;
         let (wind, gust_phase) =
-            super::grass::wind_uniforms(params.wind.velocity(), params.clock, eye);
+            super::grass::wind_uniforms(params.wind.velocity(), (params.clock, params.clock), eye);
         let frame = |capacity| ReferenceFrame {
             g: GrassUniforms::new(&grass, params.land.seed, eye_cell),
             eye_in_cell: [

@@ -61,6 +61,9 @@ struct RasterUniforms {
 pub(crate) const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// ... and the valley depth (32-bit: WebGPU's storage textures have no 16-bit red format).
 pub(crate) const VALLEY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Per pixel: how far its point moved since the last frame, camera-relative metres, and 1 where
+/// a blade of grass moved it (`resolve_blades`), for the temporal service.
+pub(crate) const MOTION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The side of the square block of cells a workgroup of `raster_cells` draws, a thread a
 /// cell (`raster.wgsl`'s `BLOCK`).
@@ -152,7 +155,7 @@ fn bindings(ids: bool) -> [&'static [u32]; 4] {
         &[0, 1, 2, 3, 4, 5, 6, 7, 8, 10],
         &[0, 1, 2, 3, 4, 5, 6, 7],
         if ids { &[0, 9, 10] } else { &[0, 2, 10] },
-        &[0, 1, 3, 4, 9],
+        &[0, 1, 3, 4, 9, 11],
     ]
 }
 
@@ -243,6 +246,7 @@ impl ComputeRaster {
             1 | 9 => storage(binding, true),
             3 => super::storage_entry(3, SURFACE_FORMAT),
             4 => super::storage_entry(4, VALLEY_FORMAT),
+            11 => super::storage_entry(11, MOTION_FORMAT),
             _ => storage(binding, false),
         };
         let layouts = bindings(ids).map(|bindings| {
@@ -370,6 +374,12 @@ impl ComputeRaster {
         self.blade_pipelines.is_some()
     }
 
+    /// Whether the next [`ComputeRaster::encode`] draws blades (bound by
+    /// [`ComputeRaster::bind_blades`]), and so writes their motion.
+    pub(crate) fn blades_bound(&self) -> bool {
+        self.blades_group.is_some()
+    }
+
     /// Binds the grass's blades for the next [`ComputeRaster::encode`] (none: the bind group
     /// is dropped).
     pub(crate) fn bind_blades(&mut self, device: &wgpu::Device, blades: Option<Blades<'_>>) {
@@ -411,13 +421,14 @@ impl ComputeRaster {
     }
 
     /// Binds the world's patch `instances`, the depth buffer of `size` and the attribute
-    /// images `surface` ([`SURFACE_FORMAT`]) and `valley` ([`VALLEY_FORMAT`]; 1x1 stand-ins
-    /// where there are no attributes), each made with storage use.
+    /// images `surface` ([`SURFACE_FORMAT`]), `valley` ([`VALLEY_FORMAT`]) and `motion`
+    /// ([`MOTION_FORMAT`], the blades' motion), 1x1 stand-ins where there are none, each made
+    /// with storage use.
     pub(crate) fn bind(
         &mut self,
         device: &wgpu::Device,
         (instances, size): (&wgpu::Buffer, (u32, u32)),
-        (surface, valley): (&wgpu::TextureView, &wgpu::TextureView),
+        (surface, valley, motion): (&wgpu::TextureView, &wgpu::TextureView, &wgpu::TextureView),
     ) {
         self.depth(device, size);
         let Some((_, _, depth, hiz)) = &self.depth else {
@@ -433,6 +444,7 @@ impl ComputeRaster {
             2 | 9 => depth.as_entire_binding(),
             3 => wgpu::BindingResource::TextureView(surface),
             4 => wgpu::BindingResource::TextureView(valley),
+            11 => wgpu::BindingResource::TextureView(motion),
             5 => self.big.as_entire_binding(),
             6 => self.big_count.as_entire_binding(),
             7 => self.big_tiles.as_entire_binding(),

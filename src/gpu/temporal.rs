@@ -23,6 +23,7 @@ pub const DEPTH_TOLERANCE: f32 = 0.05;
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct TemporalUniforms {
     reproject: [[f32; 4]; 4],
+    last: [[f32; 4]; 4],
     depth: [f32; 4],
     size: [u32; 2],
     cap: u32,
@@ -31,11 +32,18 @@ pub(crate) struct TemporalUniforms {
 
 impl TemporalUniforms {
     /// The resolve of `step` for an image of `size` whose depth turns into clip w as
-    /// `depth` says (`VisUniforms::depth`), its means holding up to `cap` frames.
-    pub fn new(step: &Step, depth: [f32; 2], size: (u32, u32), cap: u32) -> Self {
+    /// `depth` says (`VisUniforms::depth`), its means holding up to `cap` frames; `moved`: the
+    /// frame wrote its points' own motion (the blades' in the wind) into the motion image.
+    pub fn new(step: &Step, depth: [f32; 2], size: (u32, u32), (cap, moved): (u32, bool)) -> Self {
         Self {
             reproject: step.reproject.as_mat4().to_cols_array_2d(),
-            depth: [depth[0], depth[1], DEPTH_TOLERANCE, 0.0],
+            last: step.last.as_mat4().to_cols_array_2d(),
+            depth: [
+                depth[0],
+                depth[1],
+                DEPTH_TOLERANCE,
+                f32::from(u8::from(moved)),
+            ],
             size: [size.0, size.1],
             cap: cap.max(1),
             mode: step.mode as u32,
@@ -49,6 +57,10 @@ fn the_histories_take_what_the_memory_count_says() {
     let per_pixel = 2 * (super::texel_bytes(COLOR_FORMAT) + super::texel_bytes(INFO_FORMAT));
     assert_eq!(crate::temporal::history_bytes((3, 2)), 6 * per_pixel);
 }
+
+/// Where a frame's points did not move since the last but with the eye: a texel of
+/// [`crate::gpu::raster::MOTION_FORMAT`], never written.
+const STILL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The two histories of one image size.
 struct Histories {
@@ -64,6 +76,8 @@ pub(crate) struct Resolve {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     uniforms: wgpu::Buffer,
+    /// The motion image bound where a frame brings none (its uniforms say to read none).
+    still: wgpu::TextureView,
     histories: Option<Histories>,
     /// The history the last resolve wrote.
     written: usize,
@@ -82,6 +96,7 @@ impl Resolve {
                 super::texture_entry(4, c, false),
                 super::storage_entry(5, COLOR_FORMAT),
                 super::storage_entry(6, INFO_FORMAT),
+                super::texture_entry(7, c, false),
             ],
         });
         let module = super::shader::module(
@@ -100,6 +115,14 @@ impl Resolve {
             pipeline,
             layout,
             uniforms: super::uniform_buffer::<TemporalUniforms>(device, "relief:temporal:uniforms"),
+            still: super::texture_2d(
+                device,
+                "relief:temporal:still",
+                (1, 1),
+                STILL_FORMAT,
+                wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default()),
             histories: None,
             written: 0,
         }
@@ -111,14 +134,19 @@ impl Resolve {
         crate::temporal::history_bytes(size)
     }
 
-    /// Makes the histories for frames of `size` read from `current` (colour) and
-    /// `current_depth`: the histories of `size` are kept where they exist, and their bind
-    /// groups made again (the frame's images are new).
+    /// Makes the histories for frames of `size` read from `current` (colour),
+    /// `current_depth` and, where the frame writes its points' own motion,
+    /// `current_motion` ([`crate::gpu::raster::MOTION_FORMAT`]): the histories of `size` are
+    /// kept where they exist, and their bind groups made again (the frame's images are new).
     pub fn bind(
         &mut self,
         device: &wgpu::Device,
         size: (u32, u32),
-        (current, current_depth): (&wgpu::TextureView, &wgpu::TextureView),
+        (current, current_depth, current_motion): (
+            &wgpu::TextureView,
+            &wgpu::TextureView,
+            Option<&wgpu::TextureView>,
+        ),
     ) {
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let make = |label, format| {
@@ -148,6 +176,7 @@ impl Resolve {
                     entry(4, TextureView(&info[1 - i])),
                     entry(5, TextureView(&color[i])),
                     entry(6, TextureView(&info[i])),
+                    entry(7, TextureView(current_motion.unwrap_or(&self.still))),
                 ],
             })
         });

@@ -236,15 +236,16 @@ pub fn stability(
     if on(Axis::Grass) {
         let options = sweeps.grass.clone();
         println!(
-            "grass under a moving eye: walks of {:?} m/s over the meadow at 1.7 m{}, {} frame-to-frame changes each (after {} filling the history), {}x{}, against the grass reference (9x9 samples a pixel)",
+            "grass under a moving eye: walks of {:?} m/s over the meadow at 1.7 m{}, standing there in winds of {:?} m/s, {} frame-to-frame changes each (after {} filling the history), {}x{}, against the grass reference (9x9 samples a pixel)",
             options.speeds,
             if options.flight { " and the fly-through" } else { "" },
+            options.winds,
             options.frames,
             options.warm,
             options.size.0,
             options.size.1,
         );
-        restart(options.speeds.len() + usize::from(options.flight));
+        restart(options.speeds.len() + usize::from(options.flight) + options.winds.len());
         let rows = stability::grass::grass(&gpu, &world, &options, |done, _| {
             bar.set_position(done as u64)
         })?;

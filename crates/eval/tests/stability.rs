@@ -484,17 +484,27 @@ fn scrolled_far_the_blogs_terrain_turns_to_stripes_and_reliefs_tile_holds_to_its
 #[test]
 #[ignore = "slow: a stability sweep (.ci/test runs it)"]
 fn walking_over_the_meadow_the_grass_flickers_no_more_than_its_reference_plus_a_margin() {
-    use relief_eval::stability::grass::{grass, grass_table, GrassOptions};
+    use relief_eval::stability::grass::{grass, grass_table, GrassOptions, GrassPath};
     let gpu = common::gpu();
     let options = GrassOptions::quick();
     let rows = grass(&gpu, &relief::WorldParams::default(), &options, |_, _| {}).unwrap();
     eprintln!("{}", grass_table(&rows));
+    assert_eq!(rows.len(), 2, "a walk and a gale: {rows:?}");
     for r in &rows {
         let at = format!("grass axis, {}", r.path.name());
         // The walk sees blades, and both pictures change as the eye moves.
         assert!(r.blades > 1000, "{at}: {r:?}");
         let [frame, history, truth] = r.flicker();
         assert!(frame > 0.0 && history > 0.0 && truth > 0.0, "{at}: {r:?}");
+        if let GrassPath::Wind(_) = r.path {
+            // Standing in a gale, only the blades move: the reference changes by a third of
+            // what the walk's does (0.015). The history, carried along each blade's motion, is
+            // as near the reference as one frame alone (0.128 against 0.141 after two frames).
+            assert!(truth > 0.005, "{at}: {r:?}");
+            let [alone, with] = r.mean_flip();
+            assert!(with < alone + 0.01, "{at}: {r:?}");
+            continue;
+        }
         // At 96x54 a pixel holds dozens of blades: one sample a pixel flickers more than the
         // 9x9 reference (here by about the reference's own change: 0.065 against 0.059). The
         // goal (0.005, at 480x270) is the stability run's, met there with the history; here,

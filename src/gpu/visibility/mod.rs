@@ -179,6 +179,9 @@ pub struct Visibility {
     shown: usize,
     /// Clip w from depth (`VisUniforms::depth`) of the last frame.
     depth_w: [f32; 2],
+    /// Whether the compute raster's blades write their motion for the temporal service (the
+    /// world has grass): its image is made only then.
+    blade_motion: bool,
 }
 
 impl Visibility {
@@ -360,6 +363,7 @@ impl Visibility {
             encode_srgb: !targets.color_format.is_srgb(),
             resolve: None,
             shown: 0,
+            blade_motion: false,
             depth_w: [0.0; 2],
         }
     }
@@ -375,6 +379,27 @@ impl Visibility {
         self.shown = 0;
     }
 
+    /// Whether the frame has blades of grass, whose motion in the wind the temporal service
+    /// carries its history along (where the compute raster draws them): the motion image is
+    /// made with the next frame's images, or dropped.
+    pub(crate) fn set_blade_motion(&mut self, on: bool) {
+        if on != self.blade_motion {
+            self.blade_motion = on;
+            self.images = None;
+        }
+    }
+
+    /// Whether the blades' motion image is kept: blades in the compute raster, the temporal
+    /// service on.
+    fn keeps_motion(&self) -> bool {
+        self.blade_motion
+            && self.resolve.is_some()
+            && self
+                .compute_raster
+                .as_ref()
+                .is_some_and(ComputeRaster::draws_blades)
+    }
+
     /// Records the temporal service's resolve of the frame [`Visibility::encode`] shaded,
     /// as `step` plans, into the history the frame then shows (nothing where the service is
     /// off).
@@ -385,10 +410,15 @@ impl Visibility {
         (step, cap): (&crate::temporal::Step, u32),
         timer: Option<&GpuTimer>,
     ) {
+        let blades_moved = self.keeps_motion()
+            && self
+                .compute_raster
+                .as_ref()
+                .is_some_and(ComputeRaster::blades_bound);
         let (Some(resolve), Some(images)) = (&mut self.resolve, &self.images) else {
             return;
         };
-        let u = TemporalUniforms::new(step, self.depth_w, images.size, cap);
+        let u = TemporalUniforms::new(step, self.depth_w, images.size, (cap, blades_moved));
         resolve.encode(queue, encoder, &u, timer);
         self.shown = 1 + resolve.written();
     }
@@ -465,6 +495,9 @@ impl Visibility {
                 VALLEY_FORMAT
             };
             per_pixel += samples * (bytes(SURFACE_FORMAT) + bytes(valley));
+            if self.keeps_motion() {
+                per_pixel += bytes(raster::MOTION_FORMAT);
+            }
         }
         let history = if self.resolve.is_some() {
             Resolve::bytes(size)
@@ -494,18 +527,31 @@ impl Visibility {
             DEPTH_FORMAT,
         );
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let mut motion = None;
+        let keeps_motion = self.keeps_motion();
         let (surface, valley) = if let Some(raster) = &mut self.compute_raster {
             // The compute raster stores the attributes (after its raster with ids, or by a
-            // second raster).
-            let [surface, valley] = [
-                ("relief:visibility:surface", raster::SURFACE_FORMAT),
-                ("relief:visibility:valley", raster::VALLEY_FORMAT),
+            // second raster), and where its blades are accumulated their motion.
+            let motion_size = if keeps_motion { attr_size } else { (1, 1) };
+            let [surface, valley, moved] = [
+                (
+                    "relief:visibility:surface",
+                    raster::SURFACE_FORMAT,
+                    attr_size,
+                ),
+                ("relief:visibility:valley", raster::VALLEY_FORMAT, attr_size),
+                (
+                    "relief:visibility:motion",
+                    raster::MOTION_FORMAT,
+                    motion_size,
+                ),
             ]
-            .map(|(label, format)| {
-                super::texture_2d(device, label, attr_size, format, usage)
+            .map(|(label, format, size)| {
+                super::texture_2d(device, label, size, format, usage)
                     .create_view(&Default::default())
             });
-            raster.bind(device, (world.instances, size), (&surface, &valley));
+            raster.bind(device, (world.instances, size), (&surface, &valley, &moved));
+            motion = keeps_motion.then_some(moved);
             (surface, valley)
         } else {
             let surface = ms_texture(
@@ -566,7 +612,7 @@ impl Visibility {
         });
         let mut shown = vec![shaded.clone()];
         if let Some(resolve) = &mut self.resolve {
-            resolve.bind(device, size, (&shaded, &shaded_depth));
+            resolve.bind(device, size, (&shaded, &shaded_depth, motion.as_ref()));
             shown.extend(resolve.colors().into_iter().flatten().cloned());
         }
         let composite_groups = shown

@@ -114,7 +114,15 @@ impl World {
         view: &WorldView,
         timer: Option<&GpuTimer>,
     ) {
-        let wind = (self.params.wind.velocity(), self.clock());
+        // The last frame's clock, where the temporal service keeps one: the blades' motion
+        // since then is what it carries their history along.
+        let clock = self.clock();
+        let before = self.history.last_clock().unwrap_or(clock);
+        let wind = (self.params.wind.velocity(), clock, before);
+        let in_compute = self.grass.is_some() && self.grass_in_compute();
+        if let Some(vis) = &mut self.visibility {
+            vis.set_blade_motion(in_compute);
+        }
         let Some(grass) = &mut self.grass else {
             return;
         };

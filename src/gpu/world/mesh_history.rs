@@ -255,7 +255,7 @@ impl MeshHistory {
         self.resolve.bind(
             device,
             size,
-            (resolved.as_ref().unwrap_or(&color), &depth_copy),
+            (resolved.as_ref().unwrap_or(&color), &depth_copy, None),
         );
         use wgpu::BindingResource::TextureView;
         let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
@@ -372,7 +372,7 @@ impl MeshHistory {
         let Some(images) = &self.images else {
             return;
         };
-        let u = TemporalUniforms::new(step, self.depth_w, images.size, cap);
+        let u = TemporalUniforms::new(step, self.depth_w, images.size, (cap, false));
         self.resolve.encode(queue, encoder, &u, timer);
         self.resolved = true;
     }

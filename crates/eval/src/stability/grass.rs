@@ -15,9 +15,11 @@
 //!
 //! Paths: the meadow of the grass's views ([`crate::bench_grass::grass_views`]) walked at 1.7 m
 //! above the ground at each speed, looking as the meadow view looks, and the fly-through path
-//! (`--camera path`, 150 m over the highest ground: grass hardly in view). Each at 60 frames a
-//! second, the default method, the clock held (the wind's bend in the frame and the reference
-//! alike, still).
+//! (`--camera path`, 150 m over the highest ground: grass hardly in view), each with the clock
+//! held (the wind's bend in the frame and the reference alike, still); and standing on the
+//! meadow in a gale ([`GALE`]) with the clock running, where only the blades move: what the
+//! temporal service carries along each blade's own motion. Each at 60 frames a second, the
+//! default method.
 
 use crate::metrics::{image_error, median, rgb};
 use glam::DVec3;
@@ -31,6 +33,10 @@ use std::fmt::Write as _;
 /// Frames a second the paths are drawn at.
 pub const FPS: f64 = 60.0;
 
+/// The wind of the standing path, metres a second: a gale, whose gusts move a blade's tip a
+/// few pixels a frame near the eye (the default wind, 4 m/s, moves it less than a pixel).
+pub const GALE: f64 = 16.0;
+
 /// What the grass axis measures with.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GrassOptions {
@@ -38,6 +44,8 @@ pub struct GrassOptions {
     pub speeds: Vec<f64>,
     /// Whether the fly-through path is measured too.
     pub flight: bool,
+    /// Winds blowing over the meadow while the eye stands still, metres a second.
+    pub winds: Vec<f64>,
     /// Frame-to-frame changes measured on each path (one frame more is drawn).
     pub frames: u32,
     /// Frames the history fills over before the first measured one.
@@ -49,12 +57,13 @@ pub struct GrassOptions {
 }
 
 impl GrassOptions {
-    /// The full sweep: walks of 1.5 and 10 m/s and the fly-through, 12 changes each at 480x270,
-    /// the grass's defaults.
+    /// The full sweep: walks of 1.5 and 10 m/s, the fly-through and standing in a gale, 12
+    /// changes each at 480x270, the grass's defaults.
     pub fn full() -> Self {
         Self {
             speeds: vec![1.5, 10.0],
             flight: true,
+            winds: vec![GALE],
             frames: 12,
             warm: relief::temporal::INTERACTIVE_FRAMES,
             size: (480, 270),
@@ -62,12 +71,13 @@ impl GrassOptions {
         }
     }
 
-    /// `--quick`: a 10 m/s walk, two changes at 96x54, blades to 20 m (the reference's
+    /// `--quick`: a 10 m/s walk and standing in a gale, two changes each at 96x54, blades to 20 m (the reference's
     /// to 40 m): small enough for a software GPU.
     pub fn quick() -> Self {
         Self {
             speeds: vec![10.0],
             flight: false,
+            winds: vec![GALE],
             frames: 2,
             warm: 2,
             size: (96, 54),
@@ -83,6 +93,9 @@ pub enum GrassPath {
     Walk(f64),
     /// The fly-through path.
     Flight,
+    /// Standing on the meadow at 1.7 m while a wind of this many metres a second blows
+    /// (the clock running at the frames' rate): the blades move and the eye does not.
+    Wind(f64),
 }
 
 impl GrassPath {
@@ -91,6 +104,7 @@ impl GrassPath {
         match self {
             GrassPath::Walk(speed) => format!("walk {speed} m/s"),
             GrassPath::Flight => "fly-through".to_owned(),
+            GrassPath::Wind(speed) => format!("wind {speed} m/s"),
         }
     }
 }
@@ -152,6 +166,7 @@ fn view_at(
 ) -> WorldView {
     let t = f64::from(k) / FPS;
     match path {
+        GrassPath::Wind(_) => *meadow,
         GrassPath::Walk(speed) => {
             let f = meadow.forward.as_dvec3();
             let heading = DVec3::new(f.x, 0.0, f.z).normalize();
@@ -186,20 +201,35 @@ pub fn grass(
         .iter()
         .map(|&s| GrassPath::Walk(s))
         .chain(options.flight.then_some(GrassPath::Flight))
+        .chain(options.winds.iter().map(|&s| GrassPath::Wind(s)))
         .collect();
     let size = options.size;
     let target = Offscreen::new(&gpu.device, size.0, size.1, 1)?;
     let mut rows = Vec::new();
-    let world = |frames| -> Result<World> {
+    let world = |frames, p: WorldParams| -> Result<World> {
         let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p)?;
         world.set_method(&gpu.device, crate::bench_temporal::method())?;
         world.set_temporal(&gpu.device, relief::Temporal { frames })?;
         Ok(world)
     };
     for (done, &path) in paths.iter().enumerate() {
-        let mut worlds = [world(1)?, world(relief::temporal::INTERACTIVE_FRAMES)?];
+        // The clock runs where the wind blows, and holds elsewhere.
+        let mut p = p;
+        let clock = |k: u32| match path {
+            GrassPath::Wind(_) => f64::from(k) / FPS,
+            _ => 0.0,
+        };
+        if let GrassPath::Wind(speed) = path {
+            p.wind.speed = speed as f32;
+            p.validate()?;
+        }
+        let mut worlds = [
+            world(1, p)?,
+            world(relief::temporal::INTERACTIVE_FRAMES, p)?,
+        ];
         for k in 0..options.warm {
             let view = view_at(&p, (path, &meadow), k, size);
+            worlds[1].set_time(clock(k));
             target.accumulate_frame(gpu, &mut worlds[1], &view)?;
         }
         let mut row = GrassRow {
@@ -212,8 +242,21 @@ pub fn grass(
         let mut last: Option<[Vec<u8>; 3]> = None;
         for k in options.warm..=options.warm + options.frames {
             let view = view_at(&p, (path, &meadow), k, size);
-            let truth =
-                render_world_rays(gpu, &p, &Shading::default(), &view, Method::Reference, None)?;
+            let at = WorldParams {
+                clock: p.clock + clock(k),
+                ..p
+            };
+            let truth = render_world_rays(
+                gpu,
+                &at,
+                &Shading::default(),
+                &view,
+                Method::Reference,
+                None,
+            )?;
+            for world in &mut worlds {
+                world.set_time(clock(k));
+            }
             if k == options.warm {
                 row.blades = truth.blades;
             }
