@@ -43,9 +43,12 @@ struct GrassFrame {
 // appended clamped to the capacity by `finish`), and the triangles of those appended.
 @group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 8>;
 // The indirect draw's arguments: vertices, instances, first vertex, first instance; then the
-// compute raster's indirect dispatch of a thread a triangle, 8 a blade (raster_blades.wgsl):
-// workgroups of 128 in x, 1, 1, and 0.
+// compute raster's indirect dispatch of a thread a triangle of `triangles`
+// (raster_blades.wgsl): workgroups of 128 in x, 1, 1, and 0.
 @group(1) @binding(3) var<storage, read_write> draw_args: array<u32, 8>;
+// The compute raster's list of the kept blades' triangles: the blade's number times 8 plus the
+// triangle's in its strip. A triangle past the list's end is not drawn.
+@group(1) @binding(4) var<storage, read_write> triangles: array<u32>;
 
 // Vertices of a blade (grass_draw.wgsl): a strip of four segments and a tip.
 const BLADE_VERTICES: u32 = 9u;
@@ -163,10 +166,24 @@ fn pixels_per_metre(cw: f32) -> f32 {
     return 0.5 * gf.pixels_high * focal / cw;
 }
 
-// Whether the workgroup's block can show a blade, and its counts of cells considered and blades
-// kept, added to `counts` once a workgroup.
+// Whether the workgroup's block can show a blade; its counts of cells considered, blades kept
+// and their triangles; and where its blades and triangles begin in `blades` and `triangles`:
+// one global atomic a workgroup for each (an atomic a blade cost the scatter more than the list
+// of triangles saves the raster).
 var<workgroup> block_visible: u32;
-var<workgroup> block_counts: array<atomic<u32>, 2>;
+var<workgroup> block_counts: array<atomic<u32>, 3>;
+var<workgroup> block_base: vec2<u32>;
+
+// A cell's blade where it is kept: as the draw reads it (the layout of `blades`), and its
+// triangles.
+struct Kept {
+    kept: bool,
+    blade: array<vec4<f32>, 4>,
+    triangles: u32,
+}
+
+// A triangle of the list whose blade was not stored (past the capacity): skipped.
+const NO_TRIANGLE: u32 = 0xffffffffu;
 
 @compute @workgroup_size(8, 8)
 fn scatter(
@@ -187,44 +204,76 @@ fn scatter(
     if in_square && length(centre) <= gf.distance {
         atomicAdd(&block_counts[0], 1u);
     }
-    if visible && in_square && scatter_cell(rel_cell) {
-        atomicAdd(&block_counts[1], 1u);
+    var k = Kept();
+    if visible && in_square {
+        k = scatter_cell(rel_cell);
+    }
+    var own = vec2<u32>(0u);
+    if k.kept {
+        own = vec2<u32>(atomicAdd(&block_counts[1], 1u), atomicAdd(&block_counts[2], k.triangles));
     }
     workgroupBarrier();
     if lane == 0u {
-        atomicAdd(&counts[0], atomicLoad(&block_counts[0]));
-        atomicAdd(&counts[1], atomicLoad(&block_counts[1]));
+        // The counters are shared by every workgroup: a block that keeps no blade (most of
+        // them: outside the view, or off the grass) leaves them alone.
+        let considered = atomicLoad(&block_counts[0]);
+        if considered > 0u {
+            atomicAdd(&counts[0], considered);
+        }
+        let kept = atomicLoad(&block_counts[1]);
+        if kept > 0u {
+            atomicAdd(&counts[1], kept);
+            let first_blade = atomicAdd(&counts[2], kept);
+            block_base = vec2<u32>(first_blade, atomicAdd(&counts[4], atomicLoad(&block_counts[2])));
+        }
+    }
+    let base = workgroupUniformLoad(&block_base);
+    if !k.kept {
+        return;
+    }
+    // Past the capacity a kept blade is counted, not stored, and its triangles skipped.
+    let at = base.x + own.x;
+    let stored = at < gf.capacity;
+    if stored {
+        for (var i = 0u; i < 4u; i++) {
+            blades[4u * at + i] = k.blade[i];
+        }
+    }
+    let first = base.y + own.y;
+    for (var t = 0u; t < k.triangles && first + t < arrayLength(&triangles); t++) {
+        triangles[first + t] = select(NO_TRIANGLE, (at << 3u) | t, stored);
     }
 }
 
-// The blade of cell `rel_cell` (relative to the eye's): appended to `blades` where it is kept
-// (true: on grass, inside the view; kept past the capacity too, though not stored).
-fn scatter_cell(rel_cell: vec2<i32>) -> bool {
+// The blade of cell `rel_cell` (relative to the eye's), where it is kept: on grass, inside the
+// view (kept past the capacity too, though not stored).
+fn scatter_cell(rel_cell: vec2<i32>) -> Kept {
+    var out = Kept();
     let b = blade_at(gf.g, rel_cell);
     let xz = (vec2<f32>(rel_cell) + b.offset) * gf.g.cell - gf.eye_in_cell;
     let dist = length(xz);
     if dist > gf.distance {
-        return false;
+        return out;
     }
     // Each blade's own distance, and the last metres over which it shrinks away.
     let own = gf.distance * (0.5 + 0.5 * b.far);
     let fade = 1.0 - smoothstep(own - 0.1 * gf.distance, own, dist);
     if fade <= 0.0 {
-        return false;
+        return out;
     }
     let ground = ground_at(xz);
     let s = ground.sample;
     let slope = s.yz * w.peak;
     let n_y = inverseSqrt(1.0 + dot(slope, slope));
     if b.keep >= grass_cover(r, n_y, s.x, s.w) {
-        return false;
+        return out;
     }
     let height = b.height * fade;
     let peer = gf.peer != 0u;
     // The sphere holds the blade however far it leans (half its height) and is blown (0.6 of
     // it) from its middle: 1.25 of its height.
     if !peer && !in_frustum(r.view_proj, ground.rel + vec3<f32>(0.0, 0.5 * height, 0.0), 1.25 * height) {
-        return false;
+        return out;
     }
     // A blade narrower than a pixel: widened to one, and kept with a chance of its width in
     // pixels (its own number `thin`, independent of its others), so the field's cover stays
@@ -237,25 +286,24 @@ fn scatter_cell(rel_cell: vec2<i32>) -> bool {
         if px < 1.0 {
             let thin = fract(b.facing * (16.0 / GRASS_TAU));
             if thin >= px {
-                return false;
+                return out;
             }
             width *= clamp((px - thin) / (0.2 * px), 0.0, 1.0) / (0.9 * px);
         }
     }
-    let at = atomicAdd(&counts[2], 1u);
-    if at >= gf.capacity {
-        return true;
-    }
     let occl = occlusion(r, s.x, ground.light.x, ground.light.y);
-    blades[4u * at] = vec4<f32>(ground.rel, b.facing);
-    blades[4u * at + 1u] = vec4<f32>(height, b.lean, b.curve, width);
     let tip = wind_tip(gf.wind, gf.gust_phase.xy, xz, height);
     let moved = tip - wind_tip(gf.wind, gf.gust_phase.zw, xz, height);
-    blades[4u * at + 2u] = vec4<f32>(b.shade, occl, moved.x);
     let segments = select(blade_segments(ground.rel, height), BLADE_SEGMENTS, peer);
-    atomicAdd(&counts[4], 2u * segments - 1u);
-    blades[4u * at + 3u] = vec4<f32>(tip, f32(segments), moved.y);
-    return true;
+    out.kept = true;
+    out.blade = array<vec4<f32>, 4>(
+        vec4<f32>(ground.rel, b.facing),
+        vec4<f32>(height, b.lean, b.curve, width),
+        vec4<f32>(b.shade, occl, moved.x),
+        vec4<f32>(tip, f32(segments), moved.y),
+    );
+    out.triangles = 2u * segments - 1u;
+    return out;
 }
 
 // The indirect draw of the blades the scatter kept (at most the capacity), and the compute
@@ -268,7 +316,9 @@ fn finish() {
     draw_args[1] = drawn;
     draw_args[2] = 0u;
     draw_args[3] = 0u;
-    draw_args[4] = (drawn * 8u + 127u) / 128u;
+    let listed = min(atomicLoad(&counts[4]), arrayLength(&triangles));
+    atomicStore(&counts[5], listed);
+    draw_args[4] = (listed + 127u) / 128u;
     draw_args[5] = 1u;
     draw_args[6] = 1u;
     draw_args[7] = 0u;

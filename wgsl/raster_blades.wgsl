@@ -12,10 +12,12 @@
 // Why: on the H100 only two TPCs run vertex and pixel shaders; the blades drawn by the GPU's
 // rasteriser after the terrain cost over 1.6 ms for 20k blades at 1080p, here about 0.35 ms.
 
-// The blades (4 vec4s each, grass_scatter.wgsl's layout) and the scatter's counts (the
-// fourth: how many `blades` holds).
+// The blades (4 vec4s each, grass_scatter.wgsl's layout), the scatter's counts (the fourth:
+// how many `blades` holds; the sixth: how many `blade_triangles` holds), and the list of their
+// triangles (a blade's number times 8 plus its triangle's number in the strip).
 @group(2) @binding(0) var<storage, read> blades: array<vec4<f32>>;
-@group(2) @binding(1) var<storage, read> blade_counts: array<u32, 4>;
+@group(2) @binding(1) var<storage, read> blade_counts: array<u32, 8>;
+@group(2) @binding(2) var<storage, read> blade_triangles: array<u32>;
 // How far each pixel's point moved since the last frame (camera-relative metres; w 1 where it
 // is a blade's), for the temporal service: only the wind moves a blade, and nothing else moves.
 @group(1) @binding(11) var motion_out: texture_storage_2d<rgba16float, write>;
@@ -36,22 +38,22 @@ fn blade_vertex(i: u32, segments: u32, vi: u32) -> RasterVertex {
     return RasterVertex(r.view_proj * vec4<f32>(q.p, 1.0), vec4<f32>(q.n, q.t), 0.0);
 }
 
-// A thread a triangle: TRIANGLE_SLOTS threads a blade, those past its strip's 2 segments - 1
-// triangles idle. A thread a blade, looping over all its pixels, took 0.65 ms for 20k blades
-// on the H100 (the terrain's whole raster takes 0.85 ms); a thread a triangle, 0.25 ms.
-const TRIANGLE_SLOTS: u32 = 8u;
-
+// A thread a triangle of the scatter's list. A thread a blade, looping over all its pixels,
+// took 0.65 ms for 20k blades on the H100 (the terrain's whole raster takes 0.85 ms); a thread
+// a triangle, 0.25 ms.
 @compute @workgroup_size(128)
 fn raster_blades(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x / TRIANGLE_SLOTS;
-    let k = id.x % TRIANGLE_SLOTS;
-    if i >= blade_counts[3] {
+    if id.x >= blade_counts[5] {
         return;
     }
+    let e = blade_triangles[id.x];
+    if e == 0xffffffffu {
+        // Its blade was past the capacity, not stored.
+        return;
+    }
+    let i = e >> 3u;
+    let k = e & 7u;
     let segments = blade_segments(i);
-    if k + 1u >= 2u * segments {
-        return;
-    }
     raster_clipped(
         blade_vertex(i, segments, k),
         blade_vertex(i, segments, k + 1u),

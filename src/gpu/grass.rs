@@ -66,11 +66,16 @@ pub const CAPACITY: u32 = 1 << 19;
 /// Bytes a blade takes in the draw's buffer.
 pub const BLADE_BYTES: u64 = 64;
 
+/// Triangles the compute raster's list holds at most a frame (4 bytes each, 4 MiB): a blade's
+/// number and its triangle's, so that a thread rasterises a triangle and none idles (the
+/// meadow from 1.7 m draws 475k).
+pub const TRIANGLE_CAPACITY: u32 = 1 << 20;
+
 /// Bytes of the indirect arguments `finish` writes: the draw's (16), then the compute
-/// raster's dispatch of a thread a triangle, eight a blade (16, at [`DISPATCH_OFFSET`]).
+/// raster's dispatch of a thread a triangle of its list (16, at [`DISPATCH_OFFSET`]).
 const ARGS_BYTES: u64 = 32;
 /// Bytes of the scatter's counts: blades considered, kept, appended, drawn, the triangles of
-/// those drawn, and 3 unused.
+/// those kept, those in the compute raster's list, and 2 unused.
 const COUNTS_BYTES: u64 = 32;
 const DISPATCH_OFFSET: u64 = 16;
 
@@ -87,6 +92,8 @@ pub(crate) struct GrassPass {
     blades: wgpu::Buffer,
     counts: wgpu::Buffer,
     args: wgpu::Buffer,
+    /// The compute raster's list of the blades' triangles ([`TRIANGLE_CAPACITY`]).
+    triangles: wgpu::Buffer,
     scatter_group: wgpu::BindGroup,
     draw_module: wgpu::ShaderModule,
     draw_layout: wgpu::BindGroupLayout,
@@ -107,6 +114,7 @@ impl GrassPass {
                 super::storage_buffer_entry(1, false),
                 super::storage_buffer_entry(2, false),
                 super::storage_buffer_entry(3, false),
+                super::storage_buffer_entry(4, false),
             ],
         });
         let module = super::shader::module(
@@ -154,6 +162,11 @@ impl GrassPass {
             ARGS_BYTES,
             storage | wgpu::BufferUsages::INDIRECT,
         );
+        let triangles = buffer(
+            "relief:grass:triangles",
+            u64::from(TRIANGLE_CAPACITY) * 4,
+            storage,
+        );
         let scatter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:grass:frame-group"),
             layout: &frame_layout,
@@ -174,6 +187,10 @@ impl GrassPass {
                     binding: 3,
                     resource: args.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: triangles.as_entire_binding(),
+                },
             ],
         });
         let draw_layout = draw_layout(device);
@@ -186,6 +203,7 @@ impl GrassPass {
             blades,
             counts,
             args,
+            triangles,
             scatter_group,
             draw_module: draw_module(device),
             draw_layout,
@@ -213,6 +231,7 @@ impl GrassPass {
     /// GPU memory of its buffers, bytes.
     pub fn bytes(&self) -> u64 {
         u64::from(CAPACITY) * BLADE_BYTES
+            + u64::from(TRIANGLE_CAPACITY) * 4
             + COUNTS_BYTES
             + ARGS_BYTES
             + std::mem::size_of::<GrassFrame>() as u64
@@ -270,6 +289,7 @@ impl GrassPass {
         super::raster::Blades {
             blades: &self.blades,
             counts: &self.counts,
+            triangles: &self.triangles,
             args: &self.args,
             args_offset: DISPATCH_OFFSET,
         }
@@ -277,7 +297,8 @@ impl GrassPass {
 
     /// The last scatter's counts, read back (blocking): blades considered (cells within the
     /// draw distance), kept (on grass, inside the view), drawn (kept, up to [`CAPACITY`]) and
-    /// the drawn blades' triangles (each of `s` segments has `2 s - 1`).
+    /// the kept blades' triangles (each of `s` segments has `2 s - 1`; the drawn blades' where
+    /// none passed the capacity).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn read_counts(
         &self,

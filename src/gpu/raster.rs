@@ -130,12 +130,13 @@ pub(crate) struct Patches<'a> {
 }
 
 /// The grass's blades for the raster with ids (`wgsl/raster_blades.wgsl`): the scatter's
-/// blades and counts, and the arguments of the indirect dispatch of a thread a triangle (eight
-/// a blade), at `args_offset` in `args`.
+/// blades, counts and list of their triangles, and the arguments of the indirect dispatch of a
+/// thread a triangle, at `args_offset` in `args`.
 #[derive(Clone, Copy)]
 pub(crate) struct Blades<'a> {
     pub blades: &'a wgpu::Buffer,
     pub counts: &'a wgpu::Buffer,
+    pub triangles: &'a wgpu::Buffer,
     pub args: &'a wgpu::Buffer,
     pub args_offset: u64,
 }
@@ -278,7 +279,7 @@ impl ComputeRaster {
         };
         let blades_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:raster:blades-layout"),
-            entries: &[storage(0, true), storage(1, true)],
+            entries: &[storage(0, true), storage(1, true), storage(2, true)],
         });
         let blade_pipeline = |label: &str, entry_point: &str, layout: &wgpu::BindGroupLayout| {
             pipeline_with(label, entry_point, &[layout, &blades_layout])
@@ -405,6 +406,10 @@ impl ComputeRaster {
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: b.counts.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: b.triangles.as_entire_binding(),
                 },
             ],
         });
