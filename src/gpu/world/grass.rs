@@ -72,8 +72,8 @@ impl World {
         }
     }
 
-    /// GPU memory of the grass's buffers, bytes (0 without grass): 32 MiB of blades, whatever
-    /// the density.
+    /// GPU memory of the grass's buffers, bytes (0 without grass): 32 MiB of blades and 4 MiB
+    /// of their triangles' list, whatever the density.
     pub fn grass_bytes(&self) -> u64 {
         self.grass.as_ref().map_or(0, GrassPass::bytes)
     }
