@@ -33,11 +33,11 @@ const BLADE_STREAM: u32 = 0x6772_6173;
 const CLUMP_STREAM: u32 = 0x636c_756d;
 
 /// The grass's parameters (see the module docs): rows of the endless world's table
-/// ([`crate::world::WORLD_PARAMS`]: `grass`, `grass_density`, `grass_height`,
+/// ([`crate::world::WORLD_PARAMS`]: `no_grass`, `grass_density`, `grass_height`,
 /// `grass_distance`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grass {
-    /// Whether grass grows (off by default).
+    /// Whether grass grows (on by default; the `no_grass` key turns it off).
     pub on: bool,
     /// Blades a square metre where every cell grows one.
     pub density: f32,
@@ -49,12 +49,12 @@ pub struct Grass {
 }
 
 impl Default for Grass {
-    /// Off; when on, 96 blades a square metre (a meadow's sward; SimonDev's Quick_Grass draws
-    /// about 31, a lawn), half a metre tall, to 60 m: on a meadow from 1.7 m about a million
-    /// blades considered and 120k drawn, as the look wants (docs/results/grass.md).
+    /// On: 96 blades a square metre (a meadow's sward; SimonDev's Quick_Grass draws about 31, a
+    /// lawn), half a metre tall, to 60 m: on a meadow from 1.7 m about a million blades
+    /// considered and 113k drawn, as the look wants (docs/results/grass.md).
     fn default() -> Self {
         Self {
-            on: false,
+            on: true,
             density: 96.0,
             height: 0.5,
             distance: 60.0,

@@ -82,7 +82,7 @@ pub struct WorldParams {
     /// The one wind every layer that moves with the wind follows (the water's ripples drift
     /// with it).
     pub wind: Wind,
-    /// The meadow's blades ([`crate::grass`]): off by default.
+    /// The meadow's blades ([`crate::grass`]): on by default.
     pub grass: crate::grass::Grass,
 }
 
@@ -476,14 +476,14 @@ pub static WORLD_PARAMS: [WorldParam; 23] = [
         },
     },
     Param {
-        key: "grass",
-        doc: "grow grass: blades of geometry on the ground the material makes grass, within grass_distance of the eye",
+        key: "no_grass",
+        doc: "no grass: bare ground where grass grows by default (blades of geometry on the ground the material makes grass, within grass_distance of the eye)",
         kind: Kind::Bool,
         control: Control::Checkbox,
-        get: |p| Value::Bool(p.grass.on),
+        get: |p| Value::Bool(!p.grass.on),
         set: |p, v| {
             if let Value::Bool(x) = v {
-                p.grass.on = x;
+                p.grass.on = !x;
             }
         },
     },

@@ -111,7 +111,9 @@ fn every_mesh_method_grows_grass_on_a_meadow_and_none_when_it_is_off() {
     use relief::gpu::headless::{self, render_samples, Offscreen};
     use relief::{Method, MethodConfig, Raster, Temporal, World, WorldView};
     let gpu = common::gpu();
-    let params = relief::WorldParams::default();
+    // From bare ground (grass grows by default), grass turned on and off again.
+    let mut params = relief::WorldParams::default();
+    params.grass.on = false;
     let foot = meadow(&params);
     let size = (160, 90);
     let eye = foot + glam::DVec3::new(0.0, 1.7, 0.0);
@@ -159,14 +161,8 @@ fn every_mesh_method_grows_grass_on_a_meadow_and_none_when_it_is_off() {
             "{config:?}: grass off, the frame is the bare one"
         );
     }
-    // Out of range: refused in words, changing nothing.
-    let mut world = World::new(
-        &gpu.device,
-        &gpu.queue,
-        Offscreen::targets(1),
-        relief::WorldParams::default(),
-    )
-    .unwrap();
+    // Out of range: refused in words, changing nothing (the world stays bare).
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
     let mut tall = *world.params();
     tall.grass = Grass {
         on: true,

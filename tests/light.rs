@@ -38,6 +38,11 @@ fn params(azimuth: f32, elevation: f32) -> WorldParams {
             fog: 0.0,
         },
         no_water: true,
+        // The terrain alone: grass (on by default) is tests/grass.rs's.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..WorldParams::default()
     }
 }

@@ -111,6 +111,12 @@ fn world_frame(
 ) -> (World, (Vec<u8>, Option<Timings>)) {
     let params = WorldParams {
         pixel_error: 4.0,
+        // Presenting the terrain alone: the page's and the forward methods' blades draw in a
+        // render pass.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
@@ -356,6 +362,12 @@ fn a_tiled_image_is_presented_and_times_no_render_pass() {
         .expect("timestamp queries (lavapipe and every GPU these tests run on have them)");
     let params = WorldParams {
         pixel_error: 4.0,
+        // Presenting the terrain alone: the page's and the forward methods' blades draw in a
+        // render pass.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();

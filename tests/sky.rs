@@ -35,6 +35,11 @@ fn params(fog: f32) -> WorldParams {
             fog,
         },
         no_water: true,
+        // The terrain alone: grass (on by default) is tests/grass.rs's.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..WorldParams::default()
     }
 }

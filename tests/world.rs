@@ -24,6 +24,11 @@ fn params() -> WorldParams {
             period: 0,
         },
         pixel_error: 16.0,
+        // The terrain alone: grass (on by default) is tests/grass.rs's.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..WorldParams::default()
     }
 }

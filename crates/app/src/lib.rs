@@ -551,7 +551,7 @@ impl App {
                 )
             }
             "l" => ("no_water", if world.no_water { 0.0 } else { 1.0 }),
-            "g" => ("grass", if world.grass.on { 0.0 } else { 1.0 }),
+            "g" => ("no_grass", if world.grass.on { 1.0 } else { 0.0 }),
             _ if sky.fog > 0.0 => {
                 self.fog_off = sky.fog;
                 ("fog", 0.0)

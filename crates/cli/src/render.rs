@@ -85,10 +85,17 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             if let Some(method) = method.own_path() {
-                if params.grass.on && method != relief::Method::Reference {
+                // The seed's ray marches draw no grass (the default's is left out); grass
+                // asked for by its keys is refused.
+                let asked = relief::grass::Grass {
+                    on: true,
+                    ..params.grass
+                } != relief::grass::Grass::default();
+                if params.grass.on && asked && method != relief::Method::Reference {
                     return Err(Error::Usage(format!(
-                        "--grass: the {method} casts rays, which draw no grass: give --method \
-                         mesh, visibility, hybrid or reference (or leave grass off)"
+                        "--grass-density, --grass-height, --grass-distance: the {method} casts \
+                         rays, which draw no grass: give --method mesh, visibility, hybrid or \
+                         reference (or --no-grass)"
                     )));
                 }
                 if frames > 1 {

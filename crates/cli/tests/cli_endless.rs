@@ -88,7 +88,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "clock" => "30",
             "wind_speed" => "12",
             "wind_azimuth" => "90",
-            "grass" => "1",
+            "no_grass" => "1",
             "grass_density" => "8",
             "grass_height" => "1.2",
             "grass_distance" => "12",
@@ -106,22 +106,27 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         // carries them as the clock runs: at clock 0 it has carried nothing.
         let lake = ["--eye", "2000,1020,-4600", "--look-at", "2100,1000,-4400"];
         let windy = row.key.starts_with("wind_");
-        // Grass from 1.7 m over a meadow; its knobs with grass on.
+        // Grass from 1.7 m over a meadow (it grows by default): its knobs, and none.
         let meadow = [
             "--eye",
             "2740,1111.7,-3000",
             "--look-at",
             "2770,1107.7,-2990",
         ];
-        let grassy = row.key.starts_with("grass");
+        let grassy = row.key.starts_with("grass") || row.key == "no_grass";
         let base = if grassy {
             args.extend(meadow);
-            let mut at = meadow.to_vec();
-            if row.key != "grass" {
-                args.push("--grass");
-                at.push("--grass");
+            let (img, s) = render_endless(&dir, &format!("{}-base", row.key), &meadow);
+            if row.key == "no_grass" {
+                // --stats counts the blades of the default's grass.
+                let drawn = stat(&s, "grass_blades_drawn");
+                assert!(drawn > 1000.0, "{s:?}");
+                assert!(stat(&s, "grass_blades_considered") > drawn, "{s:?}");
+                // One to seven triangles a blade (one to four segments).
+                let triangles = stat(&s, "grass_triangles");
+                assert!(triangles >= drawn && triangles <= 7.0 * drawn, "{s:?}");
             }
-            render_endless(&dir, &format!("{}-base", row.key), &at).0
+            img
         } else if blog {
             args.extend(["--palette", "blog"]);
             render_endless(&dir, "blog", &["--palette", "blog"]).0
@@ -138,14 +143,8 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             base.clone()
         };
         let (img, s) = render_endless(&dir, row.key, &args);
-        if row.key == "grass" {
-            // --stats counts the blades.
-            let drawn = stat(&s, "grass_blades_drawn");
-            assert!(drawn > 1000.0, "{s:?}");
-            assert!(stat(&s, "grass_blades_considered") > drawn, "{s:?}");
-            // One to seven triangles a blade (one to four segments).
-            let triangles = stat(&s, "grass_triangles");
-            assert!(triangles >= drawn && triangles <= 7.0 * drawn, "{s:?}");
+        if row.key == "no_grass" {
+            assert!(!s.iter().any(|(k, _)| k.starts_with("grass")), "{s:?}");
         }
         if row.key == "pixel_error" {
             assert!(
@@ -167,9 +166,6 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         }
         if windy {
             knob.push_str("clock = 30\n");
-        }
-        if grassy && row.key != "grass" {
-            knob.push_str("grass = true\n");
         }
         // Over the lake for the clock and the wind (the flags override the scene's camera).
         let camera: &[&str] = if windy || row.key == "clock" {
@@ -302,16 +298,23 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         refused.check(&args, needles);
     };
     render(&["--eye", "nan,0,0"], &["--eye", "nan", "X,Y,Z"]);
-    // Grass: out of range, and with a ray caster, which draws none yet.
+    // Grass: out of range, its keys with a ray caster (which draws none), and on the tile.
     render(
-        &["--world", "endless", "--grass", "--grass-height", "9"],
+        &["--world", "endless", "--grass-height", "9"],
         &["grass", "9", "2"],
     );
     render(
-        &["--world", "endless", "--grass", "--method", "raymarch"],
-        &["--grass", "raymarch", "mesh"],
+        &[
+            "--world",
+            "endless",
+            "--grass-density",
+            "8",
+            "--method",
+            "raymarch",
+        ],
+        &["--grass-density", "raymarch", "mesh"],
     );
-    render(&["--grass"], &["--grass", "endless"]);
+    render(&["--no-grass"], &["--no-grass", "endless"]);
     render(&["--eye", "1,2"], &["--eye", "X,Y,Z"]);
     render(&["--look-at", "1,2,3,4"], &["--look-at", "X,Y,Z"]);
     render(&["--eye", "1e300,0,0"], &["--eye", "X,Y,Z"]);
@@ -702,7 +705,7 @@ fn endless_scene_files_and_camera_tables_round_trip() {
 
 #[test]
 fn the_reference_draws_the_grass_and_counts_its_blades() {
-    // `render --method reference --grass`: the grass's reference (every blade to twice the draw
+    // `render --method reference` with grass: the grass's reference (every blade to twice the draw
     // distance over the continuous surface, 9x9 samples a pixel), its blades counted by
     // --stats; a sparse, near meadow keeps it quick on a software GPU.
     let dir = scratch("grass-reference");
@@ -734,9 +737,9 @@ fn the_reference_draws_the_grass_and_counts_its_blades() {
             stats_of(&stdout),
         )
     };
-    let (bare, s) = render("bare", &[]);
+    let (bare, s) = render("bare", &["--no-grass"]);
     assert!(s.iter().all(|(k, _)| !k.starts_with("grass")), "{s:?}");
-    let grass = ["--grass", "--grass-density", "8", "--grass-distance", "10"];
+    let grass = ["--grass-density", "8", "--grass-distance", "10"];
     let (grassy, s) = render("grass", &grass);
     let blades = stat(&s, "grass_blades_drawn");
     assert!(blades > 100.0, "{s:?}");

@@ -284,13 +284,18 @@ fn world_rays(
     let Some(rays) = method.ray_method(params.land.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
-    if params.grass.on && method != crate::Method::Reference {
-        return Err(Error::invalid(
-            "grass",
-            true,
-            format!("off for the {method}, which casts rays and draws no grass"),
-        ));
-    }
+    // The seed's ray marches draw no grass: they cast the bare ground, as without it.
+    let params = &if method == crate::Method::Reference {
+        *params
+    } else {
+        crate::world::WorldParams {
+            grass: crate::grass::Grass {
+                on: false,
+                ..params.grass
+            },
+            ..*params
+        }
+    };
     let region = world_rays::drawn_region(params, view);
     let render = |view: &WorldView, matrix| {
         let mut u =
