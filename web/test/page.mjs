@@ -213,7 +213,7 @@ await withBrowser(webgpu, async (browser) => {
   const gq = await g.evaluate(() => document.body.dataset.query || "");
   fs.appendFileSync(path.join(out, "metrics.txt"),
     `grass_first_frame_ms ${grassFirstMs}\ngrass_scatter_ms ${scatter}\n`);
-  check(grassFirstMs > 0 && scatter !== "" && gerror === "" && !gq.includes("no_grass")
+  check(grassFirstMs > 0 && scatter !== "" && gerror === "" && !gq.includes("no_grass=1")
     && errors4.length === 0,
     `grass on the page: drawn without error, first frame at ${grassFirstMs} ms, the scatter ${scatter} ms a frame on SwiftShader (error: ${gerror || errors4.join(" | ") || "none"})`);
 

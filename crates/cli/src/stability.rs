@@ -60,7 +60,14 @@ pub fn stability(
         bar.set_length(len as u64);
     };
     let start = std::time::Instant::now();
-    let world = sweeps.world;
+    // The terrain's axes sweep the terrain alone; the grass (on by default) has its own axis.
+    let world = relief::WorldParams {
+        grass: relief::grass::Grass {
+            on: false,
+            ..sweeps.world.grass
+        },
+        ..sweeps.world
+    };
     let mut outputs: Vec<AxisOutput<'_>> = Vec::new();
     if on(Axis::Grazing) {
         let options = sweeps.grazing.clone();
@@ -246,7 +253,7 @@ pub fn stability(
             options.size.1,
         );
         restart(options.speeds.len() + usize::from(options.flight) + options.winds.len());
-        let rows = stability::grass::grass(&gpu, &world, &options, |done, _| {
+        let rows = stability::grass::grass(&gpu, &sweeps.world, &options, |done, _| {
             bar.set_position(done as u64)
         })?;
         bar.finish_and_clear();

@@ -140,8 +140,9 @@ const LH: u32 = 144;
 /// blog palette 0.130 on lavapipe. 0.035 sits between, as for the tile.
 const LANDSCAPE_FLIP_MEAN: f32 = 0.035;
 
-/// The landscape's fixed scene: the endless world's defaults, a knob loose enough for
-/// lavapipe.
+/// The landscape's fixed scene: the endless world's defaults (its grass included: from the
+/// default camera, 1200 m up, the field that stands in beyond the blades), a knob loose enough
+/// for lavapipe.
 fn landscape() -> WorldParams {
     WorldParams {
         pixel_error: 4.0,

@@ -182,6 +182,11 @@ fn small_world() -> relief::WorldParams {
         },
         pixel_error: 2.0,
         no_water: true,
+        // The terrain's axes: the grass (on by default) has its own.
+        grass: relief::grass::Grass {
+            on: false,
+            ..Default::default()
+        },
         ..relief::WorldParams::default()
     }
 }
