@@ -9,7 +9,7 @@ use crate::{Method, Raster};
 
 impl World {
     /// Builds, rebuilds or drops the grass's passes for the parameters' grass
-    /// ([`WorldParams::grass`]: off by default). With it on, each frame the blades within its
+    /// ([`WorldParams::grass`]: on by default). With it on, each frame the blades within its
     /// draw distance that stand on grass, inside the view, are kept by a compute pass and drawn
     /// after the terrain, depth-tested, by every mesh-based method: into the host's pass, or
     /// with the temporal service on the forward mesh into its own image (accumulated with the
