@@ -556,6 +556,14 @@ pub fn world_param(key: &str) -> Option<&'static WorldParam> {
 }
 
 impl WorldParams {
+    /// The same world with its ground bare (grass off, its other keys kept): what the ray
+    /// marches draw, and what the terrain's measurements measure.
+    pub fn without_grass(&self) -> Self {
+        let mut p = *self;
+        p.grass.on = false;
+        p
+    }
+
     /// What decides where grass grows ([`crate::grass::cover`]): the snow line, the water and
     /// its shore, as the shading has them.
     pub fn grass_cover(&self) -> crate::grass::CoverParams {

@@ -13,13 +13,7 @@ pub(super) fn bench_endless(
     // The terrain's parts measure the terrain alone; the grass (on by default) is measured by
     // its own part, against the same frame without it.
     let with_grass = params;
-    let params = &WorldParams {
-        grass: relief::grass::Grass {
-            on: false,
-            ..params.grass
-        },
-        ..*params
-    };
+    let params = &params.without_grass();
     let (options, knobs): (Options, &[f64]) = if quick {
         (Options::QUICK, &[8.0, 16.0])
     } else {

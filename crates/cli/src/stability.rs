@@ -61,13 +61,7 @@ pub fn stability(
     };
     let start = std::time::Instant::now();
     // The terrain's axes sweep the terrain alone; the grass (on by default) has its own axis.
-    let world = relief::WorldParams {
-        grass: relief::grass::Grass {
-            on: false,
-            ..sweeps.world.grass
-        },
-        ..sweeps.world
-    };
+    let world = sweeps.world.without_grass();
     let mut outputs: Vec<AxisOutput<'_>> = Vec::new();
     if on(Axis::Grazing) {
         let options = sweeps.grazing.clone();

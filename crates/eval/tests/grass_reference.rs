@@ -132,3 +132,33 @@ fn the_frame_meets_the_reference_with_no_seam_at_the_draw_distance() {
     assert!(seam < 2.5, "{seam}");
     assert!(bare_seam > seam, "{bare_seam} vs {seam}");
 }
+
+#[test]
+fn the_seeds_ray_marches_draw_the_default_world_bare() {
+    // Grass grows by default, and the seed's ray marches draw none: the meadow they cast with
+    // the default's grass is the meadow cast with grass off, byte for byte (and the reference,
+    // the control, draws its blades there).
+    let gpu = common::gpu();
+    let params = WorldParams::default();
+    assert!(params.grass.on);
+    let size = (48u32, 27u32);
+    let eye = meadow(&params) + DVec3::new(0.0, 1.7, 0.0);
+    let view = WorldView::look_at(eye, eye + DVec3::new(30.0, -4.0, 10.0), 0.8, size);
+    let cast = |p: &WorldParams, method| {
+        headless::render_world_rays(&gpu, p, &Shading::default(), &view, method, None)
+            .unwrap()
+            .rgba
+    };
+    let bare = params.without_grass();
+    assert_eq!(
+        cast(&params, Method::Raymarch),
+        cast(&bare, Method::Raymarch)
+    );
+    let mut sparse = params;
+    sparse.grass.density = 8.0;
+    sparse.grass.distance = 10.0;
+    assert_ne!(
+        cast(&sparse, Method::Reference),
+        cast(&sparse.without_grass(), Method::Reference)
+    );
+}

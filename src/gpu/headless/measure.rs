@@ -288,13 +288,7 @@ fn world_rays(
     let params = &if method == crate::Method::Reference {
         *params
     } else {
-        crate::world::WorldParams {
-            grass: crate::grass::Grass {
-                on: false,
-                ..params.grass
-            },
-            ..*params
-        }
+        params.without_grass()
     };
     let region = world_rays::drawn_region(params, view);
     let render = |view: &WorldView, matrix| {
