@@ -89,6 +89,7 @@ pub mod method;
 pub mod noise;
 pub mod palette;
 pub mod params;
+pub mod props;
 pub mod sky;
 pub mod table;
 pub mod temporal;
