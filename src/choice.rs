@@ -232,7 +232,7 @@ impl Choice {
 /// hybrid's) raster, shading and temporal resolve passes, the grass's scatter before it and its
 /// blades' raster. `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade, resolve, grass, blades] = [
+    let [render, present, raster, shade, resolve, grass, blades, props, march] = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
@@ -240,14 +240,18 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
         Slot::Resolve,
         Slot::Grass,
         Slot::Blades,
+        Slot::Props,
+        Slot::March,
     ]
     .map(|s| t[s as usize]);
     render.or(present)?;
     Some(
-        [render, present, raster, shade, resolve, grass, blades]
-            .iter()
-            .flatten()
-            .sum(),
+        [
+            render, present, raster, shade, resolve, grass, blades, props, march,
+        ]
+        .iter()
+        .flatten()
+        .sum(),
     )
 }
 

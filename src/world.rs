@@ -84,6 +84,9 @@ pub struct WorldParams {
     pub wind: Wind,
     /// The meadow's blades ([`crate::grass`]): on by default.
     pub grass: crate::grass::Grass,
+    /// How props are scattered ([`crate::props`]): off by default. What they are is the
+    /// world's [`crate::props::Scene`] (`World::set_props_scene`).
+    pub props: crate::props::Props,
 }
 
 /// The wind: a speed and the bearing it comes from.
@@ -140,6 +143,7 @@ impl Default for WorldParams {
             clock: 0.0,
             wind: Wind::default(),
             grass: crate::grass::Grass::default(),
+            props: crate::props::Props::default(),
         }
     }
 }
@@ -157,7 +161,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 23] = [
+pub static WORLD_PARAMS: [WorldParam; 26] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -541,6 +545,54 @@ pub static WORLD_PARAMS: [WorldParam; 23] = [
         set: |p, v| {
             if let Value::Float(x) = v {
                 p.grass.distance = x;
+            }
+        },
+    },
+    Param {
+        key: "props",
+        doc: "props on the ground: boulders, standing stones, arches, ruins and cairns (signed distance functions marched in compute), or the scene file's own",
+        kind: Kind::Bool,
+        control: Control::Checkbox,
+        get: |p| Value::Bool(p.props.on),
+        set: |p, v| {
+            if let Value::Bool(x) = v {
+                p.props.on = x;
+            }
+        },
+    },
+    Param {
+        key: "props_density",
+        doc: "the chance that a cell of gentle ground holds a prop (cells of props_cell metres; rock holds a seventh as many)",
+        kind: Kind::Float { min: 0.0, max: 1.0 },
+        control: Control::Slider {
+            min: 0.0,
+            max: 1.0,
+            step: 0.05,
+        },
+        get: |p| Value::Float(p.props.density),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.props.density = x;
+                p.props.rock_density = x / 7.0;
+            }
+        },
+    },
+    Param {
+        key: "props_distance",
+        doc: "how far from the eye props are drawn, in metres (each sinks into the ground where it is smaller on screen than its cut-off)",
+        kind: Kind::Float {
+            min: crate::props::Props::DISTANCE.0,
+            max: crate::props::Props::DISTANCE.1,
+        },
+        control: Control::Slider {
+            min: 100.0,
+            max: 3000.0,
+            step: 100.0,
+        },
+        get: |p| Value::Float(p.props.distance),
+        set: |p, v| {
+            if let Value::Float(x) = v {
+                p.props.distance = x;
             }
         },
     },

@@ -1,5 +1,5 @@
 // import: shade
-// part of: visibility, hybrid (each declares the render uniforms `r` it reads)
+// part of: visibility, hybrid, props_march (each declares the render uniforms `r` it reads)
 // What the visibility method's compute passes share (src/gpu/visibility.rs): its uniforms, the
 // raster pass's targets and the shaded images, the rays through a pixel's samples, and the
 // store of a shaded pixel. Composed into the visibility module (after world.wgsl) and the
@@ -24,8 +24,9 @@ struct VisUniforms {
     // 32-bit words a pixel of `raster_depth`: 2 where the raster kept each pixel's triangle
     // (raster_ids.wgsl; the depth's the second word), else 1.
     depth_stride: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // 1 where the props' march (props_march.wgsl) left each pixel's prop in `prop_hit`.
+    props: u32,
+    _pad: u32,
 }
 
 @group(0) @binding(7) var depth_ms: texture_depth_multisampled_2d;

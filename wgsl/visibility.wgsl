@@ -1,4 +1,4 @@
-// import: world, vis_common, composite, grass_blade
+// import: world, vis_common, composite, grass_blade, props_look
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the
@@ -7,9 +7,21 @@
 // Composed after shade.wgsl, level_texel.wgsl, world.wgsl (their uniforms and the tile's
 // texture reads) and vis_common.wgsl (its own uniforms and images).
 
+// Where the props' march (props_march.wgsl) left each pixel's prop: its depth, normal, look
+// and the sun's share, or the props' shadow on what the raster drew (props_look.wgsl).
+@group(0) @binding(22) var prop_hit: texture_2d<u32>;
+
+fn props_at(px: vec2<i32>) -> vec4<u32> {
+    if vis.props == 0u {
+        return no_prop();
+    }
+    return textureLoad(prop_hit, px, 0);
+}
+
 // The colour (linear, tone-mapped) of one sample at `pixel` (pixels from the top left) whose
-// depth is `d` (1: no terrain, the sky), with the endless world's attributes `s` and `valley`.
-fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, valley: f32) -> vec3<f32> {
+// depth is `d` (1: no terrain, the sky), with the endless world's attributes `s` and `valley`,
+// the sun's share multiplied by `sun` (the props' shadow).
+fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, valley: f32, sun: f32) -> vec3<f32> {
     let dir = sample_ray(pixel);
     if d >= 1.0 {
         return sky_pixel(lin, dir);
@@ -18,7 +30,7 @@ fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, val
     if vis.world != 0u {
         let h = (rel.y + w.eye.y) / w.peak;
         let n = normalize(vec3<f32>(-s.x, 1.0, -s.y));
-        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley));
+        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley) * vec2<f32>(sun, 1.0));
     }
     let uv = (rel.xz + w.tile_eye) * w.tile_inv + r.shift;
     let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);
@@ -46,7 +58,7 @@ fn shade_samples(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let s = textureLoad(surface_ms, px, i);
         let valley = textureLoad(valley_ms, px, i).x;
-        sum += shade_sample(lin, vec2<f32>(id.xy) + SAMPLES[i], d, s, valley);
+        sum += shade_sample(lin, vec2<f32>(id.xy) + SAMPLES[i], d, s, valley, 1.0);
     }
     store_pixel(px, sum, 4u, covered, nearest);
 }
@@ -59,19 +71,28 @@ fn blade_look(packed: f32) -> vec3<f32> {
 }
 
 // Shades and stores the pixel `px` whose one sample has depth `d`, kept by the layer `layer`
-// (`rasterised_layer`: 0 the terrain, 1 a blade of grass).
+// (`rasterised_layer`: 0 the terrain, 1 a blade of grass), or the prop the march found nearer.
 fn shade_pixel(px: vec2<i32>, d: f32, layer: u32) {
+    let pixel = vec2<f32>(px) + 0.5;
+    let prop = props_at(px);
+    let prop_depth = bitcast<f32>(prop.x);
+    if prop_depth < d {
+        let color = prop_color(linear_uniforms(), point_at(sample_ray(pixel), prop_depth), prop);
+        store_pixel(px, color, 1u, 1u, prop_depth);
+        return;
+    }
+    let sun = bitcast<f32>(prop.w);
     let covered = u32(d < 1.0);
     var color = vec3<f32>(0.0);
     if covered != 0u || vis.sky != 0u {
         let s = textureLoad(surface_1, px, 0);
         let valley = textureLoad(valley_1, px, 0).x;
-        let pixel = vec2<f32>(px) + 0.5;
         if layer == 1u && covered != 0u {
             let lin = linear_uniforms();
-            color = blade_light(lin, point_at(sample_ray(pixel), d), s.xyz, s.w, blade_look(valley));
+            let look = blade_look(valley) * vec3<f32>(1.0, sun, 1.0);
+            color = blade_light(lin, point_at(sample_ray(pixel), d), s.xyz, s.w, look);
         } else {
-            color = shade_sample(linear_uniforms(), pixel, d, s, valley);
+            color = shade_sample(linear_uniforms(), pixel, d, s, valley, sun);
         }
     }
     store_pixel(px, color, 1u, covered, d);

@@ -13,6 +13,7 @@ pub mod landscape;
 pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
+pub mod props;
 pub mod raster;
 #[cfg(not(target_arch = "wasm32"))]
 pub(crate) mod ray_layers;
@@ -195,8 +196,9 @@ fn tile_world(
         no_shadows: true,
         clock: 0.0,
         wind: crate::world::Wind::default(),
-        // The tile grows no grass.
+        // The tile grows no grass and has no props.
         grass: crate::grass::Grass::default(),
+        props: crate::props::Props::default(),
     };
     let setup = world::TileSetup {
         region: frame.region(),

@@ -127,6 +127,8 @@ pub(crate) struct Patches<'a> {
     pub cells: [u32; 2],
     pub passes: [u32; PASSES - 1],
     pub blades: Option<Blades<'a>>,
+    /// The props the visibility method marches after the raster, where it draws them.
+    pub props: Option<&'a super::props::PropsPass>,
 }
 
 /// The grass's blades for the raster with ids (`wgsl/raster_blades.wgsl`): the scatter's

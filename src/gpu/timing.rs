@@ -31,11 +31,15 @@ pub enum Slot {
     /// The grass's blades in the visibility method's compute raster: their raster, big
     /// triangles and resolve, a compute pass after the terrain's raster.
     Blades = 10,
+    /// The props' scatter: the grid of placed props around the eye and their heights.
+    Props = 11,
+    /// The props' march: each pixel's ray through the placed props, after the raster.
+    March = 12,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 11] = [
+    pub const ALL: [Slot; 13] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -47,6 +51,8 @@ impl Slot {
         Slot::Resolve,
         Slot::Grass,
         Slot::Blades,
+        Slot::Props,
+        Slot::March,
     ];
 
     /// The slot's name as printed.
@@ -63,6 +69,8 @@ impl Slot {
             Slot::Resolve => "resolve",
             Slot::Grass => "grass",
             Slot::Blades => "blades",
+            Slot::Props => "props",
+            Slot::March => "march",
         }
     }
 }

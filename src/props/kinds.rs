@@ -3,7 +3,6 @@
 //! roughened by noise; and the SDF article's demo (a sphere and a box blended by a smooth
 //! union).
 
-use super::place::Placement;
 use super::{Combine, Kind, Material, Node, Scene, Shape, Transform};
 
 fn material(name: &str, albedo: [f32; 3], variation: f32) -> Material {
@@ -246,13 +245,12 @@ pub fn landscape_kinds() -> Vec<Kind> {
     vec![boulder(), standing_stone(), arch(), ruin(), cairn()]
 }
 
-/// The landscape's props: [`landscape_kinds`] with [`materials`], scattered by the default
-/// [`Placement`].
+/// The landscape's props: [`landscape_kinds`] with [`materials`], none at given places.
 pub fn landscape() -> Scene {
     Scene {
         materials: materials(),
         kinds: landscape_kinds(),
-        placement: Placement::default(),
+        placed: Vec::new(),
     }
 }
 

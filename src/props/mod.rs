@@ -290,16 +290,19 @@ impl Tape {
     }
 }
 
-/// A scene's props: materials, kinds and where they stand.
+/// What props a world has: materials, kinds, and props put at given places. How they are
+/// scattered is [`Props`], rows of the world's parameters.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// At most [`MAX_MATERIALS`].
     pub materials: Vec<Material>,
     /// At most [`MAX_KINDS`].
     pub kinds: Vec<Kind>,
-    /// How they are scattered.
-    pub placement: place::Placement,
+    /// Props at given places, besides the scattered ones (in water too).
+    pub placed: Vec<place::Placed>,
 }
+
+pub use place::Props;
 
 struct Compiler<'a> {
     key: &'a str,
@@ -675,9 +678,17 @@ impl Kind {
     }
 }
 
+impl Default for Scene {
+    /// The shipped landscape's ([`kinds::landscape`]).
+    fn default() -> Self {
+        kinds::landscape()
+    }
+}
+
 impl Scene {
-    /// Validates every kind and the placement, and compiles the kinds' tapes, in order.
-    pub fn compile(&self) -> Result<Vec<Tape>> {
+    /// Validates every kind and the props put at given places against how `props` scatters
+    /// them, and compiles the kinds' tapes, in order.
+    pub fn compile(&self, props: &Props) -> Result<Vec<Tape>> {
         if self.kinds.len() > MAX_KINDS {
             return Err(Error::invalid(
                 "props",
@@ -703,13 +714,14 @@ impl Scene {
                 return Err(Error::invalid(key, v, "0 to 1"));
             }
         }
-        self.placement.validate()?;
+        props.validate()?;
+        Props::validate_placed(&self.placed)?;
         let tapes = self
             .kinds
             .iter()
             .map(|k| k.compile(self.materials.len()))
             .collect::<Result<Vec<_>>>()?;
-        for (i, p) in self.placement.explicit.iter().enumerate() {
+        for (i, p) in self.placed.iter().enumerate() {
             if p.kind as usize >= self.kinds.len() {
                 return Err(Error::invalid(
                     format!("props.place[{i}].kind"),
@@ -719,7 +731,7 @@ impl Scene {
             }
         }
         for (i, (kind, tape)) in self.kinds.iter().zip(&tapes).enumerate() {
-            self.placement.check_fits(kind, tape, i as u32)?;
+            props.check_fits(kind, tape, (i as u32, &self.placed))?;
         }
         Ok(tapes)
     }

@@ -5,13 +5,13 @@
 //! `prop_at` and `prop_keeps`.
 //!
 //! - A cell's prop stands where its chance is under the density the ground allows
-//!   ([`Placement::density`] on gentle ground, [`Placement::rock_density`] on steep rock for the
+//!   ([`Props::density`] on gentle ground, [`Props::rock_density`] on steep rock for the
 //!   kinds that stand there), never under water.
 //! - A prop stands on the surface the frame draws, sunk below its lowest point under the prop's
 //!   foot (the kinds reach below their origin), so it floats in no method.
-//! - A prop is no wider than half a cell ([`Placement::check_fits`]), so a point's props are
+//! - A prop is no wider than half a cell ([`Props::check_fits`]), so a point's props are
 //!   those of the 2x2 cells nearest it: the march looks at those and no others.
-//! - Props at explicit places ([`Placement::explicit`]) stand where they are put, in water too.
+//! - Props at explicit places ([`super::Scene::placed`]) stand where they are put, in water too.
 
 use super::{Kind, Tape};
 use crate::error::{Error, Result};
@@ -19,9 +19,13 @@ use crate::error::{Error, Result};
 /// The hash stream of the props.
 pub const PROP_STREAM: u32 = 0x7072_6f70;
 
-/// How props are scattered over the world.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Placement {
+/// How props are scattered over the world: rows of the endless world's table
+/// ([`crate::world::WORLD_PARAMS`]: `props`, `props_density`, ...). What they are is the
+/// [`super::Scene`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Props {
+    /// Whether props stand in the world.
+    pub on: bool,
     /// The side of a cell, metres: at most one prop a cell, no wider than half of it.
     pub cell: f32,
     /// The chance that a cell on gentle ground holds a prop, 0 to 1.
@@ -35,8 +39,6 @@ pub struct Placement {
     /// A prop smaller than this on screen (its height, pixels) sinks into the ground over the
     /// next halving of its size, each at its own threshold (0.7 to 1.3 times this).
     pub cutoff: f32,
-    /// Props at given places, besides the scattered ones.
-    pub explicit: Vec<Placed>,
 }
 
 /// A prop put at a given place.
@@ -52,22 +54,23 @@ pub struct Placed {
     pub scale: f32,
 }
 
-impl Default for Placement {
-    /// A prop in about one cell of three on gentle ground, cells of 8 m, drawn to 1200 m.
+impl Default for Props {
+    /// Off; when on, a prop in about one cell of three on gentle ground, cells of 8 m, drawn to
+    /// 1200 m.
     fn default() -> Self {
         Self {
+            on: false,
             cell: 8.0,
             density: 0.35,
             rock_density: 0.05,
             band: 12.0,
             distance: 1200.0,
             cutoff: 1.5,
-            explicit: Vec::new(),
         }
     }
 }
 
-impl Placement {
+impl Props {
     /// The cell sizes allowed, metres.
     pub const CELL: (f32, f32) = (2.0, 64.0);
     /// The bands allowed, metres.
@@ -91,8 +94,12 @@ impl Placement {
         check("props_rock_density", self.rock_density, (0.0, 1.0))?;
         check("props_band", self.band, Self::BAND)?;
         check("props_distance", self.distance, Self::DISTANCE)?;
-        check("props_cutoff", self.cutoff, Self::CUTOFF)?;
-        for (i, p) in self.explicit.iter().enumerate() {
+        check("props_cutoff", self.cutoff, Self::CUTOFF)
+    }
+
+    /// Refuses props at given places whose numbers are not finite or whose scale is not > 0.
+    pub fn validate_placed(placed: &[Placed]) -> Result<()> {
+        for (i, p) in placed.iter().enumerate() {
             if !p.at.iter().all(|v| v.is_finite()) || !p.turn.is_finite() {
                 return Err(Error::invalid(
                     format!("props.place[{i}]"),
@@ -113,9 +120,14 @@ impl Placement {
 
     /// Refuses a kind wider than half a cell or taller than the band at its largest scale
     /// (explicit props at their own scale).
-    pub fn check_fits(&self, kind: &Kind, tape: &Tape, index: u32) -> Result<()> {
+    pub fn check_fits(
+        &self,
+        kind: &Kind,
+        tape: &Tape,
+        (index, placed): (u32, &[Placed]),
+    ) -> Result<()> {
         let mut largest = f64::from(kind.scale.1);
-        for p in self.explicit.iter().filter(|p| p.kind == index) {
+        for p in placed.iter().filter(|p| p.kind == index) {
             largest = largest.max(f64::from(p.scale));
         }
         let wide = tape.radius() * largest;
@@ -160,7 +172,7 @@ pub struct Prop {
     pub shade: f32,
     /// It stands where this is under the density the ground allows, 0 to 1.
     pub chance: f32,
-    /// Its screen-size threshold, times [`Placement::cutoff`] (0.7 to 1.3).
+    /// Its screen-size threshold, times [`Props::cutoff`] (0.7 to 1.3).
     pub cutoff: f32,
     /// What varies its displacements' noise.
     pub seed: u32,
@@ -240,7 +252,7 @@ pub fn gentle(n_y: f32, tint: f32) -> f32 {
 /// normal rises `n_y`, its colour channel is `tint` and its normalised height `h` (under the
 /// water's normalised `water` level: none).
 pub fn keeps(
-    p: &Placement,
+    p: &Props,
     prop: &Prop,
     on_rock: bool,
     (n_y, tint, h): (f32, f32, f32),

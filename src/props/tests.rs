@@ -1,5 +1,5 @@
 use super::kinds::{self, landscape};
-use super::place::{self, Placed, Placement};
+use super::place::{self, Placed};
 use super::sdf;
 use super::*;
 
@@ -28,7 +28,7 @@ fn error(k: &Kind) -> String {
 #[test]
 fn the_shipped_scene_compiles_within_its_limits() {
     let scene = landscape();
-    let tapes = scene.compile().unwrap();
+    let tapes = scene.compile(&Props::default()).unwrap();
     assert_eq!(tapes.len(), 5);
     for (k, t) in scene.kinds.iter().zip(&tapes) {
         let prims = t
@@ -114,29 +114,31 @@ fn bad_trees_are_refused_naming_the_key_the_value_and_the_limit() {
 
 #[test]
 fn a_prop_wider_than_half_its_cell_or_taller_than_its_band_is_refused() {
-    let mut scene = landscape();
-    scene.placement.cell = 4.0;
-    let e = scene.compile().unwrap_err().to_string();
+    let scene = landscape();
+    let small = Props {
+        cell: 4.0,
+        ..Props::default()
+    };
+    let e = scene.compile(&small).unwrap_err().to_string();
     assert!(
         e.contains("props.") && e.contains("half the cell, 2 m"),
         "{e}"
     );
-    let mut scene = landscape();
-    scene.placement.band = 2.0;
-    let e = scene.compile().unwrap_err().to_string();
+    let low = Props {
+        band: 2.0,
+        ..Props::default()
+    };
+    let e = scene.compile(&low).unwrap_err().to_string();
     assert!(e.contains("tall") && e.contains("props_band"), "{e}");
     let mut scene = landscape();
-    scene.placement.explicit.push(Placed {
+    scene.placed.push(Placed {
         kind: 9,
         at: [0.0, 0.0],
         turn: 0.0,
         scale: 1.0,
     });
-    assert!(scene
-        .compile()
-        .unwrap_err()
-        .to_string()
-        .contains("place[0].kind"));
+    let e = scene.compile(&Props::default()).unwrap_err().to_string();
+    assert!(e.contains("place[0].kind"), "{e}");
 }
 
 #[test]
@@ -176,7 +178,7 @@ fn the_tapes_field_never_steps_through_its_surface() {
     // Sample each shipped kind's field along random segments: the field changes by at most its
     // Lipschitz constant times the distance (so a march dividing by it never oversteps).
     let scene = landscape();
-    let tapes = scene.compile().unwrap();
+    let tapes = scene.compile(&Props::default()).unwrap();
     let mut h = 12345u32;
     let mut next = || {
         h = crate::noise::pcg(h);
@@ -242,7 +244,7 @@ fn props_are_the_same_in_every_cell_far_from_the_origin() {
     assert_ne!(near, place::prop_at(&w, 7, [3, -5]));
     assert_ne!(near, place::prop_at(&w, 8, [3, -4]));
     // 10^9 m out, cells are exact integers.
-    let far = Placement::default().cell_at(1e9 + 4.0, -1e9);
+    let far = Props::default().cell_at(1e9 + 4.0, -1e9);
     assert_eq!(far, [125_000_000, -125_000_000]);
     let counts = (0..20_000).fold([0u32; 5], |mut c, i| {
         c[place::prop_at(&w, 7, [i, 1]).kind as usize] += 1;
@@ -261,7 +263,7 @@ fn props_are_the_same_in_every_cell_far_from_the_origin() {
 
 #[test]
 fn no_prop_stands_under_water_and_few_on_rock() {
-    let p = Placement::default();
+    let p = Props::default();
     let prop = place::Prop {
         chance: 0.01,
         ..Default::default()

@@ -70,8 +70,10 @@ pub(crate) struct VisUniforms {
     /// 32-bit words a pixel of the compute raster's depth buffer (the depth's the last): 2
     /// where it keeps each pixel's triangle, else 1.
     pub depth_stride: u32,
+    /// 1 where the props' march left each pixel's prop (`prop_hit`) for the shading.
+    pub props: u32,
     /// Padding.
-    pub _pad: [u32; 2],
+    pub _pad: u32,
 }
 
 impl VisUniforms {
@@ -90,7 +92,8 @@ impl VisUniforms {
             world: u32::from(world),
             encode_srgb: u32::from(encode),
             depth_stride: 1,
-            _pad: [0; 2],
+            props: 0,
+            _pad: 0,
         }
     }
 }
@@ -129,6 +132,8 @@ pub(crate) struct WorldBindings<'a> {
 struct Images {
     size: (u32, u32),
     depth: wgpu::TextureView,
+    /// Where the props' march leaves each pixel's prop (1x1 without props).
+    prop_hit: wgpu::TextureView,
     surface: wgpu::TextureView,
     valley: wgpu::TextureView,
     compute_group: wgpu::BindGroup,
@@ -182,6 +187,9 @@ pub struct Visibility {
     /// Whether the compute raster's blades write their motion for the temporal service (the
     /// world has grass): its image is made only then.
     blade_motion: bool,
+    /// Whether the frame has props, which the march leaves in the props' image for the
+    /// shading (where the compute raster draws): the image is made only then.
+    props: bool,
 }
 
 impl Visibility {
@@ -269,6 +277,16 @@ impl Visibility {
             super::storage_entry(10, SHADED_FORMAT),
             super::storage_entry(11, SHADED_DEPTH_FORMAT),
             super::uniform_entry::<VisUniforms>(12, c),
+            wgpu::BindGroupLayoutEntry {
+                binding: 22,
+                visibility: c,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
         ];
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
@@ -364,6 +382,7 @@ impl Visibility {
             resolve: None,
             shown: 0,
             blade_motion: false,
+            props: false,
             depth_w: [0.0; 2],
         }
     }
@@ -387,6 +406,21 @@ impl Visibility {
             self.blade_motion = on;
             self.images = None;
         }
+    }
+
+    /// Whether the frame has props (see [`Visibility::marches_props`]): the props' image is
+    /// made with the next frame's images, or dropped.
+    pub(crate) fn set_props(&mut self, on: bool) {
+        if on != self.props {
+            self.props = on;
+            self.images = None;
+        }
+    }
+
+    /// Whether it marches the frame's props between its raster and its shading: where the
+    /// compute raster draws (the visibility method's and, on the page, its 32-bit raster).
+    pub fn marches_props(&self) -> bool {
+        !self.hybrid && self.compute_raster.is_some()
     }
 
     /// Whether the blades' motion image is kept: blades in the compute raster, the temporal
@@ -585,6 +619,19 @@ impl Visibility {
             usage,
         )
         .create_view(&Default::default());
+        let hit_size = if self.props && self.marches_props() {
+            size
+        } else {
+            (1, 1)
+        };
+        let prop_hit = super::texture_2d(
+            device,
+            "relief:visibility:prop-hit",
+            hit_size,
+            super::props::HIT_FORMAT,
+            usage,
+        )
+        .create_view(&Default::default());
         use wgpu::BindingResource::{Sampler, TextureView};
         let mut entries = vec![
             entry(0, world.render.as_entire_binding()),
@@ -598,6 +645,7 @@ impl Visibility {
             entry(10, TextureView(&shaded)),
             entry(11, TextureView(&shaded_depth)),
             entry(12, self.uniforms.as_entire_binding()),
+            entry(22, TextureView(&prop_hit)),
         ];
         if let Some(rays) = &self.ray_uniforms {
             entries.push(entry(18, rays.as_entire_binding()));
@@ -655,6 +703,7 @@ impl Visibility {
         self.images = Some(Images {
             size,
             depth,
+            prop_hit,
             surface,
             valley,
             compute_group,
@@ -692,6 +741,8 @@ impl Visibility {
         if let Some(raster) = &self.compute_raster {
             u.depth_stride = raster.depth_stride();
         }
+        let props = patches.props.filter(|_| self.props && self.marches_props());
+        u.props = u32::from(props.is_some());
         self.opaque = sky;
         self.shown = 0;
         self.depth_w = [u.depth[0], u.depth[1]];
@@ -703,6 +754,16 @@ impl Visibility {
         if let Some(raster) = &mut self.compute_raster {
             raster.bind_blades(device, patches.blades.filter(|_| !hybrid));
             raster.encode(queue, encoder, (size, patches), timer);
+            if let (Some(props), Some(images)) = (props, &self.images) {
+                let depth = raster.depth(device, size);
+                props.encode_march(
+                    device,
+                    encoder,
+                    (world.render, world.world, &self.uniforms, depth),
+                    (&images.prop_hit, size),
+                    timer,
+                );
+            }
         }
         let Some(images) = &self.images else {
             return;

@@ -9,8 +9,10 @@ mod draw;
 mod frame;
 mod grass;
 mod mesh_history;
+mod props;
 mod resources;
 mod temporal;
+mod vis_frame;
 
 use self::draw::draw_patches;
 
@@ -145,6 +147,9 @@ pub struct World {
     mesh_history: Option<mesh_history::MeshHistory>,
     /// The grass's passes, where it grows ([`WorldParams::grass`]).
     grass: Option<crate::gpu::grass::GrassPass>,
+    /// The props' passes where they stand ([`WorldParams::props`]), and what they are.
+    props: Option<crate::gpu::props::PropsPass>,
+    props_scene: crate::props::Scene,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -202,6 +207,7 @@ impl World {
         params.validate()?;
         let mut world = Self::build(device, targets, params, None)?;
         world.update_grass(device)?;
+        world.update_props(device)?;
         Ok(world)
     }
 
@@ -329,6 +335,8 @@ impl World {
                 near_far: (0.0, 0.0),
                 mesh_history: None,
                 grass: None,
+                props: None,
+                props_scene: crate::props::Scene::default(),
             }
         })
     }
@@ -649,7 +657,8 @@ impl World {
         if relayout {
             self.relayout(device, self.map_k)?;
         }
-        self.update_grass(device)
+        self.update_grass(device)?;
+        self.update_props(device)
     }
 
     /// Everything a frame needs before the host's render pass, recorded into the host's
@@ -687,6 +696,7 @@ impl World {
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
         self.encode_grass(device, queue, encoder, view, timer);
+        self.encode_props(queue, encoder, view, timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
             self.encode_resolve(queue, encoder, &unjittered, timer);
@@ -706,95 +716,5 @@ impl World {
             layer.prepare(&frame, encoder);
         }
         Ok(texels)
-    }
-
-    /// Records the visibility method's raster pass and compute shading of the last prepared
-    /// frame.
-    fn encode_visibility(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        view: &WorldView,
-        timer: Option<&GpuTimer>,
-    ) -> Result<()> {
-        let size = self.target_size.unwrap_or(view.size);
-        if let Some(words) = self
-            .visibility
-            .as_ref()
-            .and_then(Visibility::raster_depth_words)
-        {
-            // Its depth buffer is bound whole: 4 bytes a pixel (8 with each pixel's triangle)
-            // within the device's limit.
-            let per_pixel = 4 * u64::from(words);
-            let bytes = per_pixel * u64::from(size.0) * u64::from(size.1);
-            let limit = device.limits().max_storage_buffer_binding_size;
-            if bytes > limit {
-                return Err(Error::invalid(
-                    "image size for the compute raster",
-                    format!("{}x{}", size.0, size.1),
-                    format!(
-                        "at most {} pixels on this device (its depth buffer, {per_pixel} bytes a \
-                         pixel, is bound whole); --raster hardware draws larger",
-                        limit / per_pixel
-                    ),
-                ));
-            }
-        }
-        self.vis_size = size;
-        let rays = if self.method == Method::Hybrid {
-            // The region the levels draw (the clipmap's coarsest square around the eye), from
-            // this world's layout: measuring it again each frame cost 100 ms of CPU.
-            let region = self.map.drawn_region(view.eye.x, view.eye.z);
-            let method = super::raymarch::RayMethod::Reference;
-            Some(super::world_rays::WorldRayUniforms::with_slopes(
-                &self.params,
-                view,
-                (method, size, region),
-                &self.slopes,
-            )?)
-        } else {
-            None
-        };
-        let blades = self
-            .grass_in_compute()
-            .then_some(self.grass.as_ref())
-            .flatten();
-        let Some(vis) = self.visibility.as_mut() else {
-            return Ok(());
-        };
-        let bindings = WorldBindings {
-            render: &self.render_uniforms,
-            world: &self.world_uniforms,
-            tile_terrain: &self.tile_textures.terrain,
-            tile_normals: &self.tile_textures.normals,
-            tile_sampler: &self.tile_textures.sampler,
-            instances: &self.instances,
-        };
-        let draw = |pass: &mut wgpu::RenderPass<'_>| {
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            draw_patches(
-                pass,
-                (&self.instances, self.instance_counts),
-                (&self.indices, self.index_counts),
-            );
-        };
-        let patches = Patches {
-            group: &self.bind_group,
-            counts: self.instance_counts,
-            cells: [self.map.patch, self.map.sub_cells()],
-            passes: self.raster_passes,
-            blades: blades.map(super::grass::GrassPass::raster_blades),
-        };
-        vis.encode(
-            device,
-            queue,
-            encoder,
-            &bindings,
-            (self.matrix, size, self.shading.sky),
-            (draw, &patches, rays.as_ref()),
-            timer,
-        );
-        Ok(())
     }
 }

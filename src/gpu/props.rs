@@ -1,0 +1,451 @@
+//! Props on the GPU ([`crate::props`] is the scene and the f64 twin): the kinds' tapes, their
+//! boxes and the materials in buffers (`wgsl/props.wgsl`); each frame's scatter of the props
+//! around the eye into a grid, with the heights each dual cell and block of them spans
+//! (`wgsl/props_scatter.wgsl`, reading the world's bind group for the drawn surface); and the
+//! march of each pixel's ray through them (`wgsl/props_march.wgsl`), which the visibility
+//! method records between its raster and its shading ([`PropsPass::encode_march`]).
+
+use crate::error::Result;
+use crate::props::place::cumulative;
+use crate::props::Props;
+use crate::props::{Combine, Op, Scene, Shape, Tape};
+
+/// Mirrors `PropsFrame` in `wgsl/props.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct PropsFrame {
+    eye_cell: [u32; 4],
+    eye_in_cell: [f32; 2],
+    cell: f32,
+    side: u32,
+    density: f32,
+    rock_density: f32,
+    distance: f32,
+    cutoff: f32,
+    seed: u32,
+    kinds: u32,
+    placed: u32,
+    water: f32,
+    pixels: f32,
+    band: f32,
+    blocks: u32,
+    steps: u32,
+}
+
+/// Mirrors `PropKind` in `wgsl/props.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+struct PropKind {
+    first: u32,
+    count: u32,
+    lipschitz: f32,
+    weight: f32,
+    lo: [f32; 4],
+    hi: [f32; 4],
+    scale: [f32; 4],
+}
+
+/// Mirrors `PropOp` in `wgsl/props.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+struct PropOp {
+    head: [f32; 4],
+    params: [f32; 4],
+    rows: [[f32; 4]; 3],
+}
+
+/// The most props put at given places a scene holds.
+pub const MAX_EXPLICIT: usize = 64;
+/// Bytes of a placed prop's record in the grid.
+const RECORD_BYTES: u64 = 48;
+/// Dual cells on a side of a block (`BLOCK` in `wgsl/props_grid.wgsl`).
+const BLOCK: u32 = 8;
+/// The most sphere-tracing steps a pixel's ray takes through the props.
+pub const STEPS: u32 = 96;
+/// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
+pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// The instruction's code in `wgsl/props.wgsl` and its parameters.
+fn op_code(op: &Op) -> (u32, [f32; 4]) {
+    match *op {
+        Op::Shape(s) => match s {
+            Shape::Sphere { radius } => (0, [radius, 0.0, 0.0, 0.0]),
+            Shape::Box { half } => (1, [half[0], half[1], half[2], 0.0]),
+            Shape::RoundBox { half, radius } => (2, [half[0], half[1], half[2], radius]),
+            Shape::Torus { major, minor } => (3, [major, minor, 0.0, 0.0]),
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => (4, [radius, half_height, 0.0, 0.0]),
+            Shape::Capsule {
+                radius,
+                half_height,
+            } => (5, [radius, half_height, 0.0, 0.0]),
+            Shape::Plane { normal, offset } => (6, [normal[0], normal[1], normal[2], offset]),
+        },
+        Op::Combine(c, k) => {
+            let code = match c {
+                Combine::Union => 10,
+                Combine::Intersection => 11,
+                Combine::Subtraction => 12,
+            };
+            (code, [k, 0.0, 0.0, 0.0])
+        }
+        Op::Displace {
+            amplitude,
+            frequency,
+        } => (20, [amplitude, frequency, 0.0, 0.0]),
+    }
+}
+
+/// The kinds' tapes as the GPU reads them: the instructions and the kinds.
+fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
+    let weights = cumulative(&scene.kinds);
+    let mut code = Vec::new();
+    let mut kinds = Vec::new();
+    for ((kind, tape), weight) in scene.kinds.iter().zip(tapes).zip(weights) {
+        let first = code.len() as u32;
+        for ins in &tape.code {
+            let (op, params) = op_code(&ins.op);
+            code.push(PropOp {
+                head: [op as f32, ins.material as f32, ins.scale as f32, 0.0],
+                params,
+                rows: ins.to_local.map(|r| r.map(|v| v as f32)),
+            });
+        }
+        let [lo, hi] = tape.bounds.map(|b| b.map(|v| v as f32));
+        kinds.push(PropKind {
+            first,
+            count: tape.code.len() as u32,
+            lipschitz: tape.lipschitz as f32,
+            weight,
+            lo: [lo[0], lo[1], lo[2], tape.radius() as f32],
+            hi: [hi[0], hi[1], hi[2], f32::from(u8::from(kind.on_rock))],
+            scale: [kind.scale.0, kind.scale.1, 0.0, 0.0],
+        });
+    }
+    (code, kinds)
+}
+
+/// Cells on a side of the grid around the eye's cell that the draw distance reaches (even: the
+/// eye's cell is number side / 2).
+pub fn grid_side(p: &Props) -> u32 {
+    2 * (f64::from(p.distance) / f64::from(p.cell)).ceil() as u32 + 4
+}
+
+/// The props of the endless world on the GPU (see the module docs).
+pub(crate) struct PropsPass {
+    scene: Scene,
+    props: Props,
+    frame: wgpu::Buffer,
+    /// The kinds' instructions, the kinds, the materials; the grid's records, each cell's,
+    /// dual cell's and block's heights; the props put at given places.
+    buffers: [wgpu::Buffer; 8],
+    side: u32,
+    blocks: u32,
+    scatter: [wgpu::ComputePipeline; 3],
+    scatter_group: wgpu::BindGroup,
+    march: wgpu::ComputePipeline,
+    march_layouts: [wgpu::BindGroupLayout; 2],
+}
+
+fn buffer_of(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    })
+}
+
+impl PropsPass {
+    /// The passes for `scene` (validated here: the error names the key), the scatter reading
+    /// the world's bind group of `world_layout`.
+    pub fn new(
+        device: &wgpu::Device,
+        world_layout: &wgpu::BindGroupLayout,
+        (scene, props): (&Scene, Props),
+    ) -> Result<Self> {
+        let tapes = scene.compile(&props)?;
+        if scene.placed.len() > MAX_EXPLICIT {
+            return Err(crate::Error::invalid(
+                "props.place",
+                format!("{} props", scene.placed.len()),
+                format!("at most {MAX_EXPLICIT}"),
+            ));
+        }
+        let (code, kinds) = gpu_tapes(scene, &tapes);
+        let materials: Vec<[f32; 4]> = scene
+            .materials
+            .iter()
+            .map(|m| [m.albedo[0], m.albedo[1], m.albedo[2], m.variation])
+            .collect();
+        let side = grid_side(&props);
+        let dual = u64::from(side + 1);
+        let blocks = (side + 1).div_ceil(BLOCK);
+        let cells = u64::from(side) * u64::from(side) + MAX_EXPLICIT as u64;
+        let sizes = [
+            std::mem::size_of_val(code.as_slice()) as u64,
+            std::mem::size_of_val(kinds.as_slice()) as u64,
+            std::mem::size_of_val(materials.as_slice()) as u64,
+            cells * RECORD_BYTES,
+            cells * 8,
+            dual * dual * 8,
+            u64::from(blocks * blocks) * 8,
+            MAX_EXPLICIT as u64 * 32,
+        ];
+        let labels = [
+            "relief:props:code",
+            "relief:props:kinds",
+            "relief:props:materials",
+            "relief:props:grid",
+            "relief:props:cell-range",
+            "relief:props:dual-range",
+            "relief:props:block-range",
+            "relief:props:explicit",
+        ];
+        let contents: [&[u8]; 3] = [
+            bytemuck::cast_slice(&code),
+            bytemuck::cast_slice(&kinds),
+            bytemuck::cast_slice(&materials),
+        ];
+        let buffers: [wgpu::Buffer; 8] = std::array::from_fn(|i| match contents.get(i) {
+            Some(bytes) => {
+                use wgpu::util::DeviceExt;
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(labels[i]),
+                    contents: bytes,
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+            }
+            None => buffer_of(device, labels[i], sizes[i]),
+        });
+        let c = wgpu::ShaderStages::COMPUTE;
+        let mut entries = vec![
+            super::uniform_entry::<PropsFrame>(0, c),
+            super::storage_buffer_entry(1, true),
+            super::storage_buffer_entry(2, true),
+            super::storage_buffer_entry(3, true),
+        ];
+        entries.extend((4..8).map(|b| super::storage_buffer_entry(b, false)));
+        let mut scatter_entries = entries.clone();
+        scatter_entries.push(super::storage_buffer_entry(8, true));
+        let scatter_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:props:scatter-layout"),
+            entries: &scatter_entries,
+        });
+        let mut march_entries = entries;
+        march_entries.push(super::storage_entry(9, HIT_FORMAT));
+        let march_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:props:march-layout"),
+            entries: &march_entries,
+        });
+        let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:props:view-layout"),
+            entries: &[
+                super::uniform_entry::<super::render::RenderUniforms>(0, c),
+                super::uniform_entry::<super::uniforms::WorldUniforms>(1, c),
+                super::uniform_entry::<super::visibility::VisUniforms>(12, c),
+                super::storage_buffer_entry(19, true),
+            ],
+        });
+        let frame = super::uniform_buffer::<PropsFrame>(device, "relief:props:frame");
+        let scatter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:scatter-group"),
+            layout: &scatter_layout,
+            entries: &std::iter::once(frame.as_entire_binding())
+                .chain(buffers.iter().map(|b| b.as_entire_binding()))
+                .enumerate()
+                .map(|(i, resource)| wgpu::BindGroupEntry {
+                    binding: i as u32,
+                    resource,
+                })
+                .collect::<Vec<_>>(),
+        });
+        let source = super::shader::source("props_scatter");
+        let module = super::shader::module(device, "relief:props:scatter", &source);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:props:scatter-pipeline-layout"),
+            bind_group_layouts: &[Some(world_layout), Some(&scatter_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |module: &wgpu::ShaderModule, layout: &wgpu::PipelineLayout, entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&format!("relief:props:{entry}")),
+                layout: Some(layout),
+                module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let scatter = ["props_scatter", "props_ranges", "props_blocks"]
+            .map(|entry| pipeline(&module, &layout, entry));
+        let march_module = super::shader::module(
+            device,
+            "relief:props:march",
+            &super::shader::source("props_march"),
+        );
+        let march_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("relief:props:march-pipeline-layout"),
+                bind_group_layouts: &[Some(&view_layout), Some(&march_layout)],
+                immediate_size: 0,
+            });
+        let march = pipeline(&march_module, &march_pipeline_layout, "props_march");
+        Ok(Self {
+            scene: scene.clone(),
+            props,
+            frame,
+            buffers,
+            side,
+            blocks,
+            scatter,
+            scatter_group,
+            march,
+            march_layouts: [view_layout, march_layout],
+        })
+    }
+
+    /// The scene it draws and how it scatters it.
+    pub fn drawn(&self) -> (&Scene, Props) {
+        (&self.scene, self.props)
+    }
+
+    /// GPU memory of its buffers, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.buffers.iter().map(wgpu::Buffer::size).sum::<u64>()
+            + std::mem::size_of::<PropsFrame>() as u64
+    }
+
+    /// Records the scatter of the props around `eye` (world metres) over the landscape of
+    /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), for an
+    /// image whose height spans `pixels` pixels a unit of tan(angle), the water's normalised
+    /// level `water` (`None`: none); timed as [`super::timing::Slot::Props`].
+    pub fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
+        (pixels, water): (f32, Option<f32>),
+        timer: Option<&super::timing::GpuTimer>,
+    ) {
+        let p = &self.props;
+        let placed = &self.scene.placed;
+        let cell = f64::from(p.cell);
+        let eye_cell = p.cell_at(eye.x, eye.z);
+        let words = |v: i64| [v as u64 as u32, (v as u64 >> 32) as u32];
+        let [x, z] = eye_cell.map(words);
+        let frame = PropsFrame {
+            eye_cell: [x[0], x[1], z[0], z[1]],
+            eye_in_cell: [
+                (eye.x - eye_cell[0] as f64 * cell) as f32,
+                (eye.z - eye_cell[1] as f64 * cell) as f32,
+            ],
+            cell: p.cell,
+            side: self.side,
+            density: p.density,
+            rock_density: p.rock_density,
+            distance: p.distance,
+            cutoff: p.cutoff,
+            seed,
+            kinds: self.scene.kinds.len() as u32,
+            placed: placed.len() as u32,
+            water: water.unwrap_or(-1e30),
+            pixels,
+            band: p.band,
+            blocks: self.blocks,
+            steps: STEPS,
+        };
+        queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
+        if !placed.is_empty() {
+            let records: Vec<[f32; 4]> = placed
+                .iter()
+                .enumerate()
+                .flat_map(|(i, e)| {
+                    let h = crate::noise::pcg(i as u32 ^ 0x7061_6365);
+                    [
+                        [
+                            (e.at[0] - eye.x) as f32,
+                            (e.at[1] - eye.z) as f32,
+                            e.turn.to_radians(),
+                            e.scale,
+                        ],
+                        [
+                            e.kind as f32,
+                            (h >> 8) as f32 / 16_777_216.0,
+                            f32::from_bits(crate::noise::pcg(h)),
+                            0.0,
+                        ],
+                    ]
+                })
+                .collect();
+            queue.write_buffer(&self.buffers[7], 0, bytemuck::cast_slice(&records));
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:props:scatter-pass"),
+            timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::Props)),
+        });
+        pass.set_bind_group(0, world, &[]);
+        pass.set_bind_group(1, &self.scatter_group, &[]);
+        let g = super::WORKGROUP;
+        // The grid, and a row of threads past it for the props put at given places.
+        let rows = self.side + (MAX_EXPLICIT as u32).div_ceil(self.side);
+        let dispatches = [
+            (self.side.div_ceil(g), rows.div_ceil(g)),
+            ((self.side + 1).div_ceil(g), (self.side + 1).div_ceil(g)),
+            (self.blocks.div_ceil(g), self.blocks.div_ceil(g)),
+        ];
+        for (pipeline, (x, y)) in self.scatter.iter().zip(dispatches) {
+            pass.set_pipeline(pipeline);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+
+    /// Records the march of each pixel of an image of `size` through the props into `hit`,
+    /// reading the frame's render, world and visibility uniforms and the compute raster's
+    /// depth; timed as [`super::timing::Slot::March`].
+    pub fn encode_march(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        (render, world, vis, depth): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
+        (hit, size): (&wgpu::TextureView, (u32, u32)),
+        timer: Option<&super::timing::GpuTimer>,
+    ) {
+        let entry = |binding: u32, resource| wgpu::BindGroupEntry { binding, resource };
+        let view_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:view-group"),
+            layout: &self.march_layouts[0],
+            entries: &[
+                entry(0, render.as_entire_binding()),
+                entry(1, world.as_entire_binding()),
+                entry(12, vis.as_entire_binding()),
+                entry(19, depth.as_entire_binding()),
+            ],
+        });
+        let mut entries: Vec<wgpu::BindGroupEntry<'_>> =
+            std::iter::once(self.frame.as_entire_binding())
+                .chain(self.buffers[..7].iter().map(|b| b.as_entire_binding()))
+                .enumerate()
+                .map(|(i, resource)| entry(i as u32, resource))
+                .collect();
+        entries.push(entry(9, wgpu::BindingResource::TextureView(hit)));
+        let march_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:march-group"),
+            layout: &self.march_layouts[1],
+            entries: &entries,
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:props:march-pass"),
+            timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::March)),
+        });
+        pass.set_pipeline(&self.march);
+        pass.set_bind_group(0, &view_group, &[]);
+        pass.set_bind_group(1, &march_group, &[]);
+        let g = super::WORKGROUP;
+        pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
+    }
+}

@@ -1,0 +1,94 @@
+//! [`World`]'s props ([`crate::props`] is what they are and where they stand,
+//! [`crate::gpu::props`] their passes): each frame's scatter after the uniforms; the march
+//! between the raster and the shading of the visibility method (`vis_frame.rs`).
+
+use super::*;
+use crate::gpu::props::PropsPass;
+use crate::props::Scene;
+
+impl World {
+    /// Builds, rebuilds or drops the props' passes for the parameters' props
+    /// ([`WorldParams::props`]: off by default) and the world's scene
+    /// ([`World::set_props_scene`]). The tile has none.
+    pub(super) fn update_props(&mut self, device: &wgpu::Device) -> Result<()> {
+        let props = self.params.props;
+        if !props.on || self.tile.is_some() {
+            self.props = None;
+            return Ok(());
+        }
+        let same = self
+            .props
+            .as_ref()
+            .is_some_and(|p| p.drawn() == (&self.props_scene, props));
+        if !same {
+            let pass = scoped(device, || {
+                PropsPass::new(device, &self.layout, (&self.props_scene, props))
+            })??;
+            self.props = Some(pass);
+        }
+        Ok(())
+    }
+
+    /// Sets what the world's props are: their materials, kinds and props at given places
+    /// (the shipped landscape's by default, [`crate::props::kinds::landscape`]). Validated
+    /// against the parameters' [`WorldParams::props`] here, whether props are on or not; an
+    /// error names the key, the value and the limit, and leaves the world's scene as it was.
+    pub fn set_props_scene(&mut self, device: &wgpu::Device, scene: Scene) -> Result<()> {
+        scene.compile(&self.params.props)?;
+        let old = std::mem::replace(&mut self.props_scene, scene);
+        if let Err(e) = self.update_props(device) {
+            self.props_scene = old;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// What the world's props are ([`World::set_props_scene`]).
+    pub fn props_scene(&self) -> &Scene {
+        &self.props_scene
+    }
+
+    /// Whether this frame's method draws the props: the visibility method with its raster in
+    /// compute ([`crate::Raster::Compute`]), where props are on. Other methods draw none yet.
+    pub fn draws_props(&self) -> bool {
+        self.props.is_some()
+            && self.method == Method::Visibility
+            && self
+                .visibility
+                .as_ref()
+                .is_some_and(Visibility::marches_props)
+    }
+
+    /// GPU memory of the props' buffers, bytes (0 without props).
+    pub fn props_bytes(&self) -> u64 {
+        self.props.as_ref().map_or(0, PropsPass::bytes)
+    }
+
+    /// Records the frame's scatter of props where the method draws them.
+    pub(super) fn encode_props(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &WorldView,
+        timer: Option<&GpuTimer>,
+    ) {
+        let drawn = self.draws_props();
+        if let Some(vis) = &mut self.visibility {
+            vis.set_props(drawn);
+        }
+        let Some(props) = self.props.as_ref().filter(|_| drawn) else {
+            return;
+        };
+        let high = self.target_size.unwrap_or(view.size).1;
+        let pixels = high as f32 / (2.0 * (0.5 * view.fov_y).tan());
+        let water = (!self.params.no_water)
+            .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32);
+        props.encode(
+            queue,
+            encoder,
+            (&self.bind_group, self.params.land.seed, view.eye),
+            (pixels, water),
+            timer,
+        );
+    }
+}

@@ -1,0 +1,269 @@
+// import: world, vis_common, props, props_grid, props_look
+// The props' march (src/gpu/visibility/props.rs): a thread a pixel, after the raster and
+// before the shading. Its ray walks the grid of placed props (props_grid.wgsl) from the eye up
+// to the depth the raster kept (or the props' draw distance): block by block and dual cell by
+// dual cell, skipping every one whose props' heights the ray does not cross, and in a dual cell
+// whose props' boxes it enters, it sphere-traces the nearest of their fields (their tapes,
+// props.wgsl), each step the distance over their Lipschitz constant, until the distance is
+// under half a pixel's footprint. A hit leaves its depth, normal, albedo and the light on it
+// (the sky's share from its own field's occlusion and the terrain's valley, the sun's from the
+// terrain's horizon and a soft shadow marched through the props towards the sun); a pixel the
+// ray crosses without a hit leaves the props' shadow on whatever the raster drew there.
+
+// Per pixel (props_look.wgsl): depth (bits; 1: no prop), normal (two snorm16), albedo (its
+// square root, rgb8) and the sky's share (a8), the sun's share (bits).
+@group(1) @binding(9) var prop_hit_out: texture_storage_2d<rgba32uint, write>;
+
+// The most dual cells and blocks a ray visits.
+const MAX_VISITS: u32 = 1024u;
+// A soft shadow's penumbra: the sun's share is at most this times distance over range.
+const SHADOW_SOFTNESS: f32 = 8.0;
+// How far a shadow is marched towards the sun, metres.
+const SHADOW_REACH: f32 = 300.0;
+
+// Where a ray meets props: the distance along it (or the sun's share for a shadow) and the
+// record it met (none: 0xffffffff).
+struct Meet {
+    t: f32,
+    record: u32,
+}
+
+const NO_RECORD: u32 = 0xffffffffu;
+
+// A placed prop's distance at camera-relative `p` and its material (as f32).
+fn record_distance(i: u32, p: vec3<f32>) -> vec2<f32> {
+    let a = prop_grid[i * 3u];
+    let b = prop_grid[i * 3u + 1u];
+    let q = p - a.xyz;
+    let local = vec3<f32>(b.x * q.x - b.y * q.z, q.y, b.y * q.x + b.x * q.z) / a.w;
+    let d = kind_distance(u32(b.z), local, bitcast<u32>(b.w));
+    return vec2<f32>(d.x * a.w, d.y);
+}
+
+// Where the ray `o + t dir` is inside the box of record `i` (none: an empty interval).
+fn record_span(i: u32, o: vec3<f32>, inv: vec3<f32>) -> vec2<f32> {
+    let a = prop_grid[i * 3u];
+    if a.w <= 0.0 {
+        return vec2<f32>(1.0, 0.0);
+    }
+    let k = prop_kinds[u32(prop_grid[i * 3u + 1u].z)];
+    let r = k.lo.w * a.w;
+    let y = prop_cell_range[i];
+    let lo = vec3<f32>(a.x - r, y.x, a.z - r);
+    let hi = vec3<f32>(a.x + r, y.y, a.z + r);
+    let t0 = (lo - o) * inv;
+    let t1 = (hi - o) * inv;
+    let near = min(t0, t1);
+    let far = max(t0, t1);
+    return vec2<f32>(max(near.x, max(near.y, near.z)), min(far.x, min(far.y, far.z)));
+}
+
+fn lipschitz_of(i: u32) -> f32 {
+    return prop_kinds[u32(prop_grid[i * 3u + 1u].z)].lipschitz;
+}
+
+// Whether the ray's heights over [t0, t1] cross `range`.
+fn crosses(o: vec3<f32>, dir: vec3<f32>, t0: f32, t1: f32, range: vec2<f32>) -> bool {
+    let y0 = o.y + dir.y * t0;
+    let y1 = o.y + dir.y * t1;
+    return min(y0, y1) <= range.y && max(y0, y1) >= range.x;
+}
+
+// Where the ray leaves the square [lo, hi] (x, z) it is in.
+fn square_exit(o: vec3<f32>, inv: vec3<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
+    let t0 = (lo - o.xz) * inv.xz;
+    let t1 = (hi - o.xz) * inv.xz;
+    let far = max(t0, t1);
+    return min(far.x, far.y);
+}
+
+// Sphere-traces the nearest of the `n` records in `cands` along the ray over [t0, t1],
+// spending `budget`'s steps. A view ray (`shadow` false) returns its hit; a shadow ray the
+// sun's share (`t`: 1 unshadowed, down to 0), its record unused.
+fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n: u32, shadow: bool, budget: ptr<function, u32>, share: ptr<function, f32>) -> Meet {
+    var lip = 1.0;
+    for (var c = 0u; c < n; c++) {
+        lip = max(lip, lipschitz_of(cands[c]));
+    }
+    var t = span.x;
+    while t <= span.y && *budget > 0u {
+        *budget -= 1u;
+        let p = o + dir * t;
+        var d = 3.0e38;
+        var best = NO_RECORD;
+        for (var c = 0u; c < n; c++) {
+            let dc = record_distance(cands[c], p).x;
+            if dc < d {
+                d = dc;
+                best = cands[c];
+            }
+        }
+        let eps = max(1e-3, 0.5 * t / pf.pixels);
+        if shadow {
+            *share = min(*share, SHADOW_SOFTNESS * max(d, 0.0) / max(t, 1e-3));
+            if *share < 0.01 {
+                *share = 0.0;
+                return Meet(t, best);
+            }
+        } else if d < eps {
+            return Meet(t, best);
+        }
+        t += max(d / lip, eps);
+    }
+    return Meet(span.y, NO_RECORD);
+}
+
+// Walks the ray `o + t dir` over [t_begin, t_end] through the props. A view ray returns its
+// first hit (record NO_RECORD: none); a shadow ray the sun's share in `t`.
+fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) -> Meet {
+    let inv = 1.0 / select(dir, vec3<f32>(1e-12), abs(dir) < vec3<f32>(1e-12));
+    var budget = pf.steps;
+    var share = 1.0;
+    var best = Meet(t_end, NO_RECORD);
+    // The props put at given places: each ray looks at each.
+    let placed = pf.side * pf.side;
+    for (var j = 0u; j < pf.placed; j++) {
+        let s = record_span(placed + j, o, inv);
+        let span = vec2<f32>(max(s.x, t_begin), min(s.y, best.t));
+        if span.x <= span.y {
+            var one = array<u32, 4>(placed + j, 0u, 0u, 0u);
+            let m = trace(o, dir, span, one, 1u, shadow, &budget, &share);
+            if shadow && share <= 0.0 {
+                return Meet(0.0, m.record);
+            }
+            if !shadow && m.record != NO_RECORD {
+                best = m;
+            }
+        }
+    }
+    let half = i32(pf.side / 2u);
+    let m = i32(dual_side());
+    let c = pf.cell;
+    var t = t_begin;
+    for (var visit = 0u; visit < MAX_VISITS; visit++) {
+        if t >= best.t || budget == 0u {
+            break;
+        }
+        let p = o + dir * t;
+        // The dual cell holding p: the corner nearest it, counted from the grid's first.
+        let g = vec2<i32>(floor((p.xz + pf.eye_in_cell) / c + 0.5)) + half;
+        if any(g < vec2<i32>(0)) || any(g >= vec2<i32>(m)) {
+            break;
+        }
+        let step = max(1e-4, 1e-6 * t);
+        let bi = vec2<u32>(g) / BLOCK;
+        let block_lo = (vec2<f32>(vec2<i32>(bi * BLOCK) - half) - 0.5) * c - pf.eye_in_cell;
+        let block_exit = square_exit(o, inv, block_lo, block_lo + f32(BLOCK) * c);
+        if !crosses(o, dir, t, min(block_exit, best.t), prop_block_range[bi.y * pf.blocks + bi.x]) {
+            t = max(block_exit, t) + step;
+            continue;
+        }
+        let lo = (vec2<f32>(g - half) - 0.5) * c - pf.eye_in_cell;
+        let exit = square_exit(o, inv, lo, lo + c);
+        let end = min(exit, best.t);
+        if crosses(o, dir, t, end, prop_dual_range[u32(g.y * m + g.x)]) {
+            var cands = array<u32, 4>(0u, 0u, 0u, 0u);
+            var n = 0u;
+            var span = vec2<f32>(3.0e38, -3.0e38);
+            for (var k = 0; k < 4; k++) {
+                let cell = g - vec2<i32>(1) + vec2<i32>(k & 1, k >> 1u);
+                if any(cell < vec2<i32>(0)) || any(cell >= vec2<i32>(i32(pf.side))) {
+                    continue;
+                }
+                let i = u32(cell.y) * pf.side + u32(cell.x);
+                let s = record_span(i, o, inv);
+                let within = vec2<f32>(max(s.x, t), min(s.y, end));
+                if within.x <= within.y {
+                    cands[n] = i;
+                    n += 1u;
+                    span = vec2<f32>(min(span.x, within.x), max(span.y, within.y));
+                }
+            }
+            if n > 0u {
+                let hit = trace(o, dir, span, cands, n, shadow, &budget, &share);
+                if shadow && share <= 0.0 {
+                    return Meet(0.0, hit.record);
+                }
+                if !shadow && hit.record != NO_RECORD {
+                    return hit;
+                }
+            }
+        }
+        t = max(exit, t) + step;
+    }
+    if shadow {
+        return Meet(share, NO_RECORD);
+    }
+    return best;
+}
+
+// The props' shadow at camera-relative `p` (the sun's share, 0 to 1).
+fn props_shadow(p: vec3<f32>) -> f32 {
+    let l = r.sun_dir.xyz;
+    if l.y <= 0.0 {
+        return 1.0;
+    }
+    return walk(p, l, 0.0, SHADOW_REACH, true).t;
+}
+
+@compute @workgroup_size(8, 8)
+fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= vis.size.x || id.y >= vis.size.y {
+        return;
+    }
+    let px = vec2<i32>(id.xy);
+    let dir = sample_ray(vec2<f32>(id.xy) + 0.5);
+    let d = rasterised_depth(id.xy);
+    var t_end = pf.distance + pf.cell;
+    var surface = false;
+    if d < 1.0 {
+        let s = length(point_at(dir, d));
+        surface = s < t_end;
+        t_end = min(t_end, s);
+    }
+    let origin = vec3<f32>(0.0);
+    let hit = walk(origin, dir, 0.0, t_end, false);
+    if hit.record == NO_RECORD {
+        var out = no_prop();
+        if surface {
+            // The surface the raster drew, a little towards the eye.
+            let p = dir * (t_end - max(0.02, 2.0 * t_end / pf.pixels));
+            out.w = bitcast<u32>(props_shadow(p));
+        }
+        textureStore(prop_hit_out, px, out);
+        return;
+    }
+    let p = dir * hit.t;
+    let i = hit.record;
+    let e = max(2e-3, 0.5 * hit.t / pf.pixels);
+    // The normal: the tetrahedron of four evaluations (four, not six, for central differences).
+    let k0 = vec3<f32>(1.0, -1.0, -1.0);
+    let k1 = vec3<f32>(-1.0, -1.0, 1.0);
+    let k2 = vec3<f32>(-1.0, 1.0, -1.0);
+    let k3 = vec3<f32>(1.0, 1.0, 1.0);
+    var n = k0 * record_distance(i, p + e * k0).x + k1 * record_distance(i, p + e * k1).x
+        + k2 * record_distance(i, p + e * k2).x + k3 * record_distance(i, p + e * k3).x;
+    n = select(-dir, normalize(n), dot(n, n) > 0.0);
+    let at = record_distance(i, p);
+    // The sky's share: the field's occlusion over four steps out along the normal.
+    var ao = 0.0;
+    for (var s = 1; s <= 4; s++) {
+        let h = 0.12 * f32(s);
+        ao += (h - record_distance(i, p + n * h).x) / f32(1 << u32(s));
+    }
+    ao = clamp(1.0 - 2.5 * ao, 0.0, 1.0);
+    let look = prop_grid[i * 3u + 2u];
+    let hn = (p.y + w.eye.y) / w.peak;
+    let occl = occlusion(r, hn, look.y, look.z);
+    let sun = occl.x * props_shadow(p + n * max(0.02, 2.0 * e));
+    let mat = prop_materials[u32(at.y)];
+    let albedo = mat.rgb * (1.0 + mat.w * (look.x - 0.5));
+    let clip_w = dot(vis.w_row.xyz, p) + vis.w_row.w;
+    let depth = vis.depth.y / clip_w - vis.depth.x;
+    textureStore(prop_hit_out, px, vec4<u32>(
+        bitcast<u32>(depth),
+        pack2x16snorm(oct_encode(n)),
+        pack4x8unorm(vec4<f32>(sqrt(clamp(albedo, vec3<f32>(0.0), vec3<f32>(1.0))), ao * occl.y)),
+        bitcast<u32>(sun),
+    ));
+}
