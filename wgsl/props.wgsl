@@ -31,11 +31,16 @@ struct PropsFrame {
     band: f32,
     blocks: u32,
     steps: u32,
+    flags: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // A kind: its tape's first instruction and length, its Lipschitz constant, its cumulative
 // weight; the box of its surface (min xyz and the radius about its axis; max xyz and 1 where
-// it stands on rock); its scale's range (min, max).
+// it stands on rock); its scale's range (min, max) and the sum of its displacements'
+// amplitudes (what its field may lie below its undisplaced field); a sphere that holds it.
 struct PropKind {
     first: u32,
     count: u32,
@@ -44,6 +49,7 @@ struct PropKind {
     lo: vec4<f32>,
     hi: vec4<f32>,
     scale: vec4<f32>,
+    sphere: vec4<f32>,
 }
 
 // An instruction (src/props/mod.rs: Instruction): the op's code, the material, the scale its
@@ -148,9 +154,36 @@ fn op_point(op: PropOp, p: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(dot(op.m0, h), dot(op.m1, h), dot(op.m2, h));
 }
 
+// The boolean `code` (OP_UNION, OP_INTERSECTION, OP_SUBTRACTION) of the distances and
+// materials `a` and `b`, smooth over radius `k` (0: sharp).
+fn prop_combine(code: u32, a: vec2<f32>, b: vec2<f32>, k: f32) -> vec2<f32> {
+    var m: vec2<f32>;
+    if code == OP_UNION {
+        m = smooth_min(a.x, b.x, k);
+    } else if code == OP_INTERSECTION {
+        m = smooth_min(-a.x, -b.x, k);
+        m.x = -m.x;
+    } else {
+        m = smooth_min(-a.x, b.x, k);
+        m.x = -m.x;
+    }
+    return vec2<f32>(m.x, select(b.y, a.y, m.y >= 0.5));
+}
+
 // A kind's distance at `p` (its frame, metres) and the material there (as f32), for the prop
-// whose noise is `seed`.
+// whose noise is `seed`: its tape read from the buffer, run on a stack. (src/gpu/props_wgsl.rs
+// compiles the tapes into WGSL at load in its place.)
 fn kind_distance(k: u32, p: vec3<f32>, seed: u32) -> vec2<f32> {
+    return run_tape(k, p, seed, true);
+}
+
+// The kind's distance without its noise's displacements: within the sum of their amplitudes
+// (`PropKind::scale.z`) of the distance, and cheaper.
+fn kind_undisplaced(k: u32, p: vec3<f32>) -> f32 {
+    return run_tape(k, p, 0u, false).x;
+}
+
+fn run_tape(k: u32, p: vec3<f32>, seed: u32, rough: bool) -> vec2<f32> {
     let kind = prop_kinds[k];
     var stack: array<vec2<f32>, PROP_STACK>;
     var top = 0u;
@@ -162,21 +195,8 @@ fn kind_distance(k: u32, p: vec3<f32>, seed: u32) -> vec2<f32> {
             top += 1u;
         } else if code < OP_DISPLACE {
             top -= 1u;
-            let b = stack[top];
-            let a = stack[top - 1u];
-            let k = op.params.x;
-            var m: vec2<f32>;
-            if code == OP_UNION {
-                m = smooth_min(a.x, b.x, k);
-            } else if code == OP_INTERSECTION {
-                m = smooth_min(-a.x, -b.x, k);
-                m.x = -m.x;
-            } else {
-                m = smooth_min(-a.x, b.x, k);
-                m.x = -m.x;
-            }
-            stack[top - 1u] = vec2<f32>(m.x, select(b.y, a.y, m.y >= 0.5));
-        } else {
+            stack[top - 1u] = prop_combine(code, stack[top - 1u], stack[top], op.params.x);
+        } else if rough {
             let q = op_point(op, p) * op.params.y;
             stack[top - 1u].x += op.params.x * value_noise(q, seed);
         }

@@ -20,6 +20,13 @@ const MAX_VISITS: u32 = 1024u;
 const SHADOW_SOFTNESS: f32 = 8.0;
 // How far a shadow is marched towards the sun, metres.
 const SHADOW_REACH: f32 = 300.0;
+// A shadow ray's least step, metres.
+const SHADOW_STEP: f32 = 0.04;
+// Nearer its sphere than this (metres), a prop's field is read.
+const SPHERE_MARGIN: f32 = 0.25;
+// Nearer its undisplaced surface than this less its displacements (metres), a view ray reads a
+// prop's whole field.
+const ROUGH_MARGIN: f32 = 0.05;
 
 // Where a ray meets props: the distance along it (or the sun's share for a shadow) and the
 // record it met (none: 0xffffffff).
@@ -32,8 +39,8 @@ const NO_RECORD: u32 = 0xffffffffu;
 
 // A placed prop's distance at camera-relative `p` and its material (as f32).
 fn record_distance(i: u32, p: vec3<f32>) -> vec2<f32> {
-    let a = prop_grid[i * 3u];
-    let b = prop_grid[i * 3u + 1u];
+    let a = prop_grid[i * RECORD];
+    let b = prop_grid[i * RECORD + 1u];
     let q = p - a.xyz;
     let local = vec3<f32>(b.x * q.x - b.y * q.z, q.y, b.y * q.x + b.x * q.z) / a.w;
     let d = kind_distance(u32(b.z), local, bitcast<u32>(b.w));
@@ -42,11 +49,11 @@ fn record_distance(i: u32, p: vec3<f32>) -> vec2<f32> {
 
 // Where the ray `o + t dir` is inside the box of record `i` (none: an empty interval).
 fn record_span(i: u32, o: vec3<f32>, inv: vec3<f32>) -> vec2<f32> {
-    let a = prop_grid[i * 3u];
+    let a = prop_grid[i * RECORD];
     if a.w <= 0.0 {
         return vec2<f32>(1.0, 0.0);
     }
-    let k = prop_kinds[u32(prop_grid[i * 3u + 1u].z)];
+    let k = prop_kinds[u32(prop_grid[i * RECORD + 1u].z)];
     let r = k.lo.w * a.w;
     let y = prop_cell_range[i];
     let lo = vec3<f32>(a.x - r, y.x, a.z - r);
@@ -58,8 +65,20 @@ fn record_span(i: u32, o: vec3<f32>, inv: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(max(near.x, max(near.y, near.z)), min(far.x, min(far.y, far.z)));
 }
 
+// A lower bound of a placed prop's distance at `p` (`exact`: its distance less its
+// displacements; else its undisplaced distance, within them of it: what shadows read).
+fn record_bound(i: u32, p: vec3<f32>, exact: bool) -> f32 {
+    let a = prop_grid[i * RECORD];
+    let b = prop_grid[i * RECORD + 1u];
+    let q = p - a.xyz;
+    let local = vec3<f32>(b.x * q.x - b.y * q.z, q.y, b.y * q.x + b.x * q.z) / a.w;
+    let k = u32(b.z);
+    let rough = select(0.0, prop_kinds[k].scale.z, exact);
+    return (kind_undisplaced(k, local) - rough) * a.w;
+}
+
 fn lipschitz_of(i: u32) -> f32 {
-    return prop_kinds[u32(prop_grid[i * 3u + 1u].z)].lipschitz;
+    return prop_kinds[u32(prop_grid[i * RECORD + 1u].z)].lipschitz;
 }
 
 // Whether the ray's heights over [t0, t1] cross `range`.
@@ -92,7 +111,21 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
         var d = 3.0e38;
         var best = NO_RECORD;
         for (var c = 0u; c < n; c++) {
-            let dc = record_distance(cands[c], p).x;
+            // Outside a prop's sphere by more than SPHERE_MARGIN, the distance to the sphere
+            // bounds the distance to the prop: its field is read only near it.
+            let sphere = prop_grid[cands[c] * RECORD + 3u];
+            var dc = length(p - sphere.xyz) - sphere.w;
+            if dc >= d {
+                continue;
+            }
+            if dc < SPHERE_MARGIN {
+                // Then the field without its displacements: a shadow reads it as the field, a
+                // view ray less their amplitude as a bound, and the whole field only near.
+                dc = record_bound(cands[c], p, !shadow);
+                if !shadow && dc < ROUGH_MARGIN {
+                    dc = record_distance(cands[c], p).x;
+                }
+            }
             if dc < d {
                 d = dc;
                 best = cands[c];
@@ -108,7 +141,8 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
         } else if d < eps {
             return Meet(t, best);
         }
-        t += max(d / lip, eps);
+        // A shadow ray steps at least SHADOW_STEP: its penumbra needs no finer.
+        t += max(d / lip, select(eps, SHADOW_STEP, shadow));
     }
     return Meet(span.y, NO_RECORD);
 }
@@ -139,9 +173,20 @@ fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) ->
     let half = i32(pf.side / 2u);
     let m = i32(dual_side());
     let c = pf.cell;
+    // Only where the ray is within the heights every prop spans.
+    let all = prop_block_range[pf.blocks * pf.blocks];
     var t = t_begin;
+    var t_last = best.t;
+    if abs(dir.y) > 1e-6 {
+        let ta = (all.x - o.y) / dir.y;
+        let tb = (all.y - o.y) / dir.y;
+        t = max(t, min(ta, tb));
+        t_last = min(t_last, max(ta, tb));
+    } else if o.y < all.x || o.y > all.y {
+        t_last = t;
+    }
     for (var visit = 0u; visit < MAX_VISITS; visit++) {
-        if t >= best.t || budget == 0u {
+        if t >= t_last || budget == 0u {
             break;
         }
         let p = o + dir * t;
@@ -179,7 +224,7 @@ fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) ->
                     span = vec2<f32>(min(span.x, within.x), max(span.y, within.y));
                 }
             }
-            if n > 0u {
+            if n > 0u && (pf.flags & 4u) == 0u {
                 let hit = trace(o, dir, span, cands, n, shadow, &budget, &share);
                 if shadow && share <= 0.0 {
                     return Meet(0.0, hit.record);
@@ -225,7 +270,7 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     let hit = walk(origin, dir, 0.0, t_end, false);
     if hit.record == NO_RECORD {
         var out = no_prop();
-        if surface {
+        if surface && (pf.flags & 1u) == 0u {
             // The surface the raster drew, a little towards the eye.
             let p = dir * (t_end - max(0.02, 2.0 * t_end / pf.pixels));
             out.w = bitcast<u32>(props_shadow(p));
@@ -249,13 +294,16 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     var ao = 0.0;
     for (var s = 1; s <= 4; s++) {
         let h = 0.12 * f32(s);
-        ao += (h - record_distance(i, p + n * h).x) / f32(1 << u32(s));
+        ao += (h - record_bound(i, p + n * h, false)) / f32(1 << u32(s));
     }
     ao = clamp(1.0 - 2.5 * ao, 0.0, 1.0);
-    let look = prop_grid[i * 3u + 2u];
+    let look = prop_grid[i * RECORD + 2u];
     let hn = (p.y + w.eye.y) / w.peak;
     let occl = occlusion(r, hn, look.y, look.z);
-    let sun = occl.x * props_shadow(p + n * max(0.02, 2.0 * e));
+    var sun = occl.x;
+    if (pf.flags & 2u) == 0u {
+        sun *= props_shadow(p + n * max(0.02, 2.0 * e));
+    }
     let mat = prop_materials[u32(at.y)];
     let albedo = mat.rgb * (1.0 + mat.w * (look.x - 0.5));
     let clip_w = dot(vis.w_row.xyz, p) + vis.w_row.w;

@@ -14,7 +14,7 @@
 @group(1) @binding(8) var<storage, read> explicit_props: array<vec4<f32>>;
 
 fn clear_record(i: u32) {
-    prop_grid[i * 3u] = vec4<f32>(0.0);
+    prop_grid[i * RECORD] = vec4<f32>(0.0);
     prop_cell_range[i] = EMPTY_RANGE;
 }
 
@@ -56,9 +56,15 @@ fn stand(i: u32, kind: u32, xz: vec2<f32>, turn: f32, scale: f32, p: Prop, scatt
     y = min(y, ground_at(xz + vec2<f32>(0.0, foot)).rel.y);
     y = min(y, ground_at(xz - vec2<f32>(0.0, foot)).rel.y);
     y -= 0.02 + (1.0 - shown) * top;
-    prop_grid[i * 3u] = vec4<f32>(xz.x, y, xz.y, scale);
-    prop_grid[i * 3u + 1u] = vec4<f32>(cos(turn), sin(turn), f32(kind), bitcast<f32>(p.seed));
-    prop_grid[i * 3u + 2u] = vec4<f32>(p.shade, centre.light, s.x);
+    let c = cos(turn);
+    let sn = sin(turn);
+    prop_grid[i * RECORD] = vec4<f32>(xz.x, y, xz.y, scale);
+    prop_grid[i * RECORD + 1u] = vec4<f32>(c, sn, f32(kind), bitcast<f32>(p.seed));
+    prop_grid[i * RECORD + 2u] = vec4<f32>(p.shade, centre.light, s.x);
+    // The kind's sphere turned and scaled as the march's `record_distance` maps the prop.
+    let o = k.sphere.xyz * scale;
+    let centre_rel = vec3<f32>(xz.x, y, xz.y) + vec3<f32>(c * o.x + sn * o.z, o.y, -sn * o.x + c * o.z);
+    prop_grid[i * RECORD + 3u] = vec4<f32>(centre_rel, k.sphere.w * scale);
     prop_cell_range[i] = vec2<f32>(y + k.lo.y * scale, y + top);
 }
 
@@ -122,4 +128,18 @@ fn props_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     prop_block_range[id.y * b + id.x] = r;
+}
+
+// One thread: the heights every block's props span, after the last block.
+@compute @workgroup_size(1)
+fn props_span() {
+    let n = pf.blocks * pf.blocks;
+    var r = EMPTY_RANGE;
+    for (var i = 0u; i < n; i++) {
+        r = union_range(r, prop_block_range[i]);
+    }
+    for (var j = 0u; j < pf.placed; j++) {
+        r = union_range(r, prop_cell_range[pf.side * pf.side + j]);
+    }
+    prop_block_range[n] = r;
 }

@@ -30,6 +30,8 @@ pub(crate) struct PropsFrame {
     band: f32,
     blocks: u32,
     steps: u32,
+    flags: u32,
+    _pad: [u32; 3],
 }
 
 /// Mirrors `PropKind` in `wgsl/props.wgsl`.
@@ -43,6 +45,7 @@ struct PropKind {
     lo: [f32; 4],
     hi: [f32; 4],
     scale: [f32; 4],
+    sphere: [f32; 4],
 }
 
 /// Mirrors `PropOp` in `wgsl/props.wgsl`.
@@ -57,7 +60,7 @@ struct PropOp {
 /// The most props put at given places a scene holds.
 pub const MAX_EXPLICIT: usize = 64;
 /// Bytes of a placed prop's record in the grid.
-const RECORD_BYTES: u64 = 48;
+const RECORD_BYTES: u64 = 64;
 /// Dual cells on a side of a block (`BLOCK` in `wgsl/props_grid.wgsl`).
 const BLOCK: u32 = 8;
 /// The most sphere-tracing steps a pixel's ray takes through the props.
@@ -66,7 +69,7 @@ pub const STEPS: u32 = 96;
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// The instruction's code in `wgsl/props.wgsl` and its parameters.
-fn op_code(op: &Op) -> (u32, [f32; 4]) {
+pub(crate) fn op_code(op: &Op) -> (u32, [f32; 4]) {
     match *op {
         Op::Shape(s) => match s {
             Shape::Sphere { radius } => (0, [radius, 0.0, 0.0, 0.0]),
@@ -121,7 +124,12 @@ fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
             weight,
             lo: [lo[0], lo[1], lo[2], tape.radius() as f32],
             hi: [hi[0], hi[1], hi[2], f32::from(u8::from(kind.on_rock))],
-            scale: [kind.scale.0, kind.scale.1, 0.0, 0.0],
+            scale: [kind.scale.0, kind.scale.1, tape.roughness() as f32, 0.0],
+            sphere: {
+                let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
+                let r = [0, 1, 2].map(|a| 0.5 * (hi[a] - lo[a]));
+                [c[0], c[1], c[2], (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()]
+            },
         });
     }
     (code, kinds)
@@ -143,7 +151,7 @@ pub(crate) struct PropsPass {
     buffers: [wgpu::Buffer; 8],
     side: u32,
     blocks: u32,
-    scatter: [wgpu::ComputePipeline; 3],
+    scatter: [wgpu::ComputePipeline; 4],
     scatter_group: wgpu::BindGroup,
     march: wgpu::ComputePipeline,
     march_layouts: [wgpu::BindGroupLayout; 2],
@@ -193,7 +201,7 @@ impl PropsPass {
             cells * RECORD_BYTES,
             cells * 8,
             dual * dual * 8,
-            u64::from(blocks * blocks) * 8,
+            u64::from(blocks * blocks + 1) * 8,
             MAX_EXPLICIT as u64 * 32,
         ];
         let labels = [
@@ -281,12 +289,15 @@ impl PropsPass {
                 cache: None,
             })
         };
-        let scatter = ["props_scatter", "props_ranges", "props_blocks"]
+        let scatter = ["props_scatter", "props_ranges", "props_blocks", "props_span"]
             .map(|entry| pipeline(&module, &layout, entry));
+        // The tapes compiled into the march's WGSL, or read from their buffer where
+        // RELIEF_PROPS_TAPES=buffer (the two are measured against each other).
+        let compiled = std::env::var("RELIEF_PROPS_TAPES").as_deref() != Ok("buffer");
         let march_module = super::shader::module(
             device,
             "relief:props:march",
-            &super::shader::source("props_march"),
+            &super::props_wgsl::march_source(&tapes, compiled),
         );
         let march_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -358,6 +369,11 @@ impl PropsPass {
             band: p.band,
             blocks: self.blocks,
             steps: STEPS,
+            flags: std::env::var("RELIEF_PROPS_FLAGS")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(0),
+            _pad: [0; 3],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
         if !placed.is_empty() {
@@ -397,6 +413,7 @@ impl PropsPass {
             (self.side.div_ceil(g), rows.div_ceil(g)),
             ((self.side + 1).div_ceil(g), (self.side + 1).div_ceil(g)),
             (self.blocks.div_ceil(g), self.blocks.div_ceil(g)),
+            (1, 1),
         ];
         for (pipeline, (x, y)) in self.scatter.iter().zip(dispatches) {
             pass.set_pipeline(pipeline);
@@ -447,5 +464,91 @@ impl PropsPass {
         pass.set_bind_group(1, &march_group, &[]);
         let g = super::WORKGROUP;
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
+    }
+
+    /// Cells on a side of its grid around the eye's cell (the eye's is number side / 2).
+    pub fn side(&self) -> u32 {
+        self.side
+    }
+
+    /// The last scatter's records, read back (blocking; native only): a cell's of the grid,
+    /// row by row (z), then the props put at given places; each the prop's foot
+    /// (camera-relative) and scale (0: none), the cosine and sine of its turn, its kind and its
+    /// noise's seed (bits), its shade, the terrain's horizon and valley and the foot's
+    /// normalised height; the centre (camera-relative) and radius of a sphere that holds it.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn read_records(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Vec<[f32; 16]>> {
+        let n = u64::from(self.side) * u64::from(self.side) + self.scene.placed.len() as u64;
+        let bytes = n * RECORD_BYTES;
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("relief:props:grid-staging"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.buffers[3], 0, &staging, 0, bytes);
+        queue.submit([encoder.finish()]);
+        let raw = super::map_read(device, &staging)?;
+        let floats: &[f32] = bytemuck::cast_slice(&raw);
+        Ok(floats
+            .chunks_exact(16)
+            .map(|c| std::array::from_fn(|i| c[i]))
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::wgsl_tests::{layout, offset, parse};
+    use std::mem::{offset_of, size_of};
+
+    #[test]
+    fn the_props_structs_match_wgsl() {
+        let m = parse("props_scatter", &super::super::shader::source("props_scatter"));
+        let (size, members) = layout(&m, "PropsFrame");
+        assert_eq!(size as usize, size_of::<PropsFrame>());
+        for (name, at) in [
+            ("eye_in_cell", offset_of!(PropsFrame, eye_in_cell)),
+            ("side", offset_of!(PropsFrame, side)),
+            ("density", offset_of!(PropsFrame, density)),
+            ("seed", offset_of!(PropsFrame, seed)),
+            ("water", offset_of!(PropsFrame, water)),
+            ("pixels", offset_of!(PropsFrame, pixels)),
+            ("steps", offset_of!(PropsFrame, steps)),
+            ("flags", offset_of!(PropsFrame, flags)),
+        ] {
+            assert_eq!(offset(&members, name), at, "PropsFrame.{name}");
+        }
+        let (size, members) = layout(&m, "PropKind");
+        assert_eq!(size as usize, size_of::<PropKind>());
+        for (name, at) in [
+            ("lipschitz", offset_of!(PropKind, lipschitz)),
+            ("lo", offset_of!(PropKind, lo)),
+            ("scale", offset_of!(PropKind, scale)),
+            ("sphere", offset_of!(PropKind, sphere)),
+        ] {
+            assert_eq!(offset(&members, name), at, "PropKind.{name}");
+        }
+        let (size, members) = layout(&m, "PropOp");
+        assert_eq!(size as usize, size_of::<PropOp>());
+        assert_eq!(offset(&members, "m0"), offset_of!(PropOp, rows));
+    }
+
+    #[test]
+    fn the_compiled_tapes_validate() {
+        let scene = crate::props::Scene::default();
+        let mut kinds = scene.kinds.clone();
+        kinds.push(crate::props::kinds::demo());
+        let scene = crate::props::Scene { kinds, ..scene };
+        let tapes = scene.compile(&Props::default()).unwrap();
+        let source = super::super::props_wgsl::march_source(&tapes, true);
+        assert!(source.contains("fn kind_distance_tape(") && source.contains("fn kind_5("));
+        parse("props_march (compiled)", &source);
     }
 }

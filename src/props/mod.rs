@@ -281,6 +281,19 @@ pub struct Tape {
 }
 
 impl Tape {
+    /// The sum of its displacements' amplitudes (metres, the kind's frame): the field without
+    /// them lies within this of the field with them (booleans, sharp or smooth, move their
+    /// result by no more than they move their arguments).
+    pub fn roughness(&self) -> f64 {
+        self.code
+            .iter()
+            .map(|i| match i.op {
+                Op::Displace { amplitude, .. } => f64::from(amplitude),
+                _ => 0.0,
+            })
+            .sum()
+    }
+
     /// The radius about the kind's vertical axis that holds its surface however it turns.
     pub fn radius(&self) -> f64 {
         let [lo, hi] = self.bounds;

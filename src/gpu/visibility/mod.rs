@@ -134,6 +134,7 @@ struct Images {
     depth: wgpu::TextureView,
     /// Where the props' march leaves each pixel's prop (1x1 without props).
     prop_hit: wgpu::TextureView,
+    prop_hit_texture: wgpu::Texture,
     surface: wgpu::TextureView,
     valley: wgpu::TextureView,
     compute_group: wgpu::BindGroup,
@@ -423,6 +424,12 @@ impl Visibility {
         !self.hybrid && self.compute_raster.is_some()
     }
 
+    /// The props' image of the last frame that marched them.
+    pub(crate) fn prop_hit_texture(&self) -> Option<&wgpu::Texture> {
+        let images = self.images.as_ref()?;
+        (self.props && self.marches_props()).then_some(&images.prop_hit_texture)
+    }
+
     /// Whether the blades' motion image is kept: blades in the compute raster, the temporal
     /// service on.
     fn keeps_motion(&self) -> bool {
@@ -624,14 +631,14 @@ impl Visibility {
         } else {
             (1, 1)
         };
-        let prop_hit = super::texture_2d(
+        let prop_hit_texture = super::texture_2d(
             device,
             "relief:visibility:prop-hit",
             hit_size,
             super::props::HIT_FORMAT,
-            usage,
-        )
-        .create_view(&Default::default());
+            usage | wgpu::TextureUsages::COPY_SRC,
+        );
+        let prop_hit = prop_hit_texture.create_view(&Default::default());
         use wgpu::BindingResource::{Sampler, TextureView};
         let mut entries = vec![
             entry(0, world.render.as_entire_binding()),
@@ -704,6 +711,7 @@ impl Visibility {
             size,
             depth,
             prop_hit,
+            prop_hit_texture,
             surface,
             valley,
             compute_group,

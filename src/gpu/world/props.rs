@@ -91,4 +91,37 @@ impl World {
             timer,
         );
     }
+
+    /// The last frame's placed props, read back (blocking; native only): the grid's side and
+    /// its records ([`crate::gpu::props::PropsPass::read_records`]). `None` without props.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn props_records(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<Result<(u32, Vec<[f32; 16]>)>> {
+        let props = self.props.as_ref()?;
+        Some(props.read_records(device, queue).map(|r| (props.side(), r)))
+    }
+
+    /// What the last frame's props' march left each pixel, read back (blocking; native only),
+    /// row by row: the prop's depth (bits; 1.0 where none), its normal (two snorm16), its
+    /// albedo's square root (rgb8) and the sky's share (a8), the sun's share (bits; for a pixel
+    /// without a prop, the props' shadow on what the raster drew). `None` where the frame's
+    /// method marched no props.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn props_hits(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<Result<Vec<[u32; 4]>>> {
+        let texture = self.visibility.as_ref()?.prop_hit_texture()?;
+        let bytes = crate::gpu::headless::read_texture(device, queue, texture);
+        Some(bytes.map(|b| {
+            bytemuck::cast_slice::<u8, u32>(&b)
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect()
+        }))
+    }
 }

@@ -1,0 +1,113 @@
+//! The kinds' tapes compiled into WGSL at load: a function a kind of straight-line code (each
+//! instruction's transform, shape and parameters written as constants, the stack as local
+//! values), and `kind_distance` choosing among them, in place of the interpreter of
+//! `wgsl/props.wgsl` that reads the tapes from a buffer. Same arithmetic, same order: the two
+//! agree to a rounding (tested).
+
+use crate::props::{Op, Tape};
+use std::fmt::Write as _;
+
+/// A WGSL float literal that reads back as `v`.
+fn float(v: f32) -> String {
+    let s = format!("{v:?}");
+    if s.contains(['.', 'e']) {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+fn vec4(v: [f32; 4]) -> String {
+    format!(
+        "vec4<f32>({}, {}, {}, {})",
+        float(v[0]),
+        float(v[1]),
+        float(v[2]),
+        float(v[3])
+    )
+}
+
+/// The WGSL of one kind's function, `kind_<index>` (`rough`: with its displacements) or
+/// `kind_smooth_<index>` (without).
+fn kind_function(index: usize, tape: &Tape, rough: bool) -> String {
+    let name = if rough { "kind" } else { "kind_smooth" };
+    let mut out = format!("fn {name}_{index}(p: vec3<f32>, seed: u32) -> vec2<f32> {{\n");
+    let mut stack: Vec<String> = Vec::new();
+    for (i, ins) in tape.code.iter().enumerate() {
+        let (code, params) = super::props::op_code(&ins.op);
+        let rows = ins.to_local.map(|r| r.map(|v| v as f32));
+        let point = format!(
+            "vec3<f32>(dot({}, vec4<f32>(p, 1.0)), dot({}, vec4<f32>(p, 1.0)), dot({}, vec4<f32>(p, 1.0)))",
+            vec4(rows[0]),
+            vec4(rows[1]),
+            vec4(rows[2])
+        );
+        let name = format!("v{i}");
+        let line = match ins.op {
+            Op::Shape(_) => format!(
+                "vec2<f32>(shape_distance({code}u, {}, {point}) * {}, {})",
+                vec4(params),
+                float(ins.scale as f32),
+                float(ins.material as f32)
+            ),
+            Op::Combine(..) => {
+                let b = stack.pop().unwrap_or_default();
+                let a = stack.pop().unwrap_or_default();
+                format!("prop_combine({code}u, {a}, {b}, {})", float(params[0]))
+            }
+            Op::Displace { .. } if !rough => continue,
+            Op::Displace { .. } => {
+                let a = stack.pop().unwrap_or_default();
+                format!(
+                    "vec2<f32>({a}.x + {} * value_noise({point} * {}, seed), {a}.y)",
+                    float(params[0]),
+                    float(params[1])
+                )
+            }
+        };
+        let _ = writeln!(out, "    let {name} = {line};");
+        stack.push(name);
+    }
+    let result = stack.pop().unwrap_or_else(|| "vec2<f32>(3.0e38, 0.0)".into());
+    let _ = writeln!(out, "    return {result};\n}}");
+    out
+}
+
+/// The WGSL that defines `kind_distance` and `kind_undisplaced` by the kinds' compiled
+/// functions, to follow a module whose own (the interpreter's) were renamed `*_tape`.
+pub(crate) fn compiled_kinds(tapes: &[Tape]) -> String {
+    let mut out = String::from(
+        "// The kinds' tapes compiled at load (src/gpu/props_wgsl.rs).\n",
+    );
+    for (i, tape) in tapes.iter().enumerate() {
+        out.push_str(&kind_function(i, tape, true));
+        out.push_str(&kind_function(i, tape, false));
+    }
+    for (name, call, ret, rough) in [
+        ("kind_distance(k: u32, p: vec3<f32>, seed: u32) -> vec2<f32>", "kind", "", true),
+        ("kind_undisplaced(k: u32, p: vec3<f32>) -> f32", "kind_smooth", ".x", false),
+    ] {
+        let _ = writeln!(out, "fn {name} {{\n    switch k {{");
+        let seed = if rough { "seed" } else { "0u" };
+        for i in 0..tapes.len() {
+            let _ = writeln!(out, "        case {i}u: {{ return {call}_{i}(p, {seed}){ret}; }}");
+        }
+        let none = if rough { "vec2<f32>(3.0e38, 0.0)" } else { "3.0e38" };
+        let _ = writeln!(out, "        default: {{ return {none}; }}\n    }}\n}}");
+    }
+    out
+}
+
+/// The march's module source: `wgsl/props_march.wgsl` composed, its kinds' tapes compiled in
+/// (`compiled`) or read from the buffer.
+pub(crate) fn march_source(tapes: &[Tape], compiled: bool) -> String {
+    let source = super::shader::source("props_march");
+    if !compiled {
+        return source;
+    }
+    let renamed = source
+        .replace("fn kind_distance(", "fn kind_distance_tape(")
+        .replace("fn kind_undisplaced(", "fn kind_undisplaced_tape(");
+    debug_assert_ne!(renamed, source, "props.wgsl defines kind_distance");
+    renamed + &compiled_kinds(tapes)
+}
