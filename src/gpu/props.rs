@@ -128,7 +128,12 @@ fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
             sphere: {
                 let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
                 let r = [0, 1, 2].map(|a| 0.5 * (hi[a] - lo[a]));
-                [c[0], c[1], c[2], (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()]
+                [
+                    c[0],
+                    c[1],
+                    c[2],
+                    (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt(),
+                ]
             },
         });
     }
@@ -289,8 +294,13 @@ impl PropsPass {
                 cache: None,
             })
         };
-        let scatter = ["props_scatter", "props_ranges", "props_blocks", "props_span"]
-            .map(|entry| pipeline(&module, &layout, entry));
+        let scatter = [
+            "props_scatter",
+            "props_ranges",
+            "props_blocks",
+            "props_span",
+        ]
+        .map(|entry| pipeline(&module, &layout, entry));
         // The tapes compiled into the march's WGSL, or read from their buffer where
         // RELIEF_PROPS_TAPES=buffer (the two are measured against each other).
         let compiled = std::env::var("RELIEF_PROPS_TAPES").as_deref() != Ok("buffer");
@@ -510,7 +520,10 @@ mod tests {
 
     #[test]
     fn the_props_structs_match_wgsl() {
-        let m = parse("props_scatter", &super::super::shader::source("props_scatter"));
+        let m = parse(
+            "props_scatter",
+            &super::super::shader::source("props_scatter"),
+        );
         let (size, members) = layout(&m, "PropsFrame");
         assert_eq!(size as usize, size_of::<PropsFrame>());
         for (name, at) in [

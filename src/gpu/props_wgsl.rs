@@ -68,7 +68,9 @@ fn kind_function(index: usize, tape: &Tape, rough: bool) -> String {
         let _ = writeln!(out, "    let {name} = {line};");
         stack.push(name);
     }
-    let result = stack.pop().unwrap_or_else(|| "vec2<f32>(3.0e38, 0.0)".into());
+    let result = stack
+        .pop()
+        .unwrap_or_else(|| "vec2<f32>(3.0e38, 0.0)".into());
     let _ = writeln!(out, "    return {result};\n}}");
     out
 }
@@ -76,23 +78,38 @@ fn kind_function(index: usize, tape: &Tape, rough: bool) -> String {
 /// The WGSL that defines `kind_distance` and `kind_undisplaced` by the kinds' compiled
 /// functions, to follow a module whose own (the interpreter's) were renamed `*_tape`.
 pub(crate) fn compiled_kinds(tapes: &[Tape]) -> String {
-    let mut out = String::from(
-        "// The kinds' tapes compiled at load (src/gpu/props_wgsl.rs).\n",
-    );
+    let mut out = String::from("// The kinds' tapes compiled at load (src/gpu/props_wgsl.rs).\n");
     for (i, tape) in tapes.iter().enumerate() {
         out.push_str(&kind_function(i, tape, true));
         out.push_str(&kind_function(i, tape, false));
     }
     for (name, call, ret, rough) in [
-        ("kind_distance(k: u32, p: vec3<f32>, seed: u32) -> vec2<f32>", "kind", "", true),
-        ("kind_undisplaced(k: u32, p: vec3<f32>) -> f32", "kind_smooth", ".x", false),
+        (
+            "kind_distance(k: u32, p: vec3<f32>, seed: u32) -> vec2<f32>",
+            "kind",
+            "",
+            true,
+        ),
+        (
+            "kind_undisplaced(k: u32, p: vec3<f32>) -> f32",
+            "kind_smooth",
+            ".x",
+            false,
+        ),
     ] {
         let _ = writeln!(out, "fn {name} {{\n    switch k {{");
         let seed = if rough { "seed" } else { "0u" };
         for i in 0..tapes.len() {
-            let _ = writeln!(out, "        case {i}u: {{ return {call}_{i}(p, {seed}){ret}; }}");
+            let _ = writeln!(
+                out,
+                "        case {i}u: {{ return {call}_{i}(p, {seed}){ret}; }}"
+            );
         }
-        let none = if rough { "vec2<f32>(3.0e38, 0.0)" } else { "3.0e38" };
+        let none = if rough {
+            "vec2<f32>(3.0e38, 0.0)"
+        } else {
+            "3.0e38"
+        };
         let _ = writeln!(out, "        default: {{ return {none}; }}\n    }}\n}}");
     }
     out
