@@ -9,6 +9,7 @@ mod bench;
 mod bench_endless;
 mod command;
 mod files;
+mod props_scene;
 mod render;
 mod resolve;
 pub mod stability;
@@ -518,6 +519,12 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
                     "it applies to bake --world endless only",
                 )?;
                 let params = resolve_world(m)?;
+                if resolve_props(m, &params)?.is_some() {
+                    return Err(Error::Usage(
+                        "the scene file's [prop_kinds], [prop_materials] and [[prop_place]]:                          relief render draws them; the window draws the shipped props (props =                          true)"
+                            .into(),
+                    ));
+                }
                 let view = world_view(&camera(m)?, &params, (1280, 720));
                 let fly = relief::FlyCamera::looking_at(
                     view.eye,
@@ -582,10 +589,11 @@ fn run(top: &ArgMatches, go: Go) -> Result<()> {
                 return bake_endless(&params, &region, out_dir, m.get_flag("timings"));
             }
             let params = resolve_world(m)?;
+            let props = resolve_props(m, &params)?;
             if go == Go::Check {
                 return Ok(());
             }
-            return run_endless(run, params, m.get_flag("timings"));
+            return run_endless(run, (params, props), m.get_flag("timings"));
         }
     }
     let params = resolve_scene(m)?;

@@ -53,7 +53,11 @@ pub(super) fn world_view(camera: &Camera, params: &WorldParams, size: (u32, u32)
     WorldView::look_at(eye, target, fov, size)
 }
 
-pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Result<()> {
+pub(super) fn run_endless(
+    run: Run,
+    (params, props): (WorldParams, Option<relief::props::Scene>),
+    timings: bool,
+) -> Result<()> {
     match run {
         Run::Height { points } => {
             for [x, z] in points {
@@ -82,6 +86,7 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
                     table::number(view.eye.z),
                 )));
             }
+            let method = props_method(&params, method)?;
             let gpu = Gpu::new()?;
             let timer = timer_if(timings, &gpu);
             if let Some(method) = method.own_path() {
@@ -140,6 +145,9 @@ pub(super) fn run_endless(run: Run, params: WorldParams, timings: bool) -> Resul
             }
             let targets = Offscreen::targets(headless::RENDER_SAMPLES);
             let mut world = World::new(&gpu.device, &gpu.queue, targets, params)?;
+            if let Some(scene) = props {
+                world.set_props_scene(&gpu.device, scene)?;
+            }
             let scene = headless::TrialScene::Endless(&mut world, &view);
             resolve_drawn(&gpu, method, scene, timings)?;
             if frames > 1 {
@@ -337,4 +345,28 @@ pub(super) fn knob_warning(s: &relief::WorldStats, knob: f64, size: (u32, u32)) 
             size.0, size.1, s.patch_cells, s.finest_spacing, s.error_bound_px
         )
     })
+}
+
+/// How a frame with props is drawn: the visibility method rasterised in compute, the one that
+/// marches them (`auto` picks it); another method given is refused in one line.
+fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
+    use relief::{choice::Candidate, Method, Raster};
+    let marching = Candidate {
+        method: Method::Visibility,
+        samples: 1,
+        raster: Raster::Compute,
+    };
+    if !params.props.on {
+        return Ok(method);
+    }
+    match method {
+        Drawn::Auto => Ok(Drawn::Pinned(marching)),
+        Drawn::Pinned(c) if c == marching => Ok(method),
+        Drawn::Pinned(c) => Err(Error::Usage(format!(
+            "--props: the props are marched by the visibility method rasterised in compute \
+             (--method visibility --samples 1 --raster compute, or auto); the {} draws none \
+             yet",
+            c.method
+        ))),
+    }
 }

@@ -424,6 +424,26 @@ pub(super) fn resolve_world(m: &ArgMatches) -> Result<WorldParams> {
     Ok(p)
 }
 
+/// The props of the scene file, if it gives their tables, validated against `params`' props
+/// (an error names the file).
+pub(super) fn resolve_props(
+    m: &ArgMatches,
+    params: &WorldParams,
+) -> Result<Option<relief::props::Scene>> {
+    let Some(path) = string(m, "scene") else {
+        return Ok(None);
+    };
+    let path = PathBuf::from(path);
+    let scene = crate::scene::read_world_props(&path)?;
+    if let Some(s) = &scene {
+        s.compile(&params.props).map_err(|e| Error::SceneFile {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    Ok(scene)
+}
+
 pub(super) fn string(m: &ArgMatches, id: &str) -> Option<String> {
     m.try_get_one::<String>(id).ok().flatten().cloned()
 }

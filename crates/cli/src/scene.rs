@@ -268,6 +268,10 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
     // The record of a region bake; it does not change the world.
     table.remove("bake");
     table.remove("camera");
+    // What the props are: read by `read_world_props`.
+    for t in crate::props_scene::TABLES {
+        table.remove(t);
+    }
     let mut out = Vec::with_capacity(table.len());
     for (key, value) in &table {
         let row = relief::world::world_param(key)
@@ -275,7 +279,10 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
             .ok_or_else(|| {
                 // The keys no longer fit on an error's line: the nearest, and where they are.
                 let keys = relief::world::WORLD_PARAMS.iter().map(|r| r.key);
-                let near = closest(key, keys.chain(["world", "camera", "bake"]));
+                let tables = ["world", "camera", "bake"]
+                    .into_iter()
+                    .chain(crate::props_scene::TABLES);
+                let near = closest(key, keys.chain(tables));
                 fail(format!(
                     "invalid key: {} (did you mean {near}? docs/cli.md lists the keys)",
                     table::shorten(key),
@@ -286,6 +293,16 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
         out.push((row, text));
     }
     Ok(out)
+}
+
+/// The props of an endless-world scene file ([`crate::props_scene`]), or `None` where it gives
+/// none of their tables (the shipped landscape's props); errors name the file and the key.
+pub fn read_world_props(path: &Path) -> Result<Option<relief::props::Scene>> {
+    let table = load(path)?;
+    crate::props_scene::read(&table).map_err(|e| Error::SceneFile {
+        path: path.to_owned(),
+        message: e.to_string(),
+    })
 }
 
 /// Scene files for [`TerrainParams`]: the core knows the parameter table, the `relief`
@@ -379,7 +396,7 @@ fn toml_text(kind: Kind, v: &toml::Value) -> Option<String> {
 }
 
 /// A TOML value as an error shows it (short, in TOML's own spelling).
-fn toml_shown(v: &toml::Value) -> String {
+pub(crate) fn toml_shown(v: &toml::Value) -> String {
     let s = match v {
         toml::Value::String(s) => format!("{s:?}"),
         toml::Value::Table(_) => "a table".to_owned(),
