@@ -257,6 +257,45 @@ fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) ->
     return best;
 }
 
+// The seed's way, for the benchmark's peer (`PropsFrame::flags` bit 16): from the eye, every
+// step reads the whole fields of the props of the 3x3 cells around the point, steps at most
+// half a cell (so no prop beyond them is stepped into), up to the draw distance: no band, no
+// bounds, no depth the raster kept.
+const SEED_STEPS: u32 = 400u;
+fn seed_walk(dir: vec3<f32>, t_end: f32) -> Meet {
+    let half = i32(pf.side / 2u);
+    var t = 0.05;
+    for (var s = 0u; s < SEED_STEPS; s++) {
+        let p = dir * t;
+        let cell = vec2<i32>(floor((p.xz + pf.eye_in_cell) / pf.cell)) + half;
+        var d = 3.0e38;
+        var best = NO_RECORD;
+        for (var k = 0; k < 9; k++) {
+            let c = cell + vec2<i32>(k % 3 - 1, k / 3 - 1);
+            if any(c < vec2<i32>(0)) || any(c >= vec2<i32>(i32(pf.side))) {
+                continue;
+            }
+            let i = u32(c.y) * pf.side + u32(c.x);
+            if prop_grid[i * RECORD].w <= 0.0 {
+                continue;
+            }
+            let dc = record_distance(i, p).x / lipschitz_of(i);
+            if dc < d {
+                d = dc;
+                best = i;
+            }
+        }
+        if d < max(1e-3, 0.5 * t / pf.pixels) {
+            return Meet(t, best);
+        }
+        t += min(d, 0.5 * pf.cell);
+        if t > t_end {
+            break;
+        }
+    }
+    return Meet(t_end, NO_RECORD);
+}
+
 // The props' shadow at camera-relative `p` (the sun's share, 0 to 1).
 fn props_shadow(p: vec3<f32>) -> f32 {
     let l = r.sun_dir.xyz;
@@ -282,7 +321,15 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
         t_end = min(t_end, s);
     }
     let origin = vec3<f32>(0.0);
-    let hit = walk(origin, dir, 0.0, t_end, false);
+    var hit: Meet;
+    if (pf.flags & 16u) != 0u {
+        hit = seed_walk(dir, pf.distance + pf.cell);
+        if hit.t >= t_end {
+            hit.record = NO_RECORD;
+        }
+    } else {
+        hit = walk(origin, dir, 0.0, t_end, false);
+    }
     if hit.record == NO_RECORD {
         var out = no_prop();
         if surface && (pf.flags & 1u) == 0u {

@@ -130,16 +130,30 @@ fn props_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
     prop_block_range[id.y * b + id.x] = r;
 }
 
-// One thread: the heights every block's props span, after the last block.
-@compute @workgroup_size(1)
-fn props_span() {
+// One workgroup: the heights every block's props span (and the props put at given places),
+// after the last block.
+const SPAN_THREADS: u32 = 256u;
+var<workgroup> span_part: array<vec2<f32>, SPAN_THREADS>;
+
+@compute @workgroup_size(256)
+fn props_span(@builtin(local_invocation_index) li: u32) {
     let n = pf.blocks * pf.blocks;
     var r = EMPTY_RANGE;
-    for (var i = 0u; i < n; i++) {
+    for (var i = li; i < n; i += SPAN_THREADS) {
         r = union_range(r, prop_block_range[i]);
     }
-    for (var j = 0u; j < pf.placed; j++) {
+    for (var j = li; j < pf.placed; j += SPAN_THREADS) {
         r = union_range(r, prop_cell_range[pf.side * pf.side + j]);
     }
-    prop_block_range[n] = r;
+    span_part[li] = r;
+    workgroupBarrier();
+    for (var half = SPAN_THREADS / 2u; half > 0u; half /= 2u) {
+        if li < half {
+            span_part[li] = union_range(span_part[li], span_part[li + half]);
+        }
+        workgroupBarrier();
+    }
+    if li == 0u {
+        prop_block_range[n] = span_part[0];
+    }
 }

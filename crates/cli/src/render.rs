@@ -199,6 +199,14 @@ pub(super) fn run_endless(
                         relief::gpu::world::mib(world.grass_bytes())
                     );
                 }
+                if let Some(counts) = world.props_counts(&gpu.device, &gpu.queue) {
+                    let [placed, seen] = counts?;
+                    println!("props_placed {placed}\nprops_in_view {seen}");
+                    println!(
+                        "props_mib {:.1}",
+                        relief::gpu::world::mib(world.props_bytes())
+                    );
+                }
             }
             write_png(&out, width, height, image::ColorType::Rgba8, &pixels)
         }

@@ -124,4 +124,38 @@ impl World {
                 .collect()
         }))
     }
+
+    /// The last frame's props counted (blocking; native only): those placed around the eye,
+    /// and those of them whose sphere lies at least partly inside the view. `None` without
+    /// props.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn props_counts(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<Result<[u32; 2]>> {
+        let records = match self.props_records(device, queue)? {
+            Ok((_, r)) => r,
+            Err(e) => return Some(Err(e)),
+        };
+        let m = self.matrix.transpose();
+        let planes = [
+            m.w_axis + m.x_axis,
+            m.w_axis - m.x_axis,
+            m.w_axis + m.y_axis,
+            m.w_axis - m.y_axis,
+            m.z_axis,
+            m.w_axis - m.z_axis,
+        ];
+        let (mut placed, mut seen) = (0, 0);
+        for r in records.iter().filter(|r| r[3] > 0.0) {
+            placed += 1;
+            let c = Vec3::new(r[12], r[13], r[14]);
+            let inside = planes
+                .iter()
+                .all(|p| p.truncate().dot(c) + p.w >= -r[15] * p.truncate().length());
+            seen += u32::from(inside);
+        }
+        Some(Ok([placed, seen]))
+    }
 }
