@@ -31,6 +31,7 @@ struct PropsFrame {
     band: f32,
     blocks: u32,
     steps: u32,
+    // 16: the benchmark's peer, the seed's way (props_march.wgsl's `seed_walk`).
     flags: u32,
     _pad0: u32,
     _pad1: u32,

@@ -239,7 +239,7 @@ fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) ->
                     span = vec2<f32>(min(span.x, within.x), max(span.y, within.y));
                 }
             }
-            if n > 0u && (pf.flags & 4u) == 0u {
+            if n > 0u {
                 let hit = trace(o, dir, span, cands, n, shadow, &budget, &share);
                 if shadow && share <= 0.0 {
                     return Meet(0.0, hit.record);
@@ -332,7 +332,7 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     if hit.record == NO_RECORD {
         var out = no_prop();
-        if surface && (pf.flags & 1u) == 0u {
+        if surface {
             // The surface the raster drew, a little towards the eye.
             let p = dir * (t_end - max(0.02, 2.0 * t_end / pf.pixels));
             out.w = bitcast<u32>(props_shadow(p));
@@ -362,10 +362,10 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     let look = prop_grid[i * RECORD + 2u];
     let hn = (p.y + w.eye.y) / w.peak;
     let occl = occlusion(r, hn, look.y, look.z);
-    var sun = occl.x;
-    if (pf.flags & 2u) == 0u {
-        sun *= props_shadow(p + n * max(0.02, 2.0 * e));
-    }
+    // The shadow ray leaves from past the displacements: it reads the undisplaced fields.
+    let b = prop_grid[i * RECORD + 1u];
+    let rough = prop_kinds[u32(b.z)].scale.z * prop_grid[i * RECORD].w;
+    let sun = occl.x * props_shadow(p + n * (max(0.02, 2.0 * e) + rough));
     let mat = prop_materials[u32(at.y)];
     let albedo = mat.rgb * (1.0 + mat.w * (look.x - 0.5));
     let clip_w = dot(vis.w_row.xyz, p) + vis.w_row.w;

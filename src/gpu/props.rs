@@ -65,6 +65,8 @@ const RECORD_BYTES: u64 = 64;
 const BLOCK: u32 = 8;
 /// The most sphere-tracing steps a pixel's ray takes through the props.
 pub const STEPS: u32 = 96;
+/// `PropsFrame::flags`: march the seed's way (`seed_walk` in `wgsl/props_march.wgsl`).
+const PEER_SEED: u32 = 16;
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
@@ -184,7 +186,7 @@ impl PropsPass {
         let tapes = scene.compile(&props)?;
         if scene.placed.len() > MAX_EXPLICIT {
             return Err(crate::Error::invalid(
-                "props.place",
+                "prop_place",
                 format!("{} props", scene.placed.len()),
                 format!("at most {MAX_EXPLICIT}"),
             ));
@@ -302,7 +304,7 @@ impl PropsPass {
         ]
         .map(|entry| pipeline(&module, &layout, entry));
         // The tapes compiled into the march's WGSL, or read from their buffer where
-        // RELIEF_PROPS_TAPES=buffer (the two are measured against each other).
+        // RELIEF_PROPS_TAPES=buffer (the two are measured against each other: docs/props.md).
         let compiled = std::env::var("RELIEF_PROPS_TAPES").as_deref() != Ok("buffer");
         let march_module = super::shader::module(
             device,
@@ -379,10 +381,12 @@ impl PropsPass {
             band: p.band,
             blocks: self.blocks,
             steps: STEPS,
-            flags: std::env::var("RELIEF_PROPS_FLAGS")
-                .ok()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(0),
+            // The seed's way for the benchmark's peer: RELIEF_PROPS_PEER=seed (docs/props.md).
+            flags: if std::env::var("RELIEF_PROPS_PEER").as_deref() == Ok("seed") {
+                PEER_SEED
+            } else {
+                0
+            },
             _pad: [0; 3],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));

@@ -645,7 +645,7 @@ impl Kind {
     /// Validates the kind (see the module's docs) for a scene of `materials` materials and
     /// flattens it; errors name the key (`props.<kind>: <path>`), the value and the limit.
     pub fn compile(&self, materials: usize) -> Result<Tape> {
-        let key = format!("props.{}", self.name);
+        let key = format!("prop_kinds.{}", self.name);
         let mut c = Compiler {
             key: &key,
             code: Vec::new(),
@@ -704,20 +704,20 @@ impl Scene {
     pub fn compile(&self, props: &Props) -> Result<Vec<Tape>> {
         if self.kinds.len() > MAX_KINDS {
             return Err(Error::invalid(
-                "props",
+                "prop_kinds",
                 format!("{} kinds", self.kinds.len()),
                 format!("at most {MAX_KINDS}"),
             ));
         }
         if self.materials.is_empty() || self.materials.len() > MAX_MATERIALS {
             return Err(Error::invalid(
-                "props.materials",
+                "prop_materials",
                 format!("{} materials", self.materials.len()),
                 format!("1 to {MAX_MATERIALS}"),
             ));
         }
         for m in &self.materials {
-            let key = format!("props.materials.{}", m.name);
+            let key = format!("prop_materials.{}", m.name);
             if let Some(v) = m
                 .albedo
                 .iter()
@@ -737,7 +737,7 @@ impl Scene {
         for (i, p) in self.placed.iter().enumerate() {
             if p.kind as usize >= self.kinds.len() {
                 return Err(Error::invalid(
-                    format!("props.place[{i}].kind"),
+                    format!("prop_place[{i}].kind"),
                     p.kind,
                     format!("one of the scene's {} kinds", self.kinds.len()),
                 ));

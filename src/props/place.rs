@@ -102,14 +102,14 @@ impl Props {
         for (i, p) in placed.iter().enumerate() {
             if !p.at.iter().all(|v| v.is_finite()) || !p.turn.is_finite() {
                 return Err(Error::invalid(
-                    format!("props.place[{i}]"),
+                    format!("prop_place[{i}]"),
                     format!("at {:?} turned {}", p.at, p.turn),
                     "finite numbers",
                 ));
             }
             if !(p.scale.is_finite() && p.scale > 0.0) {
                 return Err(Error::invalid(
-                    format!("props.place[{i}].scale"),
+                    format!("prop_place[{i}].scale"),
                     p.scale,
                     "a finite scale > 0",
                 ));
@@ -134,7 +134,7 @@ impl Props {
         let half = f64::from(self.cell) / 2.0;
         if wide > half {
             return Err(Error::invalid(
-                format!("props.{}", kind.name),
+                format!("prop_kinds.{}", kind.name),
                 format!("{:.2} m from its axis at scale {largest}", wide),
                 format!("at most half the cell, {half} m (props_cell)"),
             ));
@@ -142,7 +142,7 @@ impl Props {
         let tall = tape.bounds[1][1] * largest;
         if tall > f64::from(self.band) {
             return Err(Error::invalid(
-                format!("props.{}", kind.name),
+                format!("prop_kinds.{}", kind.name),
                 format!("{tall:.2} m tall at scale {largest}"),
                 format!("at most the band, {} m (props_band)", self.band),
             ));

@@ -66,7 +66,7 @@ fn bad_trees_are_refused_naming_the_key_the_value_and_the_limit() {
     }
     let e = error(&kind(deep));
     assert!(
-        e.contains("props.k") && e.contains("33 deep") && e.contains("at most 32"),
+        e.contains("prop_kinds.k") && e.contains("33 deep") && e.contains("at most 32"),
         "{e}"
     );
     let e = error(&kind(sphere(0.0)));
@@ -121,7 +121,7 @@ fn a_prop_wider_than_half_its_cell_or_taller_than_its_band_is_refused() {
     };
     let e = scene.compile(&small).unwrap_err().to_string();
     assert!(
-        e.contains("props.") && e.contains("half the cell, 2 m"),
+        e.contains("prop_kinds.") && e.contains("half the cell, 2 m"),
         "{e}"
     );
     let low = Props {
@@ -138,7 +138,7 @@ fn a_prop_wider_than_half_its_cell_or_taller_than_its_band_is_refused() {
         scale: 1.0,
     });
     let e = scene.compile(&Props::default()).unwrap_err().to_string();
-    assert!(e.contains("place[0].kind"), "{e}");
+    assert!(e.contains("prop_place[0].kind"), "{e}");
 }
 
 #[test]

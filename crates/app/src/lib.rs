@@ -277,6 +277,17 @@ impl App {
                      reference)"
                 ));
             }
+            // Props with a method that does not march them: said, not silently missing.
+            let marched = method == relief::Method::Visibility
+                && self.options.samples == 1
+                && self.options.raster == relief::Raster::Compute;
+            if world.props.on && !marched {
+                self.report.notice(&format!(
+                    "props: the visibility method rasterised in compute marches them (relief \
+                     --method visibility --samples 1 --raster compute); the {method} draws none \
+                     yet"
+                ));
+            }
         }
         self.changed();
         Ok(())

@@ -11,10 +11,15 @@ use cli_common::*;
 /// the `--stats` lines.
 fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(String, f64)>) {
     let out = dir.join(format!("{name}.png"));
-    let mut args = vec![
-        "render",
-        "--method",
-        "mesh",
+    // The mesh, but where a method is given (the props' rows give the one that marches them).
+    let method: &[&str] = if extra.contains(&"--method") {
+        &[]
+    } else {
+        &["--method", "mesh"]
+    };
+    let mut args = vec!["render"];
+    args.extend_from_slice(method);
+    args.extend_from_slice(&[
         "--world",
         "endless",
         "--out",
@@ -24,7 +29,7 @@ fn render_endless(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, Vec<(Stri
         "--height",
         "64",
         "--stats",
-    ];
+    ]);
     if !extra.contains(&"--pixel-error") {
         args.extend_from_slice(&["--pixel-error", "16"]);
     }
@@ -92,6 +97,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "grass_density" => "8",
             "grass_height" => "1.2",
             "grass_distance" => "12",
+            "props" => "1",
+            "props_density" => "0.1",
+            "props_distance" => "30",
             other => panic!("no test value for {other}: add one"),
         };
         let flag = format!("--{}", row.flag());
@@ -114,7 +122,34 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "2770,1107.7,-2990",
         ];
         let grassy = row.key.starts_with("grass") || row.key == "no_grass";
-        let base = if grassy {
+        // Props from 2 m among them, with the method that marches them; their knobs with them on.
+        let among = [
+            "--eye",
+            "2740,1112,-3000",
+            "--look-at",
+            "2710,1106,-3030",
+            "--method",
+            "visibility",
+            "--samples",
+            "1",
+            "--raster",
+            "compute",
+            "--no-grass",
+        ];
+        let propped = row.key.starts_with("props");
+        let base = if propped {
+            args.extend(among);
+            let mut at = among.to_vec();
+            if row.key != "props" {
+                args.push("--props");
+                at.push("--props");
+            }
+            let (img, s) = render_endless(&dir, &format!("{}-base", row.key), &at);
+            if row.key != "props" {
+                assert!(stat(&s, "props_in_view") > 10.0, "{s:?}");
+            }
+            img
+        } else if grassy {
             args.extend(meadow);
             let (img, s) = render_endless(&dir, &format!("{}-base", row.key), &meadow);
             if row.key == "no_grass" {
@@ -161,6 +196,12 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         } else {
             "pixel_error = 16\n".to_owned()
         };
+        if propped {
+            knob.push_str("no_grass = true\n");
+            if row.key != "props" {
+                knob.push_str("props = true\n");
+            }
+        }
         if blog {
             knob.push_str("palette = \"blog\"\n");
         }
@@ -170,6 +211,8 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         // Over the lake for the clock and the wind (the flags override the scene's camera).
         let camera: &[&str] = if windy || row.key == "clock" {
             &lake
+        } else if propped {
+            &among[..4]
         } else if grassy {
             &meadow
         } else {
@@ -185,10 +228,14 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         )
         .unwrap();
         let out = dir.join(format!("{}-scene.png", row.key));
-        let mut scene_args = vec![
-            "render",
-            "--method",
-            "mesh",
+        let method: &[&str] = if propped {
+            &among[4..10]
+        } else {
+            &["--method", "mesh"]
+        };
+        let mut scene_args = vec!["render"];
+        scene_args.extend_from_slice(method);
+        scene_args.extend_from_slice(&[
             "--scene",
             scene.to_str().unwrap(),
             "--out",
@@ -198,7 +245,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "--height",
             "64",
             "--stats",
-        ];
+        ]);
         scene_args.extend(camera);
         let (code, stdout, err) = relief(&scene_args);
         assert_eq!(code, 0, "{}: {err}", row.key);
@@ -746,4 +793,106 @@ fn the_reference_draws_the_grass_and_counts_its_blades() {
     // Every blade in four segments: seven triangles.
     assert_eq!(stat(&s, "grass_triangles"), 7.0 * blades, "{s:?}");
     assert_ne!(grassy, bare);
+}
+
+#[test]
+fn bad_props_exit_2_with_one_line_naming_the_key() {
+    let refused = Rejections::default();
+    let dir = scratch("bad-props");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    // A method that does not march props.
+    refused.check(
+        &[
+            "render", "--world", "endless", "--props", "--method", "mesh", "--out", out,
+        ],
+        &["--props", "visibility", "mesh"],
+    );
+    refused.check(
+        &[
+            "render",
+            "--world",
+            "endless",
+            "--props-density",
+            "2",
+            "--out",
+            out,
+        ],
+        &["--props-density", "2", "1"],
+    );
+    let kind = |root: &str| {
+        format!("world = \"endless\"\nprops = true\n[prop_kinds.rock]\nroot = {root}\n")
+    };
+    let mut deep = "{ sphere = { radius = 1.0 } }".to_owned();
+    for _ in 0..33 {
+        deep =
+            format!("{{ union = true, children = [{deep}, {{ sphere = {{ radius = 1.0 }} }}] }}");
+    }
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        (kind(&deep), vec!["prop_kinds.rock", "deeper than 32"]),
+        (kind("{ sphere = { radius = 0.0 } }"), vec!["sphere.radius", "0", "> 0"]),
+        (kind("{ sphere = { radius = -1.0 } }"), vec!["sphere.radius", "-1"]),
+        (kind("{ box = { size = [1, 1, 1] }, scale = 0 }"), vec!["scale", "0", "> 0"]),
+        (
+            kind("{ box = { size = [1, 1, 1] }, scale = [1, nan, 1] }"),
+            vec!["scale", "NaN"],
+        ),
+        (
+            kind("{ smooth_union = 0.0, children = [{ sphere = { radius = 1 } }, { sphere = { radius = 1 } }] }"),
+            vec!["smooth", "0", "> 0"],
+        ),
+        (
+            kind("{ sphere = { radius = 9.0 } }"),
+            vec!["prop_kinds.rock", "half the cell", "props_cell"],
+        ),
+        (
+            kind("{ capsule = { radius = 0.5, height = 40.0 } }"),
+            vec!["prop_kinds.rock", "tall", "props_band"],
+        ),
+        (kind("{ cone = { radius = 1 } }"), vec!["prop_kinds.rock.root", "smooth_union"]),
+        (
+            kind("{ sphere = { radius = 1 }, material = \"gold\" }"),
+            vec!["material", "gold", "stone"],
+        ),
+        (
+            "world = \"endless\"\nprops = true\n[[prop_place]]\nkind = \"menhir\"\nat = [0, 0]\n"
+                .into(),
+            vec!["prop_place[0].kind", "menhir", "boulder"],
+        ),
+    ];
+    for (i, (text, needles)) in cases.iter().enumerate() {
+        let scene = dir.join(format!("bad-{i}.toml"));
+        std::fs::write(&scene, text).unwrap();
+        refused.check(
+            &["render", "--scene", scene.to_str().unwrap(), "--out", out],
+            needles,
+        );
+    }
+    assert!(!Path::new(out).exists());
+}
+
+#[test]
+fn the_shipped_prop_scenes_draw_their_props() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let dir = scratch("prop-scenes");
+    for (scene, least) in [("props-demo", 1.0), ("props-landscape", 50.0)] {
+        let path = root.join(format!("scenes/{scene}.toml"));
+        let out = dir.join(format!("{scene}.png"));
+        let (code, stdout, err) = relief(&[
+            "render",
+            "--scene",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "160",
+            "--height",
+            "90",
+            "--stats",
+        ]);
+        assert_eq!(code, 0, "{scene}: {err}");
+        let stats = stats_of(&stdout);
+        assert!(stat(&stats, "props_in_view") >= least, "{scene}: {stats:?}");
+        assert!(out.exists());
+    }
 }

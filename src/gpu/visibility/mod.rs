@@ -539,6 +539,9 @@ impl Visibility {
             if self.keeps_motion() {
                 per_pixel += bytes(raster::MOTION_FORMAT);
             }
+            if self.props && self.marches_props() {
+                per_pixel += bytes(super::props::HIT_FORMAT);
+            }
         }
         let history = if self.resolve.is_some() {
             Resolve::bytes(size)
