@@ -5,7 +5,7 @@
 
 mod common;
 
-use glam::{DVec3, Vec4};
+use glam::DVec3;
 use relief::gpu::headless::{self, Offscreen};
 use relief::props::{place, sdf, Props};
 use relief::{Method, MethodConfig, Raster, World, WorldParams, WorldView};
@@ -176,14 +176,14 @@ fn the_march_hits_the_twins_surfaces() {
                 da.total_cmp(&db)
             })
             .unwrap();
-        let (d, kind) = record_distance(&tapes, r, rel);
+        let (d, _) = record_distance(&tapes, r, rel);
         let t = rel.length();
         let tolerance = (2.0 * t / pixels).max(0.01);
         worst = worst.max(d.abs() / tolerance);
         close += usize::from(d.abs() <= tolerance);
         // The normal: the twin's at the twin's nearest surface point.
-        let n = Vec4::from(glam::Vec2::from(unpack_snorm(h[1])).extend(0.0).extend(0.0));
-        let gpu_n = oct_decode(n.x.into(), n.y.into());
+        let [ex, ez] = unpack_snorm(h[1]);
+        let gpu_n = oct_decode(ex.into(), ez.into());
         let e = 1e-3;
         let twin_n = [0, 1, 2].map(|a| {
             let mut o = DVec3::ZERO;
@@ -193,7 +193,6 @@ fn the_march_hits_the_twins_surfaces() {
         });
         let twin_n = DVec3::from(twin_n).normalize_or_zero();
         facing += usize::from(gpu_n.dot(twin_n) > 0.9);
-        let _ = kind;
     }
     eprintln!(
         "{hit} hits: {close} within the tolerance, {facing} facing the twin's normal, \

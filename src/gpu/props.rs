@@ -3,58 +3,59 @@
 //! around the eye into a grid, with the heights each dual cell and block of them spans
 //! (`wgsl/props_scatter.wgsl`, reading the world's bind group for the drawn surface); and the
 //! march of each pixel's ray through them (`wgsl/props_march.wgsl`), which the visibility
-//! method records between its raster and its shading ([`PropsPass::encode_march`]).
+//! method records between its raster and its shading (`PropsPass::encode_march`).
 
+use super::props_wgsl::op_code;
 use crate::error::Result;
 use crate::props::place::cumulative;
 use crate::props::Props;
-use crate::props::{Combine, Op, Scene, Shape, Tape};
+use crate::props::{Scene, Tape};
 
 /// Mirrors `PropsFrame` in `wgsl/props.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct PropsFrame {
-    eye_cell: [u32; 4],
-    eye_in_cell: [f32; 2],
-    cell: f32,
-    side: u32,
-    density: f32,
-    rock_density: f32,
-    distance: f32,
-    cutoff: f32,
-    seed: u32,
-    kinds: u32,
-    placed: u32,
-    water: f32,
-    pixels: f32,
-    band: f32,
-    blocks: u32,
-    steps: u32,
-    flags: u32,
+    pub(crate) eye_cell: [u32; 4],
+    pub(crate) eye_in_cell: [f32; 2],
+    pub(crate) cell: f32,
+    pub(crate) side: u32,
+    pub(crate) density: f32,
+    pub(crate) rock_density: f32,
+    pub(crate) distance: f32,
+    pub(crate) cutoff: f32,
+    pub(crate) seed: u32,
+    pub(crate) kinds: u32,
+    pub(crate) placed: u32,
+    pub(crate) water: f32,
+    pub(crate) pixels: f32,
+    pub(crate) band: f32,
+    pub(crate) blocks: u32,
+    pub(crate) steps: u32,
+    pub(crate) flags: u32,
     _pad: [u32; 3],
 }
 
 /// Mirrors `PropKind` in `wgsl/props.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-struct PropKind {
-    first: u32,
-    count: u32,
-    lipschitz: f32,
-    weight: f32,
-    lo: [f32; 4],
-    hi: [f32; 4],
-    scale: [f32; 4],
-    sphere: [f32; 4],
+pub(crate) struct PropKind {
+    pub(crate) first: u32,
+    pub(crate) count: u32,
+    pub(crate) lipschitz: f32,
+    pub(crate) weight: f32,
+    pub(crate) lo: [f32; 4],
+    pub(crate) hi: [f32; 4],
+    pub(crate) scale: [f32; 4],
+    pub(crate) sphere: [f32; 4],
 }
 
 /// Mirrors `PropOp` in `wgsl/props.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-struct PropOp {
-    head: [f32; 4],
-    params: [f32; 4],
-    rows: [[f32; 4]; 3],
+pub(crate) struct PropOp {
+    pub(crate) head: [f32; 4],
+    pub(crate) params: [f32; 4],
+    pub(crate) rows: [[f32; 4]; 3],
 }
 
 /// The most props put at given places a scene holds.
@@ -69,39 +70,6 @@ pub const STEPS: u32 = 96;
 const PEER_SEED: u32 = 16;
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-
-/// The instruction's code in `wgsl/props.wgsl` and its parameters.
-pub(crate) fn op_code(op: &Op) -> (u32, [f32; 4]) {
-    match *op {
-        Op::Shape(s) => match s {
-            Shape::Sphere { radius } => (0, [radius, 0.0, 0.0, 0.0]),
-            Shape::Box { half } => (1, [half[0], half[1], half[2], 0.0]),
-            Shape::RoundBox { half, radius } => (2, [half[0], half[1], half[2], radius]),
-            Shape::Torus { major, minor } => (3, [major, minor, 0.0, 0.0]),
-            Shape::Cylinder {
-                radius,
-                half_height,
-            } => (4, [radius, half_height, 0.0, 0.0]),
-            Shape::Capsule {
-                radius,
-                half_height,
-            } => (5, [radius, half_height, 0.0, 0.0]),
-            Shape::Plane { normal, offset } => (6, [normal[0], normal[1], normal[2], offset]),
-        },
-        Op::Combine(c, k) => {
-            let code = match c {
-                Combine::Union => 10,
-                Combine::Intersection => 11,
-                Combine::Subtraction => 12,
-            };
-            (code, [k, 0.0, 0.0, 0.0])
-        }
-        Op::Displace {
-            amplitude,
-            frequency,
-        } => (20, [amplitude, frequency, 0.0, 0.0]),
-    }
-}
 
 /// The kinds' tapes as the GPU reads them: the instructions and the kinds.
 fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
@@ -257,12 +225,23 @@ impl PropsPass {
             label: Some("relief:props:march-layout"),
             entries: &march_entries,
         });
+        // The frame's render, world and visibility uniforms, the raster's depth.
+        let uniform = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: c,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
         let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:props:view-layout"),
             entries: &[
-                super::uniform_entry::<super::render::RenderUniforms>(0, c),
-                super::uniform_entry::<super::uniforms::WorldUniforms>(1, c),
-                super::uniform_entry::<super::visibility::VisUniforms>(12, c),
+                uniform(0),
+                uniform(1),
+                uniform(12),
                 super::storage_buffer_entry(19, true),
             ],
         });
@@ -481,6 +460,7 @@ impl PropsPass {
     }
 
     /// Cells on a side of its grid around the eye's cell (the eye's is number side / 2).
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn side(&self) -> u32 {
         self.side
     }
@@ -513,59 +493,5 @@ impl PropsPass {
             .chunks_exact(16)
             .map(|c| std::array::from_fn(|i| c[i]))
             .collect())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::gpu::wgsl_tests::{layout, offset, parse};
-    use std::mem::{offset_of, size_of};
-
-    #[test]
-    fn the_props_structs_match_wgsl() {
-        let m = parse(
-            "props_scatter",
-            &super::super::shader::source("props_scatter"),
-        );
-        let (size, members) = layout(&m, "PropsFrame");
-        assert_eq!(size as usize, size_of::<PropsFrame>());
-        for (name, at) in [
-            ("eye_in_cell", offset_of!(PropsFrame, eye_in_cell)),
-            ("side", offset_of!(PropsFrame, side)),
-            ("density", offset_of!(PropsFrame, density)),
-            ("seed", offset_of!(PropsFrame, seed)),
-            ("water", offset_of!(PropsFrame, water)),
-            ("pixels", offset_of!(PropsFrame, pixels)),
-            ("steps", offset_of!(PropsFrame, steps)),
-            ("flags", offset_of!(PropsFrame, flags)),
-        ] {
-            assert_eq!(offset(&members, name), at, "PropsFrame.{name}");
-        }
-        let (size, members) = layout(&m, "PropKind");
-        assert_eq!(size as usize, size_of::<PropKind>());
-        for (name, at) in [
-            ("lipschitz", offset_of!(PropKind, lipschitz)),
-            ("lo", offset_of!(PropKind, lo)),
-            ("scale", offset_of!(PropKind, scale)),
-            ("sphere", offset_of!(PropKind, sphere)),
-        ] {
-            assert_eq!(offset(&members, name), at, "PropKind.{name}");
-        }
-        let (size, members) = layout(&m, "PropOp");
-        assert_eq!(size as usize, size_of::<PropOp>());
-        assert_eq!(offset(&members, "m0"), offset_of!(PropOp, rows));
-    }
-
-    #[test]
-    fn the_compiled_tapes_validate() {
-        let scene = crate::props::Scene::default();
-        let mut kinds = scene.kinds.clone();
-        kinds.push(crate::props::kinds::demo());
-        let scene = crate::props::Scene { kinds, ..scene };
-        let tapes = scene.compile(&Props::default()).unwrap();
-        let source = super::super::props_wgsl::march_source(&tapes, true);
-        assert!(source.contains("fn kind_distance_tape(") && source.contains("fn kind_5("));
-        parse("props_march (compiled)", &source);
     }
 }

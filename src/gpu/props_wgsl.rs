@@ -4,8 +4,41 @@
 //! `wgsl/props.wgsl` that reads the tapes from a buffer. Same arithmetic, same order: the two
 //! agree to a rounding (tested).
 
-use crate::props::{Op, Tape};
+use crate::props::{Combine, Op, Shape, Tape};
 use std::fmt::Write as _;
+
+/// The instruction's code in `wgsl/props.wgsl` and its parameters.
+pub(crate) fn op_code(op: &Op) -> (u32, [f32; 4]) {
+    match *op {
+        Op::Shape(s) => match s {
+            Shape::Sphere { radius } => (0, [radius, 0.0, 0.0, 0.0]),
+            Shape::Box { half } => (1, [half[0], half[1], half[2], 0.0]),
+            Shape::RoundBox { half, radius } => (2, [half[0], half[1], half[2], radius]),
+            Shape::Torus { major, minor } => (3, [major, minor, 0.0, 0.0]),
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => (4, [radius, half_height, 0.0, 0.0]),
+            Shape::Capsule {
+                radius,
+                half_height,
+            } => (5, [radius, half_height, 0.0, 0.0]),
+            Shape::Plane { normal, offset } => (6, [normal[0], normal[1], normal[2], offset]),
+        },
+        Op::Combine(c, k) => {
+            let code = match c {
+                Combine::Union => 10,
+                Combine::Intersection => 11,
+                Combine::Subtraction => 12,
+            };
+            (code, [k, 0.0, 0.0, 0.0])
+        }
+        Op::Displace {
+            amplitude,
+            frequency,
+        } => (20, [amplitude, frequency, 0.0, 0.0]),
+    }
+}
 
 /// A WGSL float literal that reads back as `v`.
 fn float(v: f32) -> String {
@@ -34,7 +67,7 @@ fn kind_function(index: usize, tape: &Tape, rough: bool) -> String {
     let mut out = format!("fn {name}_{index}(p: vec3<f32>, seed: u32) -> vec2<f32> {{\n");
     let mut stack: Vec<String> = Vec::new();
     for (i, ins) in tape.code.iter().enumerate() {
-        let (code, params) = super::props::op_code(&ins.op);
+        let (code, params) = op_code(&ins.op);
         let rows = ins.to_local.map(|r| r.map(|v| v as f32));
         let point = format!(
             "vec3<f32>(dot({}, vec4<f32>(p, 1.0)), dot({}, vec4<f32>(p, 1.0)), dot({}, vec4<f32>(p, 1.0)))",

@@ -463,3 +463,57 @@ fn grass_uniforms_match_wgsl() {
         assert_eq!(offset(&members, name), at, "GrassUniforms.{name}");
     }
 }
+
+mod props_tests {
+    use super::{layout, offset, parse};
+    use crate::gpu::props::{PropKind, PropOp, PropsFrame};
+    use crate::props::Props;
+    use std::mem::{offset_of, size_of};
+
+    #[test]
+    fn the_props_structs_match_wgsl() {
+        let m = parse(
+            "props_scatter",
+            &crate::gpu::shader::source("props_scatter"),
+        );
+        let (size, members) = layout(&m, "PropsFrame");
+        assert_eq!(size as usize, size_of::<PropsFrame>());
+        for (name, at) in [
+            ("eye_in_cell", offset_of!(PropsFrame, eye_in_cell)),
+            ("side", offset_of!(PropsFrame, side)),
+            ("density", offset_of!(PropsFrame, density)),
+            ("seed", offset_of!(PropsFrame, seed)),
+            ("water", offset_of!(PropsFrame, water)),
+            ("pixels", offset_of!(PropsFrame, pixels)),
+            ("steps", offset_of!(PropsFrame, steps)),
+            ("flags", offset_of!(PropsFrame, flags)),
+        ] {
+            assert_eq!(offset(&members, name), at, "PropsFrame.{name}");
+        }
+        let (size, members) = layout(&m, "PropKind");
+        assert_eq!(size as usize, size_of::<PropKind>());
+        for (name, at) in [
+            ("lipschitz", offset_of!(PropKind, lipschitz)),
+            ("lo", offset_of!(PropKind, lo)),
+            ("scale", offset_of!(PropKind, scale)),
+            ("sphere", offset_of!(PropKind, sphere)),
+        ] {
+            assert_eq!(offset(&members, name), at, "PropKind.{name}");
+        }
+        let (size, members) = layout(&m, "PropOp");
+        assert_eq!(size as usize, size_of::<PropOp>());
+        assert_eq!(offset(&members, "m0"), offset_of!(PropOp, rows));
+    }
+
+    #[test]
+    fn the_compiled_tapes_validate() {
+        let scene = crate::props::Scene::default();
+        let mut kinds = scene.kinds.clone();
+        kinds.push(crate::props::kinds::demo());
+        let scene = crate::props::Scene { kinds, ..scene };
+        let tapes = scene.compile(&Props::default()).unwrap();
+        let source = crate::gpu::props_wgsl::march_source(&tapes, true);
+        assert!(source.contains("fn kind_distance_tape(") && source.contains("fn kind_5("));
+        parse("props_march (compiled)", &source);
+    }
+}

@@ -12,6 +12,7 @@ mod files;
 mod props_scene;
 mod render;
 mod resolve;
+mod shown;
 pub mod stability;
 
 pub mod options;

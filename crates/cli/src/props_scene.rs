@@ -24,7 +24,7 @@ fn number(key: &str, v: &toml::Value) -> Result<f32> {
 }
 
 fn shown(v: &toml::Value) -> String {
-    crate::scene::toml_shown(v)
+    crate::shown::toml_shown(v)
 }
 
 fn number64(key: &str, v: &toml::Value) -> Result<f64> {

@@ -4,6 +4,7 @@
 //! `world = "endless"` holds the endless world's keys ([`relief::world::WORLD_PARAMS`]) instead;
 //! either may carry a `[camera]` table ([`SceneCamera`]).
 
+use crate::shown::toml_shown;
 use relief::error::{Error, Result};
 use relief::params::{param, params, SceneParam, TerrainParams};
 use relief::table::{self, Kind, Value};
@@ -295,7 +296,7 @@ pub fn read_world_entries(path: &Path) -> Result<Vec<(&'static WorldParam, Strin
     Ok(out)
 }
 
-/// The props of an endless-world scene file ([`crate::props_scene`]), or `None` where it gives
+/// The props of an endless-world scene file (docs/props.md), or `None` where it gives
 /// none of their tables (the shipped landscape's props); errors name the file and the key.
 pub fn read_world_props(path: &Path) -> Result<Option<relief::props::Scene>> {
     let table = load(path)?;
@@ -393,20 +394,6 @@ fn toml_text(kind: Kind, v: &toml::Value) -> Option<String> {
         }
         _ => return None,
     })
-}
-
-/// A TOML value as an error shows it (short, in TOML's own spelling).
-pub(crate) fn toml_shown(v: &toml::Value) -> String {
-    let s = match v {
-        toml::Value::String(s) => format!("{s:?}"),
-        toml::Value::Table(_) => "a table".to_owned(),
-        toml::Value::Array(a) => format!("an array of {}", a.len()),
-        toml::Value::Integer(i) => i.to_string(),
-        toml::Value::Float(f) => format!("{f:?}"),
-        toml::Value::Boolean(b) => b.to_string(),
-        toml::Value::Datetime(d) => d.to_string(),
-    };
-    table::shorten(&s)
 }
 
 /// The error for a value of the wrong TOML type for `row`: the value as written, and the type

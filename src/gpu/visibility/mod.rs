@@ -22,6 +22,7 @@
 //! geometry and terrain occlude each other.
 
 mod present;
+mod props;
 mod targets;
 
 use self::targets::*;
@@ -134,6 +135,10 @@ struct Images {
     depth: wgpu::TextureView,
     /// Where the props' march leaves each pixel's prop (1x1 without props).
     prop_hit: wgpu::TextureView,
+    #[cfg_attr(
+        target_arch = "wasm32",
+        allow(dead_code, reason = "read back natively")
+    )]
     prop_hit_texture: wgpu::Texture,
     surface: wgpu::TextureView,
     valley: wgpu::TextureView,
@@ -278,16 +283,7 @@ impl Visibility {
             super::storage_entry(10, SHADED_FORMAT),
             super::storage_entry(11, SHADED_DEPTH_FORMAT),
             super::uniform_entry::<VisUniforms>(12, c),
-            wgpu::BindGroupLayoutEntry {
-                binding: 22,
-                visibility: c,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Uint,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
+            props::hit_entry(c),
         ];
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
@@ -407,27 +403,6 @@ impl Visibility {
             self.blade_motion = on;
             self.images = None;
         }
-    }
-
-    /// Whether the frame has props (see [`Visibility::marches_props`]): the props' image is
-    /// made with the next frame's images, or dropped.
-    pub(crate) fn set_props(&mut self, on: bool) {
-        if on != self.props {
-            self.props = on;
-            self.images = None;
-        }
-    }
-
-    /// Whether it marches the frame's props between its raster and its shading: where the
-    /// compute raster draws (the visibility method's and, on the page, its 32-bit raster).
-    pub fn marches_props(&self) -> bool {
-        !self.hybrid && self.compute_raster.is_some()
-    }
-
-    /// The props' image of the last frame that marched them.
-    pub(crate) fn prop_hit_texture(&self) -> Option<&wgpu::Texture> {
-        let images = self.images.as_ref()?;
-        (self.props && self.marches_props()).then_some(&images.prop_hit_texture)
     }
 
     /// Whether the blades' motion image is kept: blades in the compute raster, the temporal
@@ -629,19 +604,7 @@ impl Visibility {
             usage,
         )
         .create_view(&Default::default());
-        let hit_size = if self.props && self.marches_props() {
-            size
-        } else {
-            (1, 1)
-        };
-        let prop_hit_texture = super::texture_2d(
-            device,
-            "relief:visibility:prop-hit",
-            hit_size,
-            super::props::HIT_FORMAT,
-            usage | wgpu::TextureUsages::COPY_SRC,
-        );
-        let prop_hit = prop_hit_texture.create_view(&Default::default());
+        let (prop_hit_texture, prop_hit) = self.prop_hit_image(device, size);
         use wgpu::BindingResource::{Sampler, TextureView};
         let mut entries = vec![
             entry(0, world.render.as_entire_binding()),

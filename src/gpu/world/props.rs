@@ -93,7 +93,10 @@ impl World {
     }
 
     /// The last frame's placed props, read back (blocking; native only): the grid's side and
-    /// its records ([`crate::gpu::props::PropsPass::read_records`]). `None` without props.
+    /// its records: per prop its foot (camera-relative) and scale (0: none), the cosine and sine of
+    /// its turn, its kind and its noise's seed (bits), its shade, the terrain's horizon and valley
+    /// and the foot's normalised height, its sphere's centre (camera-relative) and radius. `None`
+    /// without props.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn props_records(
         &self,
