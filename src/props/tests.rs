@@ -277,3 +277,30 @@ fn no_prop_stands_under_water_and_few_on_rock() {
     assert!(place::keeps(&p, &rocky, true, (1.0, 0.5, 0.3), None));
     assert!(!place::keeps(&p, &rocky, true, (0.4, 0.5, 0.3), None));
 }
+
+#[test]
+fn the_noise_rises_no_faster_than_its_bound() {
+    let mut h = 99u32;
+    let mut next = || {
+        h = crate::noise::pcg(h);
+        f64::from(h >> 8) / 16_777_216.0
+    };
+    let mut worst = 0.0f64;
+    let e = 1e-4;
+    for _ in 0..100_000 {
+        let p = [
+            next() * 20.0 - 10.0,
+            next() * 20.0 - 10.0,
+            next() * 20.0 - 10.0,
+        ];
+        let g = [0, 1, 2].map(|a| {
+            let (mut lo, mut hi) = (p, p);
+            lo[a] -= e;
+            hi[a] += e;
+            (sdf::value_noise(hi, 5) - sdf::value_noise(lo, 5)) / (2.0 * e)
+        });
+        worst = worst.max((g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt());
+    }
+    eprintln!("the noise's steepest slope sampled: {worst:.3} (bound {NOISE_GRADIENT})");
+    assert!(worst < NOISE_GRADIENT && worst > 2.0, "{worst}");
+}
