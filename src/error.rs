@@ -72,6 +72,16 @@ impl Error {
         }
     }
 
+    /// `Ok` where `value` lies in `lo..=hi`, else [`Error::InvalidParam`] naming `name` and the
+    /// range.
+    pub fn check_range(name: &str, value: f32, (lo, hi): (f32, f32)) -> Result<(), Self> {
+        if (lo..=hi).contains(&value) {
+            Ok(())
+        } else {
+            Err(Self::invalid(name, value, format!("{lo} to {hi}")))
+        }
+    }
+
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Self::Io {

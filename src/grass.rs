@@ -72,13 +72,7 @@ impl Grass {
 
     /// Refuses values outside their ranges, naming them.
     pub fn validate(&self) -> Result<()> {
-        let check = |name: &str, v: f32, (lo, hi): (f32, f32)| {
-            if (lo..=hi).contains(&v) {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, format!("{lo} to {hi}")))
-            }
-        };
+        let check = Error::check_range;
         check("grass_density", self.density, Self::DENSITY)?;
         check("grass_height", self.height, Self::HEIGHT)?;
         check("grass_distance", self.distance, Self::DISTANCE)

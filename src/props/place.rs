@@ -82,13 +82,7 @@ impl Props {
 
     /// Refuses values outside their ranges, naming them.
     pub fn validate(&self) -> Result<()> {
-        let check = |name: &str, v: f32, (lo, hi): (f32, f32)| {
-            if (lo..=hi).contains(&v) {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, format!("{lo} to {hi}")))
-            }
-        };
+        let check = Error::check_range;
         check("props_cell", self.cell, Self::CELL)?;
         check("props_density", self.density, (0.0, 1.0))?;
         check("props_rock_density", self.rock_density, (0.0, 1.0))?;
