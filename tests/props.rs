@@ -29,11 +29,20 @@ fn view(params: &WorldParams) -> WorldView {
     WorldView::look_at(eye, eye + DVec3::new(-30.0, -6.0, -30.0), 0.8, SIZE)
 }
 
-fn world(gpu: &headless::Gpu, params: WorldParams) -> World {
-    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
-    let config = MethodConfig::new(Method::Visibility)
+/// The visibility method rasterised in compute: the one that marches the props between its
+/// raster and its shading.
+fn marching() -> MethodConfig {
+    MethodConfig::new(Method::Visibility)
         .with_samples(1)
-        .with_raster(Raster::Compute);
+        .with_raster(Raster::Compute)
+}
+
+fn world(gpu: &headless::Gpu, params: WorldParams) -> World {
+    world_drawn(gpu, params, marching())
+}
+
+fn world_drawn(gpu: &headless::Gpu, params: WorldParams, config: MethodConfig) -> World {
+    let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), params).unwrap();
     world.set_method(&gpu.device, config).unwrap();
     world
 }
@@ -157,15 +166,7 @@ fn the_march_hits_the_twins_surfaces() {
             continue;
         }
         hit += 1;
-        let (x, y) = ((i as u32 % SIZE.0) as f64, (i as u32 / SIZE.0) as f64);
-        let ndc = glam::DVec4::new(
-            (x + 0.5) / f64::from(SIZE.0) * 2.0 - 1.0,
-            1.0 - (y + 0.5) / f64::from(SIZE.1) * 2.0,
-            f64::from(depth),
-            1.0,
-        );
-        let q = inverse * ndc;
-        let rel = q.truncate() / q.w;
+        let rel = eye_relative(&inverse, i, depth);
         // The prop whose sphere holds the point nearest its centre.
         let r = records
             .iter()
@@ -201,6 +202,24 @@ fn the_march_hits_the_twins_surfaces() {
     assert!(hit > 200, "{hit}");
     assert!(close * 100 >= hit * 99, "{close} of {hit}");
     assert!(facing * 100 >= hit * 95, "{facing} of {hit}");
+}
+
+/// The camera-relative point at pixel `i` of depth `depth` through `inverse` (the frame's
+/// camera-relative matrix inverted).
+fn eye_relative(inverse: &glam::DMat4, i: usize, depth: f32) -> DVec3 {
+    let (x, y) = ((i as u32 % SIZE.0) as f64, (i as u32 / SIZE.0) as f64);
+    let ndc = glam::DVec4::new(
+        (x + 0.5) / f64::from(SIZE.0) * 2.0 - 1.0,
+        1.0 - (y + 0.5) / f64::from(SIZE.1) * 2.0,
+        f64::from(depth),
+        1.0,
+    );
+    let q = *inverse * ndc;
+    q.truncate() / q.w
+}
+
+fn eye_distance(inverse: &glam::DMat4, i: usize, depth: f32) -> f64 {
+    eye_relative(inverse, i, depth).length()
 }
 
 fn unpack_snorm(v: u32) -> [f32; 2] {
@@ -252,4 +271,59 @@ fn props_change_the_frame_only_where_they_stand_and_their_shadows_fall() {
     assert_eq!(outside, 0);
     // The same props in the same places frame after frame.
     assert!(draw(&gpu, &mut w, &v) == props);
+}
+
+/// The forward mesh, the hybrid and the visibility method rasterised by the GPU draw the props
+/// through the overlay: the props the marching method shows, at its depths, changing nothing
+/// but the pixels their march marks.
+#[test]
+fn every_mesh_based_method_draws_the_props() {
+    let gpu = common::gpu();
+    let on = params(true);
+    let v = view(&on);
+    let mut w = world(&gpu, on);
+    draw(&gpu, &mut w, &v);
+    assert!(!w.props_overlaid());
+    let marched = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
+    let inverse = w.relative_matrix().as_dmat4().inverse();
+    let pixels = f64::from(SIZE.1) / (2.0 * (0.4f64).tan());
+    let distance = |i: usize, depth: f32| eye_distance(&inverse, i, depth);
+    let overlaid = [
+        MethodConfig::new(Method::Mesh),
+        MethodConfig::new(Method::Hybrid).with_samples(1),
+        MethodConfig::new(Method::Visibility).with_samples(1),
+    ];
+    for config in overlaid {
+        let bare = draw(&gpu, &mut world_drawn(&gpu, params(false), config), &v);
+        let mut w = world_drawn(&gpu, on, config);
+        let image = draw(&gpu, &mut w, &v);
+        assert!(w.draws_props() && w.props_overlaid(), "{config:?}");
+        let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
+        let (mut shown, mut same, mut seen, mut outside) = (0, 0, 0, 0);
+        for (i, (h, m)) in hits.iter().zip(&marched).enumerate() {
+            let differs = bare[4 * i..4 * i + 4]
+                .iter()
+                .zip(&image[4 * i..4 * i + 4])
+                .any(|(a, b)| a.abs_diff(*b) > 1);
+            let (d, dm) = (f32::from_bits(h[0]), f32::from_bits(m[0]));
+            outside += usize::from(differs && d >= 1.0);
+            if dm < 1.0 {
+                shown += 1;
+                // Within two pixels' footprint (the march stops within half of one; where a prop
+                // meets the ground the raster's depth ends the marching method's rays).
+                let (t, tm) = (distance(i, d), distance(i, dm));
+                same += usize::from((t - tm).abs() <= 2.0 * tm / pixels);
+                seen += usize::from(differs);
+            }
+        }
+        eprintln!(
+            "{:?}: of {shown} prop pixels, {same} at the marched depth, {seen} drawn; \
+             {outside} changed outside the props",
+            config.method
+        );
+        assert!(shown > 300, "{shown}");
+        assert!(same * 100 >= shown * 99, "{same} of {shown}");
+        assert!(seen * 100 >= shown * 95, "{seen} of {shown}");
+        assert_eq!(outside, 0);
+    }
 }

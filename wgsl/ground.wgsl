@@ -62,5 +62,11 @@ fn ground_at(xz: vec2<f32>) -> Ground {
     g.rel = vec3<f32>(xz.x, a.rel.y + u * (b.rel.y - a.rel.y) + v * (d.rel.y - a.rel.y), xz.y);
     g.sample = a.sample + u * (b.sample - a.sample) + v * (d.sample - a.sample);
     g.light = a.light + u * (b.light - a.light) + v * (d.light - a.light);
+    // The hybrid raises its levels to bound the surface from above and draws the continuous
+    // surface under them: its ground is the levels' own, not raised.
+    let lv = w.levels[l];
+    if lv.raise != 0.0 || w.levels[lv.coarse].raise != 0.0 {
+        g.rel.y = g.sample.x * w.peak - w.eye.y;
+    }
     return g;
 }

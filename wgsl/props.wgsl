@@ -31,7 +31,8 @@ struct PropsFrame {
     band: f32,
     blocks: u32,
     steps: u32,
-    // 16: the benchmark's peer, the seed's way (props_march.wgsl's `seed_walk`).
+    // 16: the benchmark's peer, the seed's way (props_march.wgsl's `seed_walk`); 32: no raster's
+    // depth bounds the march (the props' overlay, props_overlay.wgsl).
     flags: u32,
     _pad0: u32,
     _pad1: u32,

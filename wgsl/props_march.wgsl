@@ -312,7 +312,12 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let px = vec2<i32>(id.xy);
     let dir = sample_ray(vec2<f32>(id.xy) + 0.5);
-    let d = rasterised_depth(id.xy);
+    // The overlay (flag 32) marches without the raster's depth: the host's depth test hides
+    // what the terrain covers.
+    var d = 1.0;
+    if (pf.flags & 32u) == 0u {
+        d = rasterised_depth(id.xy);
+    }
     var t_end = pf.distance + pf.cell;
     var surface = false;
     if d < 1.0 {

@@ -1,5 +1,5 @@
 // import: shade
-// part of: visibility, hybrid, props_march (each declares the render uniforms `r` it reads)
+// part of: visibility, hybrid, props_march, props_overlay (each declares the uniforms `r`)
 // What the visibility method's compute passes share (src/gpu/visibility.rs): its uniforms, the
 // raster pass's targets and the shaded images, the rays through a pixel's samples, and the
 // store of a shaded pixel. Composed into the visibility module (after world.wgsl) and the

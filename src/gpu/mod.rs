@@ -14,6 +14,7 @@ pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
 pub mod props;
+pub(crate) mod props_overlay;
 mod props_wgsl;
 pub mod raster;
 #[cfg(not(target_arch = "wasm32"))]

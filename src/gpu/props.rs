@@ -68,6 +68,8 @@ const BLOCK: u32 = 8;
 pub const STEPS: u32 = 96;
 /// `PropsFrame::flags`: march the seed's way (`seed_walk` in `wgsl/props_march.wgsl`).
 const PEER_SEED: u32 = 16;
+/// `PropsFrame::flags`: march with no raster's depth (the overlay, [`super::props_overlay`]).
+const UNBOUNDED: u32 = 32;
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
@@ -325,13 +327,14 @@ impl PropsPass {
     /// Records the scatter of the props around `eye` (world metres) over the landscape of
     /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), for an
     /// image whose height spans `pixels` pixels a unit of tan(angle), the water's normalised
-    /// level `water` (`None`: none); timed as [`super::timing::Slot::Props`].
+    /// level `water` (`None`: none), and whether the march reads a raster's depth (`bounded`;
+    /// else it marches to the draw distance); timed as [`super::timing::Slot::Props`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
-        (pixels, water): (f32, Option<f32>),
+        (pixels, water, bounded): (f32, Option<f32>, bool),
         timer: Option<&super::timing::GpuTimer>,
     ) {
         let p = &self.props;
@@ -365,7 +368,7 @@ impl PropsPass {
                 PEER_SEED
             } else {
                 0
-            },
+            } | if bounded { 0 } else { UNBOUNDED },
             _pad: [0; 3],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));

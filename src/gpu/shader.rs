@@ -42,6 +42,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     props_grid,
     props_look,
     props_march,
+    props_overlay,
     props_scatter,
     raster,
     raster_blades,

@@ -277,15 +277,11 @@ impl App {
                      reference)"
                 ));
             }
-            // Props with a method that does not march them: said, not silently missing.
-            let marched = method == relief::Method::Visibility
-                && self.options.samples == 1
-                && self.options.raster == relief::Raster::Compute;
-            if world.props.on && !marched {
+            // Props with a ray caster: said, not silently missing.
+            if world.props.on && method.ray_path().is_some() {
                 self.report.notice(&format!(
-                    "props: the visibility method rasterised in compute marches them (relief \
-                     --method visibility --samples 1 --raster compute); the {method} draws none \
-                     yet"
+                    "props: the {method} casts rays, which march no props here (M: a \
+                     mesh-based method draws them)"
                 ));
             }
         }

@@ -355,8 +355,10 @@ pub(super) fn knob_warning(s: &relief::WorldStats, knob: f64, size: (u32, u32)) 
     })
 }
 
-/// How a frame with props is drawn: the visibility method rasterised in compute, the one that
-/// marches them (`auto` picks it); another method given is refused in one line.
+/// How a frame with props is drawn: `auto` picks the visibility method rasterised in compute,
+/// which marches them between its raster and its shading (their shadows fall on the terrain);
+/// the other mesh-based methods draw them over the terrain (the props' overlay); a ray cast
+/// given is refused in one line.
 fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
     use relief::{choice::Candidate, Method, Raster};
     let marching = Candidate {
@@ -369,11 +371,10 @@ fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
     }
     match method {
         Drawn::Auto => Ok(Drawn::Pinned(marching)),
-        Drawn::Pinned(c) if c == marching => Ok(method),
+        Drawn::Pinned(c) if c.method.is_mesh() => Ok(method),
         Drawn::Pinned(c) => Err(Error::Usage(format!(
-            "--props: the props are marched by the visibility method rasterised in compute \
-             (--method visibility --samples 1 --raster compute, or auto); the {} draws none \
-             yet",
+            "--props: the {} casts rays, which march no props: give --method mesh, \
+             visibility, hybrid or auto (or --no-props)",
             c.method
         ))),
     }

@@ -3,8 +3,9 @@
 
 use super::Visibility;
 
-/// The shading's binding of the props' image (`prop_hit` in `wgsl/visibility.wgsl`).
-pub(super) fn hit_entry(visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+/// The binding of the props' image (`prop_hit` in `wgsl/visibility.wgsl`, `overlay_hit` in
+/// `wgsl/props_overlay.wgsl`).
+pub(crate) fn hit_entry(visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding: 22,
         visibility,

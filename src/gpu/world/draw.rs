@@ -19,8 +19,9 @@ impl World {
     /// which a compute pass packs the frame for and a copy fills. Both round each value in the
     /// shader; the stored one is the packed one wherever the device's 8-bit store rounds to
     /// the nearest, down or toward zero (lavapipe's and the H100's do).
-    /// Otherwise (and where layers, or grass that the method does not draw in compute, draw
-    /// after the terrain: [`World::grass_raster`]) it records nothing and returns false: draw
+    /// Otherwise (and where layers, grass that the method does not draw in compute
+    /// ([`World::grass_raster`]) or the props' overlay ([`World::props_overlaid`]) draw after
+    /// the terrain) it records nothing and returns false: draw
     /// with [`World::render`] in a render pass.
     pub fn present(
         &self,
@@ -32,7 +33,9 @@ impl World {
             // The layers, and grass drawn by the GPU's rasteriser, draw into a render pass:
             // with any, the frame needs one.
             (Method::Visibility | Method::Hybrid, Some(vis))
-                if self.layers.is_empty() && (self.grass.is_none() || self.grass_in_compute()) =>
+                if self.layers.is_empty()
+                    && (self.grass.is_none() || self.grass_in_compute())
+                    && self.props_overlay.is_none() =>
             {
                 vis.present(encoder, target, timer)
             }
@@ -65,6 +68,7 @@ impl World {
     /// [`World::prepare`] shaded, colour and depth.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         self.render_terrain(pass);
+        self.render_props(pass);
         for layer in &self.layers {
             layer.render(pass);
         }

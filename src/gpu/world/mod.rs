@@ -150,6 +150,8 @@ pub struct World {
     /// The props' passes where they stand ([`WorldParams::props`]), and what they are.
     props: Option<crate::gpu::props::PropsPass>,
     props_scene: crate::props::Scene,
+    /// The props drawn over a frame whose method does not march them, where props are on.
+    props_overlay: Option<crate::gpu::props_overlay::PropsOverlay>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -337,6 +339,7 @@ impl World {
                 grass: None,
                 props: None,
                 props_scene: crate::props::Scene::default(),
+                props_overlay: None,
             }
         })
     }
@@ -373,6 +376,7 @@ impl World {
         // built again for these.
         self.visibility = None;
         self.mesh_history = None;
+        self.props_overlay = None;
         let rebuilt = self.set_method(device, self.method_config());
         if rebuilt.is_err() {
             // Never a method without its passes: the forward mesh draws, and says so.
@@ -696,7 +700,7 @@ impl World {
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
         self.encode_grass(device, queue, encoder, view, timer);
-        self.encode_props(queue, encoder, view, timer);
+        self.encode_props((device, queue, encoder), (view, &unjittered), timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
             self.encode_visibility(device, queue, encoder, view, timer)?;
             self.encode_resolve(queue, encoder, &unjittered, timer);

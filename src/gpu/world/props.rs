@@ -1,9 +1,11 @@
 //! [`World`]'s props ([`crate::props`] is what they are and where they stand,
 //! [`crate::gpu::props`] their passes): each frame's scatter after the uniforms; the march
-//! between the raster and the shading of the visibility method (`vis_frame.rs`).
+//! between the raster and the shading of the visibility method (`vis_frame.rs`), or the
+//! overlay's march and its draw after the terrain ([`crate::gpu::props_overlay`]).
 
 use super::*;
 use crate::gpu::props::PropsPass;
+use crate::gpu::props_overlay::PropsOverlay;
 use crate::props::Scene;
 
 impl World {
@@ -48,9 +50,17 @@ impl World {
         &self.props_scene
     }
 
-    /// Whether this frame's method draws the props: the visibility method with its raster in
-    /// compute ([`crate::Raster::Compute`]), where props are on. Other methods draw none yet.
+    /// Whether this frame's method draws the props, where props are on: every mesh-based
+    /// method does, the visibility method rasterised in compute ([`crate::Raster::Compute`])
+    /// marching them between its raster and its shading, the others through the props'
+    /// overlay ([`World::props_overlaid`]) where the host's pass has depth.
     pub fn draws_props(&self) -> bool {
+        self.props_marched() || self.props_overlaid()
+    }
+
+    /// Whether the props are marched between the visibility method's compute raster and its
+    /// shading, which shades them with their shadows on the terrain and the grass.
+    fn props_marched(&self) -> bool {
         self.props.is_some()
             && self.method == Method::Visibility
             && self
@@ -59,37 +69,71 @@ impl World {
                 .is_some_and(Visibility::marches_props)
     }
 
-    /// GPU memory of the props' buffers, bytes (0 without props).
-    pub fn props_bytes(&self) -> u64 {
-        self.props.as_ref().map_or(0, PropsPass::bytes)
+    /// Whether the props are drawn over the terrain by the props' overlay
+    /// (`src/gpu/props_overlay.rs`): with the forward mesh, the hybrid, and the visibility
+    /// method rasterised by the GPU, where the host's pass has depth. The overlay draws no
+    /// props' shadows on the terrain or the grass.
+    pub fn props_overlaid(&self) -> bool {
+        self.props.is_some() && self.targets.depth_format.is_some() && !self.props_marched()
     }
 
-    /// Records the frame's scatter of props where the method draws them.
+    /// GPU memory of the props' buffers and images, bytes (0 without props).
+    pub fn props_bytes(&self) -> u64 {
+        self.props.as_ref().map_or(0, PropsPass::bytes)
+            + self.props_overlay.as_ref().map_or(0, PropsOverlay::bytes)
+    }
+
+    /// Records the frame's scatter of props where the method draws them, through `view` (the
+    /// frame's, jittered where the temporal service accumulates), and the overlay's march
+    /// through `still` (unjittered: the overlay does not accumulate).
     pub(super) fn encode_props(
         &mut self,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        view: &WorldView,
+        (device, queue, encoder): (&wgpu::Device, &wgpu::Queue, &mut wgpu::CommandEncoder),
+        (view, still): (&WorldView, &WorldView),
         timer: Option<&GpuTimer>,
     ) {
-        let drawn = self.draws_props();
+        let marched = self.props_marched();
+        let overlaid = self.props_overlaid();
         if let Some(vis) = &mut self.visibility {
-            vis.set_props(drawn);
+            vis.set_props(marched);
         }
-        let Some(props) = self.props.as_ref().filter(|_| drawn) else {
+        if !overlaid {
+            self.props_overlay = None;
+        }
+        let Some(props) = self.props.as_ref().filter(|_| marched || overlaid) else {
             return;
         };
-        let high = self.target_size.unwrap_or(view.size).1;
-        let pixels = high as f32 / (2.0 * (0.5 * view.fov_y).tan());
+        let size = self.target_size.unwrap_or(view.size);
+        let pixels = size.1 as f32 / (2.0 * (0.5 * view.fov_y).tan());
         let water = (!self.params.no_water)
             .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32);
         props.encode(
             queue,
             encoder,
             (&self.bind_group, self.params.land.seed, view.eye),
-            (pixels, water),
+            (pixels, water, marched),
             timer,
         );
+        if overlaid {
+            let overlay = self
+                .props_overlay
+                .get_or_insert_with(|| PropsOverlay::new(device, &self.targets));
+            let (near, far) = self.near_far;
+            overlay.prepare(
+                (device, queue, encoder),
+                props,
+                (&self.render_uniforms, &self.world_uniforms),
+                (still.relative_matrix(near, far), size),
+                timer,
+            );
+        }
+    }
+
+    /// Draws the props the overlay marched, after the terrain.
+    pub(super) fn render_props(&self, pass: &mut wgpu::RenderPass<'_>) {
+        if let Some(overlay) = &self.props_overlay {
+            overlay.render(pass);
+        }
     }
 
     /// The last frame's placed props, read back (blocking; native only): the grid's side and
@@ -118,7 +162,10 @@ impl World {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Option<Result<Vec<[u32; 4]>>> {
-        let texture = self.visibility.as_ref()?.prop_hit_texture()?;
+        let texture = match &self.props_overlay {
+            Some(overlay) => overlay.hit_texture()?,
+            None => self.visibility.as_ref()?.prop_hit_texture()?,
+        };
         let bytes = crate::gpu::headless::read_texture(device, queue, texture);
         Some(bytes.map(|b| {
             bytemuck::cast_slice::<u8, u32>(&b)
