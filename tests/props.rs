@@ -327,3 +327,176 @@ fn every_mesh_based_method_draws_the_props() {
         assert_eq!(outside, 0);
     }
 }
+
+/// The props' scene of the shipped kinds and two of exact primitives put at given places: a
+/// ball of radius 1 whose centre is 1.5 m over its foot and a cube of side 1.6 centred 1 m over
+/// its foot, turned 30 degrees; no prop is scattered.
+fn exact_scene(at: [[f64; 2]; 2]) -> (WorldParams, relief::props::Scene) {
+    use relief::props::{place::Placed, Kind, Node, Shape, Transform};
+    let mut p = params(true);
+    p.props.density = 0.0;
+    p.props.rock_density = 0.0;
+    let mut scene = relief::props::Scene::default();
+    let kind = |name: &str, shape, y| Kind {
+        name: name.into(),
+        root: Node::Shape {
+            shape,
+            transform: Transform::at([0.0, y, 0.0]),
+            material: 0,
+        },
+        weight: 0.0,
+        scale: (1.0, 1.0),
+        on_rock: true,
+    };
+    let first = scene.kinds.len() as u32;
+    scene
+        .kinds
+        .push(kind("ball", Shape::Sphere { radius: 1.0 }, 1.5));
+    scene
+        .kinds
+        .push(kind("cube", Shape::Box { half: [0.8; 3] }, 1.0));
+    for (i, (at, turn)) in at.into_iter().zip([0.0, 30.0]).enumerate() {
+        scene.placed.push(Placed {
+            kind: first + i as u32,
+            at,
+            turn,
+            scale: 1.0,
+        });
+    }
+    (p, scene)
+}
+
+/// Where a ray from the eye along `dir` first meets a record's ball or cube (the
+/// camera-relative frame), exactly, and the cosine between the ray and the surface's normal
+/// there: `None` where it misses.
+fn exact_hit(r: &[f32; 16], dir: DVec3) -> Option<(f64, f64)> {
+    let foot = DVec3::new(r[0].into(), r[1].into(), r[2].into());
+    if r[6] as usize == EXACT_FIRST {
+        let c = foot + DVec3::new(0.0, 1.5, 0.0);
+        let b = dir.dot(c);
+        let disc = b * b - (c.length_squared() - 1.0);
+        let t = b - disc.max(0.0).sqrt();
+        return (disc >= 0.0).then(|| (t, dir.dot(dir * t - c).abs()));
+    }
+    // The cube in its own frame: the eye and the ray turned as the march turns the point.
+    let (c, s) = (f64::from(r[4]), f64::from(r[5]));
+    let to_local = |v: DVec3| DVec3::new(c * v.x - s * v.z, v.y, s * v.x + c * v.z);
+    let o = to_local(-foot) - DVec3::new(0.0, 1.0, 0.0);
+    let d = to_local(dir);
+    let (mut near, mut far, mut axis) = (f64::NEG_INFINITY, f64::INFINITY, 0);
+    for a in 0..3 {
+        let (t0, t1) = ((-0.8 - o[a]) / d[a], (0.8 - o[a]) / d[a]);
+        if t0.min(t1) > near {
+            near = t0.min(t1);
+            axis = a;
+        }
+        far = far.min(t0.max(t1));
+    }
+    (near <= far && near > 0.0).then_some((near, d[axis].abs()))
+}
+
+/// The exact distance from camera-relative `q` to a record's ball or cube.
+fn exact_distance(r: &[f32; 16], q: DVec3) -> f64 {
+    let foot = DVec3::new(r[0].into(), r[1].into(), r[2].into());
+    if r[6] as usize == EXACT_FIRST {
+        return (q - foot - DVec3::new(0.0, 1.5, 0.0)).length() - 1.0;
+    }
+    let (c, s) = (f64::from(r[4]), f64::from(r[5]));
+    let v = q - foot;
+    let local = DVec3::new(c * v.x - s * v.z, v.y - 1.0, s * v.x + c * v.z);
+    let e = local.abs() - DVec3::splat(0.8);
+    e.max(DVec3::ZERO).length() + e.max_element().min(0.0)
+}
+
+/// The shipped landscape's kinds come first in [`exact_scene`]: the ball is the next.
+const EXACT_FIRST: usize = 5;
+
+#[test]
+fn a_ball_and_a_cube_meet_the_rays_where_geometry_says_and_the_host_can_ask_their_distance() {
+    let gpu = common::gpu();
+    let base = params(true);
+    let v0 = view(&base);
+    let ahead = DVec3::new(-1.0, 0.0, -1.0).normalize();
+    let side = DVec3::new(1.0, 0.0, -1.0).normalize();
+    let ball = v0.eye + ahead * 10.0 - side * 1.5;
+    let cube = v0.eye + ahead * 12.0 + side * 1.8;
+    let (p, scene) = exact_scene([[ball.x, ball.z], [cube.x, cube.z]]);
+    assert_eq!(scene.kinds.len(), EXACT_FIRST + 2);
+    let ground = p.land.height_at(v0.eye.x, v0.eye.z);
+    let target = v0.eye + ahead * 11.0 + DVec3::new(0.0, ground + 1.0 - v0.eye.y, 0.0);
+    let v = WorldView::look_at(v0.eye, target, 0.8, SIZE);
+    let mut w = world(&gpu, p);
+    w.set_props_scene(&gpu.device, scene.clone()).unwrap();
+    draw(&gpu, &mut w, &v);
+    let (side_n, records) = w.props_records(&gpu.device, &gpu.queue).unwrap().unwrap();
+    let explicit = &records[(side_n * side_n) as usize..][..2];
+    assert!(explicit.iter().all(|r| r[3] > 0.0), "{explicit:?}");
+    let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
+    let inverse = w.relative_matrix().as_dmat4().inverse();
+    let pixels = f64::from(SIZE.1) / (2.0 * (0.4f64).tan());
+    let (mut exact, mut found, mut close, mut stray) = (0, 0, 0, 0);
+    let (mut worst, mut worst_stray) = (0.0f64, 0.0f64);
+    for (i, h) in hits.iter().enumerate() {
+        let dir = eye_relative(&inverse, i, 0.5).normalize();
+        let want = explicit
+            .iter()
+            .filter_map(|r| exact_hit(r, dir))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let depth = f32::from_bits(h[0]);
+        match want {
+            Some((t, cos)) => {
+                exact += 1;
+                if depth < 1.0 {
+                    found += 1;
+                    // The march stops within half a pixel's footprint of the surface: along
+                    // the ray, that over the cosine of its incidence.
+                    let got = eye_distance(&inverse, i, depth);
+                    let reach = (t / pixels / cos.max(0.05)).max(0.005);
+                    worst = worst.max((got - t).abs() / reach);
+                    close += usize::from((got - t).abs() <= reach);
+                }
+            }
+            // A ray passing within half a pixel's footprint of a silhouette hits it.
+            None if depth < 1.0 => {
+                let q = eye_relative(&inverse, i, depth);
+                let d = explicit
+                    .iter()
+                    .map(|r| exact_distance(r, q))
+                    .fold(f64::INFINITY, f64::min);
+                stray += 1;
+                worst_stray = worst_stray.max(d / (0.5 * q.length() / pixels));
+            }
+            None => {}
+        }
+    }
+    eprintln!(
+        "{exact} pixels meet the ball or the cube: {found} hit, {close} within a pixel's \
+         footprint over the incidence's cosine (worst {worst:.2} of it); {stray} hits elsewhere, \
+         the farthest {worst_stray:.2} half-footprints off the surface"
+    );
+    assert!(exact > 400, "{exact}");
+    assert!(found * 100 >= exact * 97, "{found} of {exact}");
+    assert!(close * 100 >= found * 99, "{close} of {found}");
+    assert!(worst < 2.0, "{worst}");
+    assert!(worst_stray <= 1.05, "{worst_stray}");
+
+    // The host's question: the distance to the props at a point, by the twin.
+    let foot = |r: &[f32; 16]| DVec3::new(r[0].into(), r[1].into(), r[2].into()) + v.eye;
+    let centre = foot(&explicit[0]) + DVec3::new(0.0, 1.5, 0.0);
+    for (point, want) in [
+        (centre, -1.0),
+        (centre + DVec3::new(0.0, 2.0, 0.0), 1.0),
+        (centre + side * -1.5, 0.5),
+    ] {
+        let d = w.props_distance(point).expect("a prop near");
+        // The twin stands them on the continuous surface, the GPU on the drawn one.
+        assert!((d - want).abs() < 0.05, "at {point}: {d}, not {want}");
+    }
+    let far = v.eye + DVec3::new(5000.0, 0.0, 0.0);
+    // Far from every prop: the props put at given places, some 5 km away.
+    let d = w.props_distance(far).unwrap();
+    assert!(d > 4900.0, "{d}");
+    let mut off = p;
+    off.props.on = false;
+    assert!(world(&gpu, off).props_distance(centre).is_none());
+}

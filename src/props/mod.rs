@@ -23,6 +23,7 @@
 
 pub mod kinds;
 pub mod place;
+pub mod query;
 pub mod sdf;
 #[cfg(test)]
 mod tests;

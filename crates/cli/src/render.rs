@@ -374,7 +374,7 @@ fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
         Drawn::Pinned(c) if c.method.is_mesh() => Ok(method),
         Drawn::Pinned(c) => Err(Error::Usage(format!(
             "--props: the {} casts rays, which march no props: give --method mesh, \
-             visibility, hybrid or auto (or --no-props)",
+             visibility, hybrid or auto",
             c.method
         ))),
     }

@@ -13,12 +13,12 @@ fn bad_props_exit_2_with_one_line_naming_the_key() {
     let dir = scratch("bad-props");
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
-    // A method that does not march props.
+    // A ray cast, which marches no props.
     refused.check(
         &[
-            "render", "--world", "endless", "--props", "--method", "mesh", "--out", out,
+            "render", "--world", "endless", "--props", "--method", "raymarch", "--out", out,
         ],
-        &["--props", "visibility", "mesh"],
+        &["--props", "casts rays", "mesh"],
     );
     refused.check(
         &[
@@ -87,11 +87,19 @@ fn bad_props_exit_2_with_one_line_naming_the_key() {
 fn the_shipped_prop_scenes_draw_their_props() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let dir = scratch("prop-scenes");
-    for (scene, least) in [("props-demo", 1.0), ("props-landscape", 50.0)] {
+    // The landscape's by the method `auto` picks, the demo's by the forward mesh too.
+    let shown = [
+        ("props-demo", "auto", 1.0),
+        ("props-demo", "mesh", 1.0),
+        ("props-landscape", "auto", 50.0),
+    ];
+    for (scene, method, least) in shown {
         let path = root.join(format!("scenes/{scene}.toml"));
-        let out = dir.join(format!("{scene}.png"));
+        let out = dir.join(format!("{scene}-{method}.png"));
         let (code, stdout, err) = relief(&[
             "render",
+            "--method",
+            method,
             "--scene",
             path.to_str().unwrap(),
             "--out",

@@ -25,8 +25,8 @@ mod present;
 mod props;
 mod targets;
 
-use self::targets::*;
 pub(crate) use self::props::hit_entry as props_hit_entry;
+use self::targets::*;
 pub(crate) use self::targets::{composite_group, composite_pipeline};
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;

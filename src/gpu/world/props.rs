@@ -45,6 +45,29 @@ impl World {
         Ok(())
     }
 
+    /// The distance from world point `p` (metres) to the nearest prop, by the props' twin
+    /// ([`crate::props::query::distance`]): for a host placing its own things among them.
+    /// Negative inside a prop; a bound on the distance to its surface (exact for props of exact
+    /// primitives), over half a cell where no prop is that near. `None` where props are off or
+    /// none stands within a cell of `p` (nothing nearer than half a cell). The twin stands
+    /// each prop whole on the continuous surface: near the eye the drawn props stand within
+    /// centimetres of it.
+    pub fn props_distance(&self, p: glam::DVec3) -> Option<f64> {
+        let props = self.params.props;
+        if !props.on || self.tile.is_some() {
+            return None;
+        }
+        let tapes = self.props_scene.compile(&props).ok()?;
+        let water = (!self.params.no_water)
+            .then(|| f64::from(self.params.water_level) / self.params.land.peak_height);
+        crate::props::query::distance(
+            (&self.props_scene, &tapes, &props),
+            (&self.params.land, water),
+            p,
+        )
+        .map(|(d, _)| d)
+    }
+
     /// What the world's props are ([`World::set_props_scene`]).
     pub fn props_scene(&self) -> &Scene {
         &self.props_scene
