@@ -500,3 +500,75 @@ fn a_ball_and_a_cube_meet_the_rays_where_geometry_says_and_the_host_can_ask_thei
     off.props.on = false;
     assert!(world(&gpu, off).props_distance(centre).is_none());
 }
+
+/// A ball behind a ridge is hidden, and one in front of it shows: the march stops at the
+/// terrain's depth.
+#[test]
+fn a_prop_behind_a_ridge_is_hidden_and_one_in_front_shows() {
+    let gpu = common::gpu();
+    let base = params(true);
+    let land = &base.land;
+    let eye = view(&base).eye;
+    // The twin's terrain along the segment from the eye to `to`: how far the ground rises
+    // over it at most (metres; negative: clear by that much).
+    let rise = |to: DVec3| {
+        (1..200)
+            .map(|k| {
+                let q = eye + (to - eye) * (f64::from(k) / 200.0);
+                land.height_at(q.x, q.z) - q.y
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let centre = |x: f64, z: f64| DVec3::new(x, land.height_at(x, z) + 1.5, z);
+    // A direction and a distance where the whole ball is under a ridge by 0.5 m, and a ball
+    // nearer on that line, 3 m aside, clear of the ground by 0.3 m.
+    let found = (0..32).find_map(|a| {
+        let turn = f64::from(a) * std::f64::consts::TAU / 32.0;
+        let dir = DVec3::new(turn.cos(), 0.0, turn.sin());
+        let aside = DVec3::new(-dir.z, 0.0, dir.x) * 3.0;
+        let behind = (8..40).map(|k| f64::from(k) * 10.0).find_map(|d| {
+            let c = centre(eye.x + dir.x * d, eye.z + dir.z * d);
+            (rise(c + DVec3::new(0.0, 1.2, 0.0)) > 0.5).then_some((d, c))
+        })?;
+        let front = (2..(behind.0 / 5.0) as i32).rev().find_map(|k| {
+            let p = eye + dir * (f64::from(k) * 5.0) + aside;
+            let c = centre(p.x, p.z);
+            (rise(c - DVec3::new(0.0, 1.0, 0.0)) < -0.3).then_some(c)
+        })?;
+        Some((behind.1, front))
+    });
+    let (behind, front) = found.expect("a ridge around the meadow");
+    let (p, scene) = exact_scene([[behind.x, behind.z], [front.x, front.z]]);
+    let mid = (behind + front) * 0.5;
+    let v = WorldView::look_at(eye, mid, 0.8, SIZE);
+    // The balls' pixels in what a method's march left.
+    let balls = |config: MethodConfig| {
+        let mut w = world_drawn(&gpu, p, config);
+        w.set_props_scene(&gpu.device, scene.clone()).unwrap();
+        draw(&gpu, &mut w, &v);
+        let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
+        let inverse = w.relative_matrix().as_dmat4().inverse();
+        let (mut of_behind, mut of_front) = (0, 0);
+        for (i, h) in hits.iter().enumerate() {
+            let depth = f32::from_bits(h[0]);
+            if depth < 1.0 {
+                let q = eye_relative(&inverse, i, depth) + eye;
+                of_behind += usize::from((q - behind).length() < 1.5);
+                of_front += usize::from((q - front).length() < 1.5);
+            }
+        }
+        (of_behind, of_front)
+    };
+    let (of_behind, of_front) = balls(marching());
+    eprintln!(
+        "behind the ridge at {:.0} m: {of_behind} pixels; in front at {:.0} m: {of_front}",
+        (behind - eye).length(),
+        (front - eye).length()
+    );
+    assert_eq!(of_behind, 0);
+    assert!(of_front > 10, "{of_front}");
+    // The negative control: the overlay's march, which no terrain's depth bounds, meets the
+    // ball behind the ridge (the host's depth test hides it).
+    let (unbounded, _) = balls(MethodConfig::new(Method::Mesh));
+    assert!(unbounded >= 5, "{unbounded}");
+}
