@@ -572,3 +572,61 @@ fn a_prop_behind_a_ridge_is_hidden_and_one_in_front_shows() {
     let (unbounded, _) = balls(MethodConfig::new(Method::Mesh));
     assert!(unbounded >= 5, "{unbounded}");
 }
+
+/// No grass grows inside a prop: every blade the grass draws has its root outside the props
+/// (by the twin's fields of the props the scatter placed), and those inside are flattened.
+#[test]
+fn no_grass_grows_inside_a_prop() {
+    let gpu = common::gpu();
+    let mut p = params(true);
+    p.grass.on = true;
+    let v = view(&p);
+    let mut w = world(&gpu, p);
+    draw(&gpu, &mut w, &v);
+    let (side, records) = w.props_records(&gpu.device, &gpu.queue).unwrap().unwrap();
+    let tapes = w.props_scene().compile(&p.props).unwrap();
+    let blades = w
+        .grass_blades(&gpu.device, &gpu.queue, 400_000)
+        .unwrap()
+        .unwrap();
+    let cell = f64::from(p.props.cell);
+    let eye_cell = p.props.cell_at(v.eye.x, v.eye.z);
+    let half = i64::from(side / 2);
+    // The props of the 3x3 cells around a camera-relative point's.
+    let inside = |rel: DVec3| {
+        let c = [rel.x + v.eye.x, rel.z + v.eye.z].map(|x| (x / cell).floor() as i64);
+        (-1..=1)
+            .flat_map(|di| (-1..=1).map(move |dj| (di, dj)))
+            .any(|(di, dj)| {
+                let g = [
+                    c[0] + di - eye_cell[0] + half,
+                    c[1] + dj - eye_cell[1] + half,
+                ];
+                if g.iter().any(|&x| x < 0 || x >= i64::from(side)) {
+                    return false;
+                }
+                let r = &records[(g[1] * i64::from(side) + g[0]) as usize];
+                r[3] > 0.0 && record_distance(&tapes, r, rel).0 < -0.005
+            })
+    };
+    let (mut flat, mut flat_inside, mut grown_inside) = (0, 0, 0);
+    for b in &blades {
+        let root = DVec3::new(b[0].into(), b[1].into(), b[2].into()) + DVec3::Y * 0.01;
+        let is_in = inside(root);
+        if b[4] == 0.0 {
+            flat += 1;
+            flat_inside += usize::from(is_in);
+        } else {
+            grown_inside += usize::from(is_in);
+        }
+    }
+    eprintln!(
+        "{} blades: {flat} flattened ({flat_inside} inside a prop by the twin), {grown_inside} \
+         grown inside one",
+        blades.len()
+    );
+    assert!(flat > 50, "{flat}");
+    assert_eq!(grown_inside, 0);
+    // Those flattened are inside (or within 5 mm of a surface, where f32 and f64 part).
+    assert!(flat_inside * 100 >= flat * 97, "{flat_inside} of {flat}");
+}

@@ -382,3 +382,61 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
         bitcast<u32>(sun),
     ));
 }
+
+// The grass's blades (grass_scatter.wgsl), for `props_grass`: four vectors a blade (its root
+// camera-relative in the first; its height and width the second's x and w), and the scatter's
+// counts (the blades drawn the fourth).
+@group(2) @binding(0) var<storage, read_write> grass_blades: array<vec4<f32>>;
+@group(2) @binding(1) var<storage, read> grass_counts: array<u32, 8>;
+
+// Whether camera-relative `p` is inside a placed prop (the props of its dual cell and those put
+// at given places; each read only where `p` is inside its box).
+fn inside_props(p: vec3<f32>) -> bool {
+    let half = i32(pf.side / 2u);
+    let g = vec2<i32>(floor((p.xz + pf.eye_in_cell) / pf.cell + 0.5)) + half;
+    for (var k = 0; k < 4; k++) {
+        let cell = g - vec2<i32>(1) + vec2<i32>(k & 1, k >> 1u);
+        if any(cell < vec2<i32>(0)) || any(cell >= vec2<i32>(i32(pf.side))) {
+            continue;
+        }
+        if inside_record(u32(cell.y) * pf.side + u32(cell.x), p) {
+            return true;
+        }
+    }
+    let placed = pf.side * pf.side;
+    for (var j = 0u; j < pf.placed; j++) {
+        if inside_record(placed + j, p) {
+            return true;
+        }
+    }
+    return false;
+}
+
+fn inside_record(i: u32, p: vec3<f32>) -> bool {
+    let a = prop_grid[i * RECORD];
+    if a.w <= 0.0 {
+        return false;
+    }
+    let y = prop_cell_range[i];
+    let r = prop_kinds[u32(prop_grid[i * RECORD + 1u].z)].lo.w * a.w;
+    if p.y < y.x || p.y > y.y || any(abs(p.xz - a.xz) > vec2<f32>(r)) {
+        return false;
+    }
+    return record_distance(i, p).x < 0.0;
+}
+
+// No grass grows inside a prop: a blade whose root is inside one is flattened to nothing (its
+// triangles empty), after both scatters. A fixed number of threads strides over the blades.
+@compute @workgroup_size(64)
+fn props_grass(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let drawn = grass_counts[3];
+    for (var i = id.x; i < drawn; i += groups.x * 64u) {
+        // A little over the root: a root on a prop's buried foot is inside it.
+        if inside_props(grass_blades[4u * i].xyz + vec3<f32>(0.0, 0.01, 0.0)) {
+            var b = grass_blades[4u * i + 1u];
+            b.x = 0.0;
+            b.w = 0.0;
+            grass_blades[4u * i + 1u] = b;
+        }
+    }
+}

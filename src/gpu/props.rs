@@ -68,6 +68,9 @@ const BLOCK: u32 = 8;
 pub const STEPS: u32 = 96;
 /// `PropsFrame::flags`: march the seed's way (`seed_walk` in `wgsl/props_march.wgsl`).
 const PEER_SEED: u32 = 16;
+/// Workgroups of 64 threads that stride over the grass's blades in its cut (`props_grass` in
+/// `wgsl/props_march.wgsl`).
+const GRASS_GROUPS: u32 = 512;
 /// `PropsFrame::flags`: march with no raster's depth (the overlay, [`super::props_overlay`]).
 const UNBOUNDED: u32 = 32;
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
@@ -132,6 +135,8 @@ pub(crate) struct PropsPass {
     scatter_group: wgpu::BindGroup,
     march: wgpu::ComputePipeline,
     march_layouts: [wgpu::BindGroupLayout; 2],
+    /// The cut of the grass inside the props and its layout of the grass's blades.
+    grass: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
 }
 
 fn buffer_of(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -299,6 +304,21 @@ impl PropsPass {
                 immediate_size: 0,
             });
         let march = pipeline(&march_module, &march_pipeline_layout, "props_march");
+        // The grass's cut: the props' records (the scatter's group) and the grass's blades.
+        let grass_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:props:grass-layout"),
+            entries: &[
+                super::storage_buffer_entry(0, false),
+                super::storage_buffer_entry(1, true),
+            ],
+        });
+        let grass_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("relief:props:grass-pipeline-layout"),
+                bind_group_layouts: &[None, Some(&scatter_layout), Some(&grass_layout)],
+                immediate_size: 0,
+            });
+        let grass = pipeline(&march_module, &grass_pipeline_layout, "props_grass");
         Ok(Self {
             scene: scene.clone(),
             props,
@@ -310,6 +330,7 @@ impl PropsPass {
             scatter_group,
             march,
             march_layouts: [view_layout, march_layout],
+            grass: (grass, grass_layout),
         })
     }
 
@@ -460,6 +481,40 @@ impl PropsPass {
         pass.set_bind_group(1, &march_group, &[]);
         let g = super::WORKGROUP;
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
+    }
+
+    /// Records the cut of the grass inside the props: each of `blades` (the grass's scatter
+    /// already recorded, and the props' scatter) whose root is inside a prop is flattened to
+    /// nothing; timed with the props' scatter.
+    pub(crate) fn encode_grass(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        blades: &super::raster::Blades<'_>,
+    ) {
+        let (pipeline, layout) = &self.grass;
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:grass-group"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: blades.blades.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: blades.counts.as_entire_binding(),
+                },
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:props:grass-pass"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(1, &self.scatter_group, &[]);
+        pass.set_bind_group(2, &group, &[]);
+        pass.dispatch_workgroups(GRASS_GROUPS, 1, 1);
     }
 
     /// Cells on a side of its grid around the eye's cell (the eye's is number side / 2).

@@ -137,6 +137,9 @@ impl World {
             (pixels, water, marched),
             timer,
         );
+        if let Some(grass) = &self.grass {
+            props.encode_grass(device, encoder, &grass.raster_blades());
+        }
         if overlaid {
             let overlay = self
                 .props_overlay
