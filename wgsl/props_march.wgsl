@@ -305,6 +305,51 @@ fn props_shadow(p: vec3<f32>) -> f32 {
     return walk(p, l, 0.0, SHADOW_REACH, true).t;
 }
 
+// The props' shadow on the surface the raster drew at distance `t` along `dir`, from a little
+// towards the eye.
+fn surface_shadow(dir: vec3<f32>, t: f32) -> f32 {
+    return props_shadow(dir * (t - max(0.02, 2.0 * t / pf.pixels)));
+}
+
+// The props' shadow on the surface the raster drew, marched a 2x2 block of pixels at a time
+// (`props_shadows`) at the block's nearest pixel: the sun's share there and the point's
+// distance (3e38: none). A pixel of the block takes it where its own point is within this share
+// of its distance of the block's.
+@group(2) @binding(0) var quad_out: texture_storage_2d<rg32float, write>;
+@group(2) @binding(1) var quad_in: texture_2d<f32>;
+const QUAD_DEPTH: f32 = 0.02;
+
+@compute @workgroup_size(8, 8)
+fn props_shadows(@builtin(global_invocation_id) id: vec3<u32>) {
+    let blocks = (vis.size + 1u) / 2u;
+    if id.x >= blocks.x || id.y >= blocks.y {
+        return;
+    }
+    var best = vec2<f32>(1.0, 3.0e38);
+    var dir = vec3<f32>(0.0);
+    for (var k = 0u; k < 4u; k++) {
+        let px = id.xy * 2u + vec2<u32>(k & 1u, k >> 1u);
+        if px.x >= vis.size.x || px.y >= vis.size.y {
+            continue;
+        }
+        let d = rasterised_depth(px);
+        if d < 1.0 {
+            let v = sample_ray(vec2<f32>(px) + 0.5);
+            let s = length(point_at(v, d));
+            if s < best.y {
+                best.y = s;
+                dir = v;
+            }
+        }
+    }
+    if best.y < pf.distance + pf.cell {
+        best.x = surface_shadow(dir, best.y);
+    } else {
+        best.y = 3.0e38;
+    }
+    textureStore(quad_out, id.xy, vec4<f32>(best, 0.0, 0.0));
+}
+
 @compute @workgroup_size(8, 8)
 fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= vis.size.x || id.y >= vis.size.y {
@@ -338,9 +383,14 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     if hit.record == NO_RECORD {
         var out = no_prop();
         if surface {
-            // The surface the raster drew, a little towards the eye.
-            let p = dir * (t_end - max(0.02, 2.0 * t_end / pf.pixels));
-            out.w = bitcast<u32>(props_shadow(p));
+            // The props' shadow on the surface the raster drew: its 2x2 block's, where the
+            // block's point lies within QUAD_DEPTH of this pixel's; else its own.
+            let quad = textureLoad(quad_in, id.xy / 2u, 0).xy;
+            if abs(quad.y - t_end) <= QUAD_DEPTH * t_end {
+                out.w = bitcast<u32>(quad.x);
+            } else {
+                out.w = bitcast<u32>(surface_shadow(dir, t_end));
+            }
         }
         textureStore(prop_hit_out, px, out);
         return;

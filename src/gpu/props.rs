@@ -71,6 +71,19 @@ const PEER_SEED: u32 = 16;
 /// Workgroups of 64 threads that stride over the grass's blades in its cut (`props_grass` in
 /// `wgsl/props_march.wgsl`).
 const GRASS_GROUPS: u32 = 512;
+/// The props' shadow on the raster's surface, a texel a 2x2 block of pixels: the sun's share
+/// and the distance of the point it was marched from (`quad_in` in `wgsl/props_march.wgsl`).
+const QUAD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+
+/// The image of the props' shadow a 2x2 block of pixels for a frame's size, bound to be
+/// written and to be read.
+struct QuadImage {
+    size: (u32, u32),
+    bytes: u64,
+    write: wgpu::BindGroup,
+    read: wgpu::BindGroup,
+}
+
 /// `PropsFrame::flags`: march with no raster's depth (the overlay, [`super::props_overlay`]).
 const UNBOUNDED: u32 = 32;
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
@@ -135,6 +148,11 @@ pub(crate) struct PropsPass {
     scatter_group: wgpu::BindGroup,
     march: wgpu::ComputePipeline,
     march_layouts: [wgpu::BindGroupLayout; 2],
+    /// The props' shadow on the raster's surface, a 2x2 block of pixels a thread, and the
+    /// layouts of its image written and read.
+    shadows: wgpu::ComputePipeline,
+    quad_layouts: [wgpu::BindGroupLayout; 2],
+    quads: std::sync::Mutex<Option<QuadImage>>,
     /// The cut of the grass inside the props and its layout of the grass's blades.
     grass: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
 }
@@ -297,13 +315,30 @@ impl PropsPass {
             "relief:props:march",
             &super::props_wgsl::march_source(&tapes, compiled),
         );
-        let march_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        // The props' shadow on the raster's surface a 2x2 block at a time: written by
+        // `props_shadows`, read by the march.
+        let quad_layouts = [
+            super::storage_entry(0, QUAD_FORMAT),
+            super::texture_entry(1, c, false),
+        ]
+        .map(|entry| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("relief:props:quad-layout"),
+                entries: &[entry],
+            })
+        });
+        let [shadows, march] = [
+            (&quad_layouts[0], "props_shadows"),
+            (&quad_layouts[1], "props_march"),
+        ]
+        .map(|(quads, entry)| {
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("relief:props:march-pipeline-layout"),
-                bind_group_layouts: &[Some(&view_layout), Some(&march_layout)],
+                bind_group_layouts: &[Some(&view_layout), Some(&march_layout), Some(quads)],
                 immediate_size: 0,
             });
-        let march = pipeline(&march_module, &march_pipeline_layout, "props_march");
+            pipeline(&march_module, &layout, entry)
+        });
         // The grass's cut: the props' records (the scatter's group) and the grass's blades.
         let grass_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:props:grass-layout"),
@@ -329,7 +364,10 @@ impl PropsPass {
             scatter,
             scatter_group,
             march,
+            shadows,
             march_layouts: [view_layout, march_layout],
+            quad_layouts,
+            quads: std::sync::Mutex::new(None),
             grass: (grass, grass_layout),
         })
     }
@@ -341,8 +379,13 @@ impl PropsPass {
 
     /// GPU memory of its buffers, bytes.
     pub fn bytes(&self) -> u64 {
+        let quads = self
+            .quads
+            .lock()
+            .map_or(0, |q| q.as_ref().map_or(0, |q| q.bytes));
         self.buffers.iter().map(wgpu::Buffer::size).sum::<u64>()
             + std::mem::size_of::<PropsFrame>() as u64
+            + quads
     }
 
     /// Records the scatter of the props around `eye` (world metres) over the landscape of
@@ -438,17 +481,61 @@ impl PropsPass {
         }
     }
 
+    /// The image of the props' shadow on the raster's surface for a frame of `size` (a texel
+    /// a 2x2 block of pixels): its bind groups to write and to read it.
+    fn quad_image(&self, device: &wgpu::Device, size: (u32, u32)) -> QuadImage {
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let texture = super::texture_2d(
+            device,
+            "relief:props:quads",
+            (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1)),
+            QUAD_FORMAT,
+            usage,
+        );
+        let view = texture.create_view(&Default::default());
+        let [write, read] = [0, 1].map(|binding| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("relief:props:quad-group"),
+                layout: &self.quad_layouts[binding as usize],
+                entries: &[wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                }],
+            })
+        });
+        QuadImage {
+            size,
+            bytes: u64::from(texture.width())
+                * u64::from(texture.height())
+                * super::texel_bytes(QUAD_FORMAT),
+            write,
+            read,
+        }
+    }
+
     /// Records the march of each pixel of an image of `size` through the props into `hit`,
     /// reading the frame's render, world and visibility uniforms and the compute raster's
-    /// depth; timed as [`super::timing::Slot::March`].
+    /// depth (`bounded`: the props' shadow on the raster's surface first marched a 2x2 block
+    /// of pixels at a time; else it marches to the draw distance); timed as
+    /// [`super::timing::Slot::March`].
     pub fn encode_march(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         (render, world, vis, depth): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
-        (hit, size): (&wgpu::TextureView, (u32, u32)),
+        (hit, size, bounded): (&wgpu::TextureView, (u32, u32), bool),
         timer: Option<&super::timing::GpuTimer>,
     ) {
+        // Unbounded, the march reads no block's shadow: a 1x1 image stands in.
+        let quad_size = if bounded { size } else { (1, 1) };
+        let mut kept = self
+            .quads
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if kept.as_ref().is_none_or(|q| q.size != quad_size) {
+            *kept = Some(self.quad_image(device, quad_size));
+        }
+        let quads = kept.as_ref().expect("made above");
         let entry = |binding: u32, resource| wgpu::BindGroupEntry { binding, resource };
         let view_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:props:view-group"),
@@ -476,10 +563,17 @@ impl PropsPass {
             label: Some("relief:props:march-pass"),
             timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::March)),
         });
-        pass.set_pipeline(&self.march);
         pass.set_bind_group(0, &view_group, &[]);
         pass.set_bind_group(1, &march_group, &[]);
         let g = super::WORKGROUP;
+        if bounded {
+            pass.set_pipeline(&self.shadows);
+            pass.set_bind_group(2, &quads.write, &[]);
+            let blocks = (size.0.div_ceil(2), size.1.div_ceil(2));
+            pass.dispatch_workgroups(blocks.0.div_ceil(g), blocks.1.div_ceil(g), 1);
+        }
+        pass.set_pipeline(&self.march);
+        pass.set_bind_group(2, &quads.read, &[]);
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
     }
 

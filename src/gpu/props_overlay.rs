@@ -99,7 +99,7 @@ impl PropsOverlay {
             device,
             encoder,
             (render, world, &self.view, &self.no_depth),
-            (&image.view, size),
+            (&image.view, size, false),
             timer,
         );
     }
