@@ -253,21 +253,27 @@ fn props_change_the_frame_only_where_they_stand_and_their_shadows_fall() {
     let mut w = world(&gpu, on);
     let props = draw(&gpu, &mut w, &v);
     let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
-    let (mut marked, mut changed, mut outside) = (0, 0, 0);
+    let (mut marked, mut changed, mut outside, mut occluded) = (0, 0, 0, 0);
     for (i, h) in hits.iter().enumerate() {
         let differs = bare[4 * i..4 * i + 4]
             .iter()
             .zip(&props[4 * i..4 * i + 4])
             .any(|(a, b)| a.abs_diff(*b) > 1);
-        let mark = f32::from_bits(h[0]) < 1.0 || f32::from_bits(h[3]) < 1.0;
+        // A prop, or its shadow or its occlusion of the sky on the ground.
+        let depth = f32::from_bits(h[0]);
+        let mark = depth < 1.0 || f32::from_bits(h[3]) < 1.0 || f32::from_bits(h[1]) < 1.0;
         marked += usize::from(mark);
+        occluded += usize::from(depth >= 1.0 && f32::from_bits(h[1]) < 0.95);
         changed += usize::from(differs);
         outside += usize::from(differs && !mark);
     }
     eprintln!(
-        "props and their shadows cover {marked} pixels; {changed} changed, {outside} outside them"
+        "props, their shadows and occlusion cover {marked} pixels; {changed} changed, {outside} \
+         outside them"
     );
     assert!(marked > 300 && changed > 300, "{marked} {changed}");
+    // The ground around the props' feet: the sky occluded.
+    assert!(occluded > 30, "{occluded}");
     assert_eq!(outside, 0);
     // The same props in the same places frame after frame.
     assert!(draw(&gpu, &mut w, &v) == props);

@@ -20,9 +20,11 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
     return normalize(n);
 }
 
-// No prop at a pixel: its depth (the far plane, behind everything) and the sun unshadowed.
+// No prop at a pixel: its depth (the far plane, behind everything), the sky unoccluded (bits)
+// and the sun unshadowed (bits). The march leaves the props' occlusion of the sky and their
+// shadow on the surface the raster drew in the same places.
 fn no_prop() -> vec4<u32> {
-    return vec4<u32>(bitcast<u32>(1.0), 0u, 0u, bitcast<u32>(1.0));
+    return vec4<u32>(bitcast<u32>(1.0), bitcast<u32>(1.0), 0u, bitcast<u32>(1.0));
 }
 
 // The light leaving a prop's surface at camera-relative `rel` with normal `n`, linear

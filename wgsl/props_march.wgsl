@@ -311,13 +311,72 @@ fn surface_shadow(dir: vec3<f32>, t: f32) -> f32 {
     return props_shadow(dir * (t - max(0.02, 2.0 * t / pf.pixels)));
 }
 
+// How high over the ground the props' occlusion of the sky reads their fields, metres (four
+// heights up to this), and how strongly it darkens.
+const GROUND_AO_REACH: f32 = 1.0;
+const GROUND_AO_STRENGTH: f32 = 1.5;
+
+// The props' occlusion of the sky over the ground at camera-relative `p` (the surface the
+// raster drew), 0 to 1: their undisplaced fields read at four heights over it (straight up: the
+// ground under props is gentle), as a prop's own occlusion reads its field along its normal.
+fn ground_ao(p: vec3<f32>) -> f32 {
+    var cands = array<u32, 4>(0u, 0u, 0u, 0u);
+    var n = 0u;
+    let half = i32(pf.side / 2u);
+    let m = i32(dual_side());
+    let g = vec2<i32>(floor((p.xz + pf.eye_in_cell) / pf.cell + 0.5)) + half;
+    if all(g >= vec2<i32>(0)) && all(g < vec2<i32>(m)) {
+        let range = prop_dual_range[u32(g.y * m + g.x)];
+        if p.y + GROUND_AO_REACH >= range.x && p.y <= range.y {
+            for (var k = 0; k < 4; k++) {
+                let cell = g - vec2<i32>(1) + vec2<i32>(k & 1, k >> 1u);
+                if all(cell >= vec2<i32>(0)) && all(cell < vec2<i32>(i32(pf.side))) {
+                    let i = u32(cell.y) * pf.side + u32(cell.x);
+                    if near_record(i, p) {
+                        cands[n] = i;
+                        n += 1u;
+                    }
+                }
+            }
+        }
+    }
+    // The props put at given places: each pixel looks at each.
+    let placed = pf.side * pf.side;
+    for (var j = 0u; j < pf.placed && n < 4u; j++) {
+        if near_record(placed + j, p) {
+            cands[n] = placed + j;
+            n += 1u;
+        }
+    }
+    if n == 0u {
+        return 1.0;
+    }
+    var occ = 0.0;
+    for (var s = 1u; s <= 4u; s++) {
+        let h = 0.25 * f32(s) * GROUND_AO_REACH;
+        var d = h;
+        for (var k = 0u; k < n; k++) {
+            d = min(d, record_bound(cands[k], p + vec3<f32>(0.0, h, 0.0), false));
+        }
+        occ += max(h - d, 0.0) / (h * f32(1u << s));
+    }
+    return clamp(1.0 - GROUND_AO_STRENGTH * occ, 0.0, 1.0);
+}
+
+// Whether record `i` holds a prop whose sphere comes within the ground's occlusion's reach of
+// `p`.
+fn near_record(i: u32, p: vec3<f32>) -> bool {
+    let sphere = prop_grid[i * RECORD + 3u];
+    return prop_grid[i * RECORD].w > 0.0 && length(p - sphere.xyz) < sphere.w + GROUND_AO_REACH;
+}
+
 // The props' shadow on the surface the raster drew, marched a 2x2 block of pixels at a time
 // (`props_shadows`) at the block's nearest pixel: the sun's share there and the point's
 // distance (3e38: none). A pixel of the block takes it where its own point is within this share
 // of its distance of the block's.
 @group(2) @binding(0) var quad_out: texture_storage_2d<rg32float, write>;
 @group(2) @binding(1) var quad_in: texture_2d<f32>;
-const QUAD_DEPTH: f32 = 0.02;
+const QUAD_DEPTH: f32 = 0.1;
 
 @compute @workgroup_size(8, 8)
 fn props_shadows(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -391,6 +450,7 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
             } else {
                 out.w = bitcast<u32>(surface_shadow(dir, t_end));
             }
+            out.y = bitcast<u32>(ground_ao(dir * t_end));
         }
         textureStore(prop_hit_out, px, out);
         return;

@@ -8,7 +8,8 @@
 // texture reads) and vis_common.wgsl (its own uniforms and images).
 
 // Where the props' march (props_march.wgsl) left each pixel's prop: its depth, normal, look
-// and the sun's share, or the props' shadow on what the raster drew (props_look.wgsl).
+// and the sun's share, or the props' occlusion and shadow on what the raster drew
+// (props_look.wgsl).
 @group(0) @binding(22) var prop_hit: texture_2d<u32>;
 
 fn props_at(px: vec2<i32>) -> vec4<u32> {
@@ -20,8 +21,8 @@ fn props_at(px: vec2<i32>) -> vec4<u32> {
 
 // The colour (linear, tone-mapped) of one sample at `pixel` (pixels from the top left) whose
 // depth is `d` (1: no terrain, the sky), with the endless world's attributes `s` and `valley`,
-// the sun's share multiplied by `sun` (the props' shadow).
-fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, valley: f32, sun: f32) -> vec3<f32> {
+// the sun's and the sky's shares multiplied by `props` (the props' shadow and occlusion).
+fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, valley: f32, props: vec2<f32>) -> vec3<f32> {
     let dir = sample_ray(pixel);
     if d >= 1.0 {
         return sky_pixel(lin, dir);
@@ -30,7 +31,7 @@ fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, val
     if vis.world != 0u {
         let h = (rel.y + w.eye.y) / w.peak;
         let n = normalize(vec3<f32>(-s.x, 1.0, -s.y));
-        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley) * vec2<f32>(sun, 1.0));
+        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley) * props);
     }
     let uv = (rel.xz + w.tile_eye) * w.tile_inv + r.shift;
     let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);
@@ -58,7 +59,7 @@ fn shade_samples(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let s = textureLoad(surface_ms, px, i);
         let valley = textureLoad(valley_ms, px, i).x;
-        sum += shade_sample(lin, vec2<f32>(id.xy) + SAMPLES[i], d, s, valley, 1.0);
+        sum += shade_sample(lin, vec2<f32>(id.xy) + SAMPLES[i], d, s, valley, vec2<f32>(1.0));
     }
     store_pixel(px, sum, 4u, covered, nearest);
 }
@@ -82,6 +83,7 @@ fn shade_pixel(px: vec2<i32>, d: f32, layer: u32) {
         return;
     }
     let sun = bitcast<f32>(prop.w);
+    let sky = bitcast<f32>(prop.y);
     let covered = u32(d < 1.0);
     var color = vec3<f32>(0.0);
     if covered != 0u || vis.sky != 0u {
@@ -89,10 +91,10 @@ fn shade_pixel(px: vec2<i32>, d: f32, layer: u32) {
         let valley = textureLoad(valley_1, px, 0).x;
         if layer == 1u && covered != 0u {
             let lin = linear_uniforms();
-            let look = blade_look(valley) * vec3<f32>(1.0, sun, 1.0);
+            let look = blade_look(valley) * vec3<f32>(1.0, sun, sky);
             color = blade_light(lin, point_at(sample_ray(pixel), d), s.xyz, s.w, look);
         } else {
-            color = shade_sample(linear_uniforms(), pixel, d, s, valley, sun);
+            color = shade_sample(linear_uniforms(), pixel, d, s, valley, vec2<f32>(sun, sky));
         }
     }
     store_pixel(px, color, 1u, covered, d);

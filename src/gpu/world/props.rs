@@ -179,9 +179,10 @@ impl World {
 
     /// What the last frame's props' march left each pixel, read back (blocking; native only),
     /// row by row: the prop's depth (bits; 1.0 where none), its normal (two snorm16), its
-    /// albedo's square root (rgb8) and the sky's share (a8), the sun's share (bits; for a pixel
-    /// without a prop, the props' shadow on what the raster drew). `None` where the frame's
-    /// method marched no props.
+    /// albedo's square root (rgb8) and the sky's share (a8), the sun's share (bits). For a pixel
+    /// without a prop, the props' occlusion of the sky (bits) in the normal's place and their
+    /// shadow in the sun's, on what the raster drew (1.0 for the overlay, which reads no
+    /// raster). `None` where the frame's method marched no props.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn props_hits(
         &self,
