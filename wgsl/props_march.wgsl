@@ -108,6 +108,11 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
     // The last step's distance: a shadow ray estimates from it and this step's where between
     // them the ray passed nearest the surface (the penumbra without the bands of its steps).
     var last = 1e10;
+    // A view ray's distance a step ago: one that runs out of steps still nearing a surface
+    // (grazing it) takes that surface as met, not seen through.
+    var before = 3.0e38;
+    var d_now = 3.0e38;
+    var near = NO_RECORD;
     while t <= span.y && *budget > 0u {
         *budget -= 1u;
         let p = o + dir * t;
@@ -156,8 +161,14 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
         } else if d < eps {
             return Meet(t, best);
         }
+        before = d_now;
+        d_now = d;
+        near = best;
         // A shadow ray steps at least SHADOW_STEP: its penumbra needs no finer.
         t += max(d / lip, select(eps, SHADOW_STEP, shadow));
+    }
+    if !shadow && *budget == 0u && t <= span.y && d_now < before {
+        return Meet(t, near);
     }
     return Meet(span.y, NO_RECORD);
 }

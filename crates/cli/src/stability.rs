@@ -297,6 +297,22 @@ pub fn stability(
             Box::new(move || stability::storage_chart(&rows, &title, &dir.join("storage"))),
         ));
     }
+    if on(Axis::Props) {
+        // The props' march, on their f64 twin (no GPU involved).
+        println!(
+            "props: marching their fields on the f64 twin (stepping past a surface, the step \
+             budget, pops at the cut-off){}",
+            if quick { ", fewer rays" } else { "" }
+        );
+        let rows = stability::props::props(quick);
+        print!("{}", stability::props::props_table(&rows));
+        let csv = stability::props::props_csv(&rows);
+        outputs.push((
+            "props.csv",
+            csv,
+            Box::new(move || stability::props::props_chart(&rows, &dir.join("props"))),
+        ));
+    }
     let names: Vec<&str> = outputs.iter().map(|o| o.0).collect();
     let mut outputs = outputs.into_iter();
     let Some((first, csv, charts)) = outputs.next() else {

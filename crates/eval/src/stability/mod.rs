@@ -40,6 +40,10 @@
 //! The ninth is grass under a moving eye ([`grass`]), on the endless world: the frame's flicker
 //! and pops against the grass reference's own.
 //!
+//! The tenth is the props' march ([`props`]), on their f64 twin: stepping past a surface
+//! against roughness and the smooth union's radius, the step budget against distance, and pops
+//! at the screen-size cut-off.
+//!
 //! Each is an [`Axis`], by the name `relief stability --axis` takes.
 
 pub mod detail;
@@ -47,6 +51,7 @@ pub mod distance;
 pub mod grass;
 pub mod motion;
 mod precision;
+pub mod props;
 pub mod scroll;
 pub mod shadow;
 pub mod temporal;
@@ -154,11 +159,13 @@ pub enum Axis {
     Temporal,
     /// Grass under a moving eye, against its reference ([`grass`]).
     Grass,
+    /// Marching the props' fields, on their f64 twin ([`props`]).
+    Props,
 }
 
 impl Axis {
     /// Every axis, in the order `relief stability` runs them.
-    pub const ALL: [Axis; 10] = [
+    pub const ALL: [Axis; 11] = [
         Axis::Grazing,
         Axis::WorldGrazing,
         Axis::Shadow,
@@ -169,6 +176,7 @@ impl Axis {
         Axis::Storage,
         Axis::Temporal,
         Axis::Grass,
+        Axis::Props,
     ];
 
     /// Its name on the command line (`--axis`).
@@ -184,6 +192,7 @@ impl Axis {
             Axis::Storage => "storage",
             Axis::Temporal => "temporal",
             Axis::Grass => "grass",
+            Axis::Props => "props",
         }
     }
 
