@@ -153,8 +153,13 @@ pub(crate) struct PropsPass {
     shadows: wgpu::ComputePipeline,
     quad_layouts: [wgpu::BindGroupLayout; 2],
     quads: std::sync::Mutex<Option<QuadImage>>,
-    /// The cut of the grass inside the props and its layout of the grass's blades.
-    grass: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    /// The cut of the grass inside the props, its layout of the grass's blades, and the empty
+    /// group 0 it binds.
+    grass: (
+        wgpu::ComputePipeline,
+        wgpu::BindGroupLayout,
+        wgpu::BindGroup,
+    ),
 }
 
 fn buffer_of(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -340,6 +345,15 @@ impl PropsPass {
             pipeline(&march_module, &layout, entry)
         });
         // The grass's cut: the props' records (the scatter's group) and the grass's blades.
+        let empty = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:props:empty-layout"),
+            entries: &[],
+        });
+        let empty_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:empty-group"),
+            layout: &empty,
+            entries: &[],
+        });
         let grass_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:props:grass-layout"),
             entries: &[
@@ -350,7 +364,9 @@ impl PropsPass {
         let grass_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("relief:props:grass-pipeline-layout"),
-                bind_group_layouts: &[None, Some(&scatter_layout), Some(&grass_layout)],
+                // An empty group 0 (the module's view uniforms, unused here): a gap in the
+                // layouts is newer WebGPU than every browser has.
+                bind_group_layouts: &[Some(&empty), Some(&scatter_layout), Some(&grass_layout)],
                 immediate_size: 0,
             });
         let grass = pipeline(&march_module, &grass_pipeline_layout, "props_grass");
@@ -368,7 +384,7 @@ impl PropsPass {
             march_layouts: [view_layout, march_layout],
             quad_layouts,
             quads: std::sync::Mutex::new(None),
-            grass: (grass, grass_layout),
+            grass: (grass, grass_layout, empty_group),
         })
     }
 
@@ -586,7 +602,7 @@ impl PropsPass {
         encoder: &mut wgpu::CommandEncoder,
         blades: &super::raster::Blades<'_>,
     ) {
-        let (pipeline, layout) = &self.grass;
+        let (pipeline, layout, empty) = &self.grass;
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:props:grass-group"),
             layout,
@@ -606,6 +622,7 @@ impl PropsPass {
             timestamp_writes: None,
         });
         pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, empty, &[]);
         pass.set_bind_group(1, &self.scatter_group, &[]);
         pass.set_bind_group(2, &group, &[]);
         pass.dispatch_workgroups(GRASS_GROUPS, 1, 1);
