@@ -381,11 +381,11 @@ fn near_record(i: u32, p: vec3<f32>) -> bool {
     return prop_grid[i * RECORD].w > 0.0 && length(p - sphere.xyz) < sphere.w + GROUND_AO_REACH;
 }
 
-// The props' shadow on the surface the raster drew, marched a 2x2 block of pixels at a time
-// (`props_shadows`) at the block's nearest pixel: the sun's share there and the point's
-// distance (3e38: none). A pixel of the block takes it where its own point is within this share
+// The props' shadow and occlusion on the surface the raster drew, marched a 2x2 block of
+// pixels at a time (`props_shadows`) at the block's nearest pixel: the sun's share there, the
+// point's distance (3e38: none) and the sky's share. A pixel of the block takes it where its own point is within this share
 // of its distance of the block's.
-@group(2) @binding(0) var quad_out: texture_storage_2d<rg32float, write>;
+@group(2) @binding(0) var quad_out: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(1) var quad_in: texture_2d<f32>;
 const QUAD_DEPTH: f32 = 0.1;
 
@@ -395,7 +395,7 @@ fn props_shadows(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= blocks.x || id.y >= blocks.y {
         return;
     }
-    var best = vec2<f32>(1.0, 3.0e38);
+    var best = vec3<f32>(1.0, 3.0e38, 1.0);
     var dir = vec3<f32>(0.0);
     for (var k = 0u; k < 4u; k++) {
         let px = id.xy * 2u + vec2<u32>(k & 1u, k >> 1u);
@@ -414,10 +414,11 @@ fn props_shadows(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     if best.y < pf.distance + pf.cell {
         best.x = surface_shadow(dir, best.y);
+        best.z = ground_ao(dir * best.y);
     } else {
         best.y = 3.0e38;
     }
-    textureStore(quad_out, id.xy, vec4<f32>(best, 0.0, 0.0));
+    textureStore(quad_out, id.xy, vec4<f32>(best, 0.0));
 }
 
 @compute @workgroup_size(8, 8)
@@ -453,15 +454,16 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
     if hit.record == NO_RECORD {
         var out = no_prop();
         if surface {
-            // The props' shadow on the surface the raster drew: its 2x2 block's, where the
-            // block's point lies within QUAD_DEPTH of this pixel's; else its own.
-            let quad = textureLoad(quad_in, id.xy / 2u, 0).xy;
+            // The props' shadow and occlusion on the surface the raster drew: its 2x2 block's,
+            // where the block's point lies within QUAD_DEPTH of this pixel's; else its own.
+            let quad = textureLoad(quad_in, id.xy / 2u, 0).xyz;
             if abs(quad.y - t_end) <= QUAD_DEPTH * t_end {
                 out.w = bitcast<u32>(quad.x);
+                out.y = bitcast<u32>(quad.z);
             } else {
                 out.w = bitcast<u32>(surface_shadow(dir, t_end));
+                out.y = bitcast<u32>(ground_ao(dir * t_end));
             }
-            out.y = bitcast<u32>(ground_ao(dir * t_end));
         }
         textureStore(prop_hit_out, px, out);
         return;

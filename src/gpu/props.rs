@@ -71,9 +71,10 @@ const PEER_SEED: u32 = 16;
 /// Workgroups of 64 threads that stride over the grass's blades in its cut (`props_grass` in
 /// `wgsl/props_march.wgsl`).
 const GRASS_GROUPS: u32 = 512;
-/// The props' shadow on the raster's surface, a texel a 2x2 block of pixels: the sun's share
-/// and the distance of the point it was marched from (`quad_in` in `wgsl/props_march.wgsl`).
-const QUAD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+/// The props' shadow and occlusion on the raster's surface, a texel a 2x2 block of pixels: the
+/// sun's share, the distance of the point it was marched from and the sky's share (`quad_in`
+/// in `wgsl/props_march.wgsl`).
+const QUAD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The image of the props' shadow a 2x2 block of pixels for a frame's size, bound to be
 /// written and to be read.

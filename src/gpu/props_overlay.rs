@@ -27,6 +27,10 @@ pub(crate) struct PropsOverlay {
 /// The image of a frame's size and the bind group that reads it.
 struct Image {
     size: (u32, u32),
+    #[cfg_attr(
+        target_arch = "wasm32",
+        allow(dead_code, reason = "read back natively")
+    )]
     texture: wgpu::Texture,
     view: wgpu::TextureView,
     group: wgpu::BindGroup,
