@@ -594,14 +594,14 @@ impl PropsPass {
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
     }
 
-    /// Records the cut of the grass inside the props: each of `blades` (the grass's scatter
-    /// already recorded, and the props' scatter) whose root is inside a prop is flattened to
-    /// nothing; timed with the props' scatter.
+    /// Records the cut of the grass inside the props: each of the grass's `blades` (its
+    /// scatter already recorded, with its `counts`, and the props' scatter) whose root is
+    /// inside a prop is flattened to nothing.
     pub(crate) fn encode_grass(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        blades: &super::raster::Blades<'_>,
+        (blades, counts): (&wgpu::Buffer, &wgpu::Buffer),
     ) {
         let (pipeline, layout, empty) = &self.grass;
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -610,11 +610,11 @@ impl PropsPass {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: blades.blades.as_entire_binding(),
+                    resource: blades.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: blades.counts.as_entire_binding(),
+                    resource: counts.as_entire_binding(),
                 },
             ],
         });

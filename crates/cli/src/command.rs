@@ -130,9 +130,10 @@ pub fn command() -> Command {
                      detail against resolution and the storage precision of heights and normals \
                      against the f64 twin; and relief's tile and the blog's scrolled far from their \
                      origin; and flicker and ghosting with and without the temporal service \
-                     under a moving eye; write stability.csv, world-grazing.csv, shadow.csv, \
-                     distance.csv, scroll.csv, motion.csv, detail.csv, storage.csv, temporal.csv \
-                     and their charts",
+                     under a moving eye; and grass under a moving eye; and the props' march on \
+                     their f64 twin; write stability.csv, world-grazing.csv, shadow.csv, \
+                     distance.csv, scroll.csv, motion.csv, detail.csv, storage.csv, \
+                     temporal.csv, grass.csv, props.csv and their charts",
                 )
                 .arg(out_dir_arg("stability-out"))
                 .arg(quick_arg("seconds on a software GPU"))

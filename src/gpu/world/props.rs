@@ -138,7 +138,8 @@ impl World {
             timer,
         );
         if let Some(grass) = &self.grass {
-            props.encode_grass(device, encoder, &grass.raster_blades());
+            let blades = grass.raster_blades();
+            props.encode_grass(device, encoder, (blades.blades, blades.counts));
         }
         if overlaid {
             let overlay = self
