@@ -368,6 +368,17 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
             "motion.csv",
             "motion.png",
             "motion.svg",
+            "props-budget.png",
+            "props-budget.svg",
+            "props-cutoff.png",
+            "props-cutoff.svg",
+            "props-lipschitz.png",
+            "props-lipschitz.svg",
+            "props-smooth.png",
+            "props-smooth.svg",
+            "props-thin.png",
+            "props-thin.svg",
+            "props.csv",
             "scroll.csv",
             "scroll.png",
             "scroll.svg",
@@ -400,6 +411,11 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
     assert_eq!(lines("temporal.csv"), 1 + 1);
     // The grass: a walk over the meadow and standing in a gale, against the grass reference.
     assert_eq!(lines("grass.csv"), 1 + 2);
+    // The props: every sweep's rows (the lipschitz, smooth, budget, thin and cutoff sweeps).
+    let props = std::fs::read_to_string(dir.join("props.csv")).unwrap();
+    for sweep in ["lipschitz,", "smooth,", "budget,", "thin,", "cutoff,"] {
+        assert!(props.lines().any(|l| l.starts_with(sweep)), "{props}");
+    }
     let distance = std::fs::read_to_string(dir.join("distance.csv")).unwrap();
     assert!(
         distance
