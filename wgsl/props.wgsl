@@ -32,7 +32,8 @@ struct PropsFrame {
     blocks: u32,
     steps: u32,
     // 16: the benchmark's peer, the seed's way (props_march.wgsl's `seed_walk`); 32: no raster's
-    // depth bounds the march (the props' overlay, props_overlay.wgsl).
+    // depth bounds the march (the props' overlay, props_overlay.wgsl); 64: the reference's
+    // march (props_reference.wgsl), every sample's own shadow on the surface.
     flags: u32,
     _pad0: u32,
     _pad1: u32,

@@ -456,8 +456,9 @@ fn props_march(@builtin(global_invocation_id) id: vec3<u32>) {
         if surface {
             // The props' shadow and occlusion on the surface the raster drew: its 2x2 block's,
             // where the block's point lies within QUAD_DEPTH of this pixel's; else its own.
+            // The reference (flag 64) marches every sample's own.
             let quad = textureLoad(quad_in, id.xy / 2u, 0).xyz;
-            if abs(quad.y - t_end) <= QUAD_DEPTH * t_end {
+            if (pf.flags & 64u) == 0u && abs(quad.y - t_end) <= QUAD_DEPTH * t_end {
                 out.w = bitcast<u32>(quad.x);
                 out.y = bitcast<u32>(quad.z);
             } else {

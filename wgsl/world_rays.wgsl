@@ -275,12 +275,18 @@ fn world_valley(xz: vec2<f32>, h0: f32) -> f32 {
 fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     // Camera-relative: the eye is at the origin.
     let rd = normalize(pixel_far(pixel));
-    let ro = ray.eye.xyz;
-    let t = world_intersect(ro, rd);
+    let t = world_intersect(ray.eye.xyz, rd);
     if t < 0.0 {
         return vec4<f32>(sky_pixel(r, rd), t);
     }
-    let p = ro + t * rd;
+    return vec4<f32>(shade_cast(rd, t, vec2<f32>(1.0)), t);
+}
+
+// The colour of the surface the cast met at distance `t` along the unit ray `rd`, its sun's
+// and sky's shares multiplied by `props` (the props' shadow and occlusion there: 1, 1 without
+// them; props_reference.wgsl shades again with theirs).
+fn shade_cast(rd: vec3<f32>, t: f32, props: vec2<f32>) -> vec3<f32> {
+    let p = ray.eye.xyz + t * rd;
     let normal_octaves = select(ray.octaves, ray.normal_octaves, ray.method == 1u);
     let footprint = select(0.0, t * ray.pixel_angle, ray.method == 1u && ray.band_limit == 1u);
     let g = world_channel(p.xz, normal_octaves, CHANNEL_HEIGHT, footprint);
@@ -299,7 +305,7 @@ fn cast_pixel(pixel: vec2<f32>) -> vec4<f32> {
     if r.palette != PALETTE_BLOG {
         valley = world_valley(p.xz, h0);
     }
-    let occl = occlusion(r, h, horizon, valley);
+    let occl = occlusion(r, h, horizon, valley) * props;
     // The render uniforms put the camera at the origin: shade with the camera-relative point.
-    return vec4<f32>(shade(r, t * rd, n, h, tint, occl), t);
+    return shade(r, t * rd, n, h, tint, occl);
 }

@@ -15,6 +15,8 @@ mod light_queue;
 pub(crate) mod normals;
 pub mod props;
 pub(crate) mod props_overlay;
+#[cfg(not(target_arch = "wasm32"))]
+pub(crate) mod props_reference;
 mod props_wgsl;
 pub mod raster;
 #[cfg(not(target_arch = "wasm32"))]

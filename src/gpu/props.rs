@@ -87,6 +87,24 @@ struct QuadImage {
 
 /// `PropsFrame::flags`: march with no raster's depth (the overlay, [`super::props_overlay`]).
 const UNBOUNDED: u32 = 32;
+/// `PropsFrame::flags`: the reference's march ([`super::props_reference`]): every sample's own
+/// shadow on the surface.
+const REFERENCE: u32 = 64;
+/// The most sphere-tracing steps the reference's rays take through the props.
+pub const REFERENCE_STEPS: u32 = 1024;
+
+/// What bounds a frame's march through the props, and how finely it is done.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum March {
+    /// Up to the compute raster's depth, the props' shadow on its surface a 2x2 block of
+    /// pixels at a time (the visibility method).
+    Raster,
+    /// To the draw distance, no raster's depth (the overlay).
+    Unbounded,
+    /// Up to the reference's cast's depth, every sample's own shadow, [`REFERENCE_STEPS`]
+    /// steps and no screen-size cut-off: every prop to the draw distance whole.
+    Reference,
+}
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
@@ -408,14 +426,14 @@ impl PropsPass {
     /// Records the scatter of the props around `eye` (world metres) over the landscape of
     /// `seed`, with the world's bind group `world` at 0 (its uniforms already written), for an
     /// image whose height spans `pixels` pixels a unit of tan(angle), the water's normalised
-    /// level `water` (`None`: none), and whether the march reads a raster's depth (`bounded`;
-    /// else it marches to the draw distance); timed as [`super::timing::Slot::Props`].
+    /// level `water` (`None`: none), and how the march runs (`march`); timed as
+    /// [`super::timing::Slot::Props`].
     pub fn encode(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         (world, seed, eye): (&wgpu::BindGroup, u32, glam::DVec3),
-        (pixels, water, bounded): (f32, Option<f32>, bool),
+        (pixels, water, march): (f32, Option<f32>, March),
         timer: Option<&super::timing::GpuTimer>,
     ) {
         let p = &self.props;
@@ -435,7 +453,12 @@ impl PropsPass {
             density: p.density,
             rock_density: p.rock_density,
             distance: p.distance,
-            cutoff: p.cutoff,
+            // The reference sinks none: a cut-off under any prop's size on screen.
+            cutoff: if march == March::Reference {
+                1e-6
+            } else {
+                p.cutoff
+            },
             seed,
             kinds: self.scene.kinds.len() as u32,
             placed: placed.len() as u32,
@@ -443,13 +466,21 @@ impl PropsPass {
             pixels,
             band: p.band,
             blocks: self.blocks,
-            steps: STEPS,
+            steps: if march == March::Reference {
+                REFERENCE_STEPS
+            } else {
+                STEPS
+            },
             // The seed's way for the benchmark's peer: RELIEF_PROPS_PEER=seed (docs/props.md).
             flags: if std::env::var("RELIEF_PROPS_PEER").as_deref() == Ok("seed") {
                 PEER_SEED
             } else {
                 0
-            } | if bounded { 0 } else { UNBOUNDED },
+            } | match march {
+                March::Raster => 0,
+                March::Unbounded => UNBOUNDED,
+                March::Reference => REFERENCE,
+            },
             _pad: [0; 3],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
@@ -532,18 +563,19 @@ impl PropsPass {
 
     /// Records the march of each pixel of an image of `size` through the props into `hit`,
     /// reading the frame's render, world and visibility uniforms and the compute raster's
-    /// depth (`bounded`: the props' shadow on the raster's surface first marched a 2x2 block
-    /// of pixels at a time; else it marches to the draw distance); timed as
+    /// depth, as `march` says ([`March::Raster`]: the props' shadow on the raster's surface
+    /// first marched a 2x2 block of pixels at a time); timed as
     /// [`super::timing::Slot::March`].
     pub fn encode_march(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         (render, world, vis, depth): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
-        (hit, size, bounded): (&wgpu::TextureView, (u32, u32), bool),
+        (hit, size, march): (&wgpu::TextureView, (u32, u32), March),
         timer: Option<&super::timing::GpuTimer>,
     ) {
-        // Unbounded, the march reads no block's shadow: a 1x1 image stands in.
+        // Only the raster's march reads the blocks' shadow: elsewhere a 1x1 image stands in.
+        let bounded = march == March::Raster;
         let quad_size = if bounded { size } else { (1, 1) };
         let mut kept = self
             .quads

@@ -103,7 +103,7 @@ impl PropsOverlay {
             device,
             encoder,
             (render, world, &self.view, &self.no_depth),
-            (&image.view, size, false),
+            (&image.view, size, super::props::March::Unbounded),
             timer,
         );
     }

@@ -304,6 +304,17 @@ impl RayMarcher {
         Ok(())
     }
 
+    /// Its render and ray uniforms, as its last prepare wrote them (what a pass over its cast
+    /// shades with: [`super::props_reference`]).
+    pub(crate) fn uniforms(&self) -> (&wgpu::Buffer, &wgpu::Buffer) {
+        (&self.render_uniforms, &self.ray_uniforms)
+    }
+
+    /// Its size in samples.
+    pub(crate) fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
     /// Records the ray cast, timed as [`Slot::Render`] when `timer` is given.
     pub fn encode(
         &self,

@@ -43,6 +43,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     props_look,
     props_march,
     props_overlay,
+    props_reference,
     props_scatter,
     raster,
     raster_blades,

@@ -281,7 +281,8 @@ impl App {
             if world.props.on && method.ray_path().is_some() {
                 self.report.notice(&format!(
                     "props: the {method} casts rays, which march no props here (M: a \
-                     mesh-based method draws them)"
+                     mesh-based method draws them; relief render --method reference draws \
+                     the props' reference)"
                 ));
             }
         }

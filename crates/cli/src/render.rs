@@ -110,9 +110,11 @@ pub(super) fn run_endless(
                          one of those (or --frames 1)"
                     )));
                 }
-                let image = headless::render_world_rays(
+                // The reference marches the props (the scene's, else the landscape's).
+                let scene = props.clone().unwrap_or_else(relief::props::kinds::landscape);
+                let image = headless::render_world_rays_with_props(
                     &gpu,
-                    &params,
+                    (&params, &scene),
                     &Shading::default(),
                     &view,
                     method,
@@ -357,8 +359,8 @@ pub(super) fn knob_warning(s: &relief::WorldStats, knob: f64, size: (u32, u32)) 
 
 /// How a frame with props is drawn: `auto` picks the visibility method rasterised in compute,
 /// which marches them between its raster and its shading (their shadows fall on the terrain);
-/// the other mesh-based methods draw them over the terrain (the props' overlay); a ray cast
-/// given is refused in one line.
+/// the other mesh-based methods draw them over the terrain (the props' overlay), the reference
+/// marches them at its samples; the seed's ray marches are refused in one line.
 fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
     use relief::{choice::Candidate, Method, Raster};
     let marching = Candidate {
@@ -371,10 +373,10 @@ fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
     }
     match method {
         Drawn::Auto => Ok(Drawn::Pinned(marching)),
-        Drawn::Pinned(c) if c.method.is_mesh() => Ok(method),
+        Drawn::Pinned(c) if c.method.is_mesh() || c.method == Method::Reference => Ok(method),
         Drawn::Pinned(c) => Err(Error::Usage(format!(
             "--props: the {} casts rays, which march no props: give --method mesh, \
-             visibility, hybrid or auto",
+             visibility, hybrid, reference or auto",
             c.method
         ))),
     }

@@ -237,6 +237,22 @@ pub fn render_world_rays(
     render_world_rays_at(gpu, params, shading, view, method, ss, timer)
 }
 
+/// [`render_world_rays`] with props of `scene` where `params` turns them on (else the same):
+/// the reference marches them at its samples, conservatively
+/// ([`crate::gpu::props_reference`]); the seed's ray marches draw none.
+/// [`render_world_rays`] draws the shipped landscape's ([`crate::props::kinds::landscape`]).
+pub fn render_world_rays_with_props(
+    gpu: &Gpu,
+    (params, scene): (&crate::world::WorldParams, &crate::props::Scene),
+    shading: &crate::Shading,
+    view: &WorldView,
+    method: crate::Method,
+    timer: Option<&GpuTimer>,
+) -> Result<RayImage> {
+    let how = (method, method.supersample());
+    world_rays(gpu, (params, scene, shading, view), how, &mut [], timer)
+}
+
 /// [`render_world_rays`] with `supersample` rays per pixel each way (what checks that the
 /// reference's 3x3 has converged).
 pub fn render_world_rays_at(
@@ -248,9 +264,10 @@ pub fn render_world_rays_at(
     supersample: u32,
     timer: Option<&GpuTimer>,
 ) -> Result<RayImage> {
+    let scene = crate::props::kinds::landscape();
     world_rays(
         gpu,
-        (params, shading, view),
+        (params, &scene, shading, view),
         (method, supersample),
         &mut [],
         timer,
@@ -269,12 +286,18 @@ pub fn render_world_rays_with_layers(
     layers: &mut [Box<dyn crate::gpu::layer::Layer>],
 ) -> Result<RayImage> {
     let how = (method, method.supersample());
-    world_rays(gpu, (params, shading, view), how, layers, None)
+    let scene = crate::props::kinds::landscape();
+    world_rays(gpu, (params, &scene, shading, view), how, layers, None)
 }
 
 fn world_rays(
     gpu: &Gpu,
-    (params, shading, view): (&crate::world::WorldParams, &crate::Shading, &WorldView),
+    (params, scene, shading, view): (
+        &crate::world::WorldParams,
+        &crate::props::Scene,
+        &crate::Shading,
+        &WorldView,
+    ),
     (method, supersample): (crate::Method, u32),
     layers: &mut [Box<dyn crate::gpu::layer::Layer>],
     timer: Option<&GpuTimer>,
@@ -284,11 +307,13 @@ fn world_rays(
     let Some(rays) = method.ray_method(params.land.octaves) else {
         return Err(Error::invalid("method", method, "a ray-cast method"));
     };
-    // The seed's ray marches draw no grass: they cast the bare ground, as without it.
+    // The seed's ray marches draw no grass and no props: they cast the bare ground.
     let params = &if method == crate::Method::Reference {
         *params
     } else {
-        params.without_grass()
+        let mut bare = params.without_grass();
+        bare.props.on = false;
+        bare
     };
     let region = world_rays::drawn_region(params, view);
     let render = |view: &WorldView, matrix| {
@@ -320,6 +345,22 @@ fn world_rays(
     } else {
         1
     };
+    // With props, a world of the same landscape (its levels baked for the view) scatters them
+    // as the methods do, and the reference marches them at its samples.
+    let mut props = if params.props.on {
+        use crate::gpu::props_reference::PropsReference;
+        let targets = crate::gpu::Targets {
+            color_format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            depth_format: None,
+            sample_count: 1,
+        };
+        let mut world = crate::World::new(&gpu.device, &gpu.queue, targets, params.without_grass())?;
+        world.set_props_scene(&gpu.device, scene.clone())?;
+        super::offscreen::bake_world_whole(gpu, &mut world, view, None)?;
+        Some((world, PropsReference::new(&gpu.device)))
+    } else {
+        None
+    };
     let ss = supersample_for(gpu, view.size, supersample);
     let mut sum: Vec<f64> = Vec::new();
     let mut out: Option<RayImage> = None;
@@ -349,6 +390,11 @@ fn world_rays(
                 caster.prepare_world(&gpu.queue, &render(&v, ray_matrix), &ray)
             },
             |caster, encoder| {
+                if let Some((world, pass)) = props.as_mut() {
+                    pass.encode((&gpu.device, encoder), caster, layer_matrix, |encoder, m| {
+                        world.encode_reference_props((&gpu.device, &gpu.queue, encoder), &v, m)
+                    });
+                }
                 let frame = ray_layers::RayLayerFrame {
                     eye: v.eye,
                     ray_matrix,

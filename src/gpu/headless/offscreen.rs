@@ -723,7 +723,7 @@ impl Offscreen {
 }
 
 /// A still frame is drawn whole: everything `view` uncovered is baked and lit first.
-fn bake_world_whole(
+pub(super) fn bake_world_whole(
     gpu: &Gpu,
     world: &mut World,
     view: &WorldView,

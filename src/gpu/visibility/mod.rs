@@ -735,7 +735,7 @@ impl Visibility {
                     device,
                     encoder,
                     (world.render, world.world, &self.uniforms, depth),
-                    (&images.prop_hit, size, true),
+                    (&images.prop_hit, size, crate::gpu::props::March::Raster),
                     timer,
                 );
             }

@@ -4,7 +4,7 @@
 //! overlay's march and its draw after the terrain ([`crate::gpu::props_overlay`]).
 
 use super::*;
-use crate::gpu::props::PropsPass;
+use crate::gpu::props::{March, PropsPass};
 use crate::gpu::props_overlay::PropsOverlay;
 use crate::props::Scene;
 
@@ -134,7 +134,15 @@ impl World {
             queue,
             encoder,
             (&self.bind_group, self.params.land.seed, view.eye),
-            (pixels, water, marched),
+            (
+                pixels,
+                water,
+                if marched {
+                    March::Raster
+                } else {
+                    March::Unbounded
+                },
+            ),
             timer,
         );
         if let Some(grass) = &self.grass {
@@ -154,6 +162,39 @@ impl World {
                 timer,
             );
         }
+    }
+
+    /// Records the reference's props over a cast through `view` (the cast's: see
+    /// [`crate::gpu::props_reference`]): the frame's uniforms, the props' scatter for the
+    /// cast's samples, and their march into what `m` gives. Nothing where props are off.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(crate) fn encode_reference_props(
+        &mut self,
+        (device, queue, encoder): (&wgpu::Device, &wgpu::Queue, &mut wgpu::CommandEncoder),
+        view: &WorldView,
+        m: &crate::gpu::props_reference::ReferenceMarch<'_>,
+    ) {
+        self.write_uniforms(queue, view);
+        let Some(props) = &self.props else {
+            return;
+        };
+        let pixels = m.size.1 as f32 / (2.0 * (0.5 * view.fov_y).tan());
+        let water = (!self.params.no_water)
+            .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32);
+        props.encode(
+            queue,
+            encoder,
+            (&self.bind_group, self.params.land.seed, view.eye),
+            (pixels, water, m.march),
+            None,
+        );
+        props.encode_march(
+            device,
+            encoder,
+            (m.render, &self.world_uniforms, m.vis, m.depth),
+            (m.hit, m.size, m.march),
+            None,
+        );
     }
 
     /// Draws the props the overlay marched, after the terrain.
