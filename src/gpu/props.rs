@@ -68,6 +68,8 @@ const BLOCK: u32 = 8;
 pub const STEPS: u32 = 96;
 /// `PropsFrame::flags`: march the seed's way (`seed_walk` in `wgsl/props_march.wgsl`).
 const PEER_SEED: u32 = 16;
+/// The steps of the seed's way where `RELIEF_PROPS_PEER=seed` asks for it.
+pub const PEER_STEPS: u32 = 400;
 /// Workgroups of 64 threads that stride over the grass's blades in its cut (`props_grass` in
 /// `wgsl/props_march.wgsl`).
 const GRASS_GROUPS: u32 = 512;
@@ -157,6 +159,9 @@ pub fn grid_side(p: &Props) -> u32 {
 pub(crate) struct PropsPass {
     scene: Scene,
     props: Props,
+    /// The seed's way's steps, where the benchmark's peer marches them
+    /// ([`crate::World::set_props_peer`]).
+    peer: Option<u32>,
     frame: wgpu::Buffer,
     /// The kinds' instructions, the kinds, the materials; the grid's records, each cell's,
     /// dual cell's and block's heights; the props put at given places.
@@ -392,6 +397,7 @@ impl PropsPass {
         Ok(Self {
             scene: scene.clone(),
             props,
+            peer: None,
             frame,
             buffers,
             side,
@@ -405,6 +411,12 @@ impl PropsPass {
             quads: std::sync::Mutex::new(None),
             grass: (grass, grass_layout, empty_group),
         })
+    }
+
+    /// Marches the view rays the seed's way with `steps` steps (the benchmark's peer), or
+    /// relief's (`None`).
+    pub fn set_peer(&mut self, steps: Option<u32>) {
+        self.peer = steps;
     }
 
     /// The scene it draws and how it scatters it.
@@ -438,6 +450,14 @@ impl PropsPass {
     ) {
         let p = &self.props;
         let placed = &self.scene.placed;
+        // The seed's way for the benchmark's peer (never the reference's): set, or
+        // RELIEF_PROPS_PEER=seed (docs/props.md).
+        let peer = match self.peer {
+            Some(steps) => Some(steps),
+            None if std::env::var("RELIEF_PROPS_PEER").as_deref() == Ok("seed") => Some(PEER_STEPS),
+            None => None,
+        }
+        .filter(|_| march != March::Reference);
         let cell = f64::from(p.cell);
         let eye_cell = p.cell_at(eye.x, eye.z);
         let words = |v: i64| [v as u64 as u32, (v as u64 >> 32) as u32];
@@ -466,21 +486,17 @@ impl PropsPass {
             pixels,
             band: p.band,
             blocks: self.blocks,
-            steps: if march == March::Reference {
-                REFERENCE_STEPS
-            } else {
-                STEPS
+            steps: match (march, peer) {
+                (March::Reference, _) => REFERENCE_STEPS,
+                (_, Some(steps)) => steps,
+                _ => STEPS,
             },
-            // The seed's way for the benchmark's peer: RELIEF_PROPS_PEER=seed (docs/props.md).
-            flags: if std::env::var("RELIEF_PROPS_PEER").as_deref() == Ok("seed") {
-                PEER_SEED
-            } else {
-                0
-            } | match march {
-                March::Raster => 0,
-                March::Unbounded => UNBOUNDED,
-                March::Reference => REFERENCE,
-            },
+            flags: if peer.is_some() { PEER_SEED } else { 0 }
+                | match march {
+                    March::Raster => 0,
+                    March::Unbounded => UNBOUNDED,
+                    March::Reference => REFERENCE,
+                },
             _pad: [0; 3],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));

@@ -25,10 +25,14 @@ pub(super) fn bench_endless(
         None
     } else if matches!(only, Some("temporal" | "reference")) {
         Some(relief_eval::views::views_named(params, size, views)?)
+    } else if only == Some("props") {
+        // The props' own views, checked before anything is made.
+        relief_eval::bench_props::check_views(params, size, views)?;
+        None
     } else {
         return Err(Error::Usage(
-            "--view picks the views of relief bench --world endless --only temporal or \
-             --only reference"
+            "--view picks the views of relief bench --world endless --only temporal, \
+             reference or props"
                 .into(),
         ));
     };
@@ -182,6 +186,29 @@ pub(super) fn bench_endless(
         }
         Ok(())
     };
+    let props = || -> Result<()> {
+        use relief_eval::bench_props as b;
+        use std::io::Write;
+        let path = dir.join("props.csv");
+        let mut file = std::fs::File::create(&path).map_err(|e| Error::io(&path, e))?;
+        let mut write = |text: String| {
+            file.write_all(text.as_bytes())
+                .map_err(|e| Error::io(&path, e))
+        };
+        write(b::header(&device, size))?;
+        let chosen = (!views.is_empty()).then_some(views);
+        let how = (&options, quick, chosen);
+        let rows = b::run(&gpu, with_grass, how, |row: &b::PropsRow| {
+            progress(&format!("props: {} by {}", row.view, row.method));
+            write(b::line(row))
+        })?;
+        done();
+        wrote("props.csv", rows.len());
+        for line in b::summary(&rows) {
+            println!("{line}");
+        }
+        Ok(())
+    };
     let result = match only {
         Some("look") => look(),
         Some("landscape") => sweep(),
@@ -189,6 +216,7 @@ pub(super) fn bench_endless(
         Some("temporal") => temporal(),
         Some("reference") => reference(),
         Some("grass") => grass(),
+        Some("props") => props(),
         _ => look().and_then(|()| sweep()).and_then(|()| arrival()),
     };
     if result.is_err() {

@@ -101,8 +101,10 @@ pub fn command() -> Command {
                             "--world endless: run one part: look (the look's cost), landscape \
                              (the LOD sweep), arrival, temporal (the temporal service: still \
                              views converging, moving frames, its cost), reference (the \
-                             reference's rays a pixel) or grass (the grass's cost and blades on \
-                             a meadow's views) [default: look, landscape and arrival] \
+                             reference's rays a pixel), grass (the grass's cost and blades on \
+                             a meadow's views) or props (the props' cost and FLIP against the \
+                             reference with props, beside the seed's way) [default: look, \
+                             landscape and arrival] \
                              [allowed: {}]",
                             BENCH_PARTS.allowed()
                         )),
@@ -114,9 +116,10 @@ pub fn command() -> Command {
                         .value_delimiter(',')
                         .value_name("NAME")
                         .help(
-                            "--only temporal or reference: measure only these views (repeat \
-                             the flag or separate names with commas): horizon, ridge, oblique, \
-                             random-1 to random-16",
+                            "--only temporal, reference or props: measure only these views \
+                             (repeat the flag or separate names with commas): horizon, ridge, \
+                             oblique, random-1 to random-16; for props among-2m, meadow, \
+                             over-200m, random-1 to random-16",
                         ),
                 ),
         )

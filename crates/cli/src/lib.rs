@@ -91,6 +91,7 @@ const BENCH_PARTS: Kind = Kind::Choice(&[
     "temporal",
     "reference",
     "grass",
+    "props",
 ]);
 
 /// `--raster`: where the visibility method rasterises.

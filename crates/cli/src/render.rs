@@ -111,7 +111,9 @@ pub(super) fn run_endless(
                     )));
                 }
                 // The reference marches the props (the scene's, else the landscape's).
-                let scene = props.clone().unwrap_or_else(relief::props::kinds::landscape);
+                let scene = props
+                    .clone()
+                    .unwrap_or_else(relief::props::kinds::landscape);
                 let image = headless::render_world_rays_with_props(
                     &gpu,
                     (&params, &scene),

@@ -116,3 +116,91 @@ fn the_shipped_prop_scenes_draw_their_props() {
         assert!(out.exists());
     }
 }
+
+#[test]
+#[ignore = "slow: a view drawn with props and without, by relief and the seed's way, against two references, on a software GPU (.ci/test runs it)"]
+fn bench_measures_the_props_against_their_reference_beside_the_seeds_way() {
+    let dir = scratch("bench-props");
+    let (code, stdout, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--quick",
+        "--only",
+        "props",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("props.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(2)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let methods: Vec<&str> = rows.iter().map(|r| r[1]).collect();
+    assert_eq!(
+        methods,
+        [
+            "marching",
+            "the seed's way 25 steps",
+            "the seed's way 400 steps"
+        ],
+        "{csv}"
+    );
+    // Props in view, each frame timed, each FLIP against its reference measured; the marching
+    // method's without props too.
+    for r in &rows {
+        assert!(
+            r[0] == "among-2m" && r[4].parse::<u32>().unwrap() > 100,
+            "{csv}"
+        );
+        assert!(
+            r[6].parse::<f64>().is_ok() && r[11].parse::<f64>().is_ok(),
+            "{csv}"
+        );
+    }
+    assert!(rows[0][5].parse::<f64>().is_ok() && rows[0][10].parse::<f64>().is_ok());
+    assert!(
+        stdout.contains("3 rows") && stdout.contains("props on among-2m"),
+        "{stdout}"
+    );
+    // A view that is not the props' is refused before anything is measured.
+    let (code, _, err) = relief(&[
+        "bench",
+        "--world",
+        "endless",
+        "--only",
+        "props",
+        "--view",
+        "horizon",
+        "--out-dir",
+        dir.join("no").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--view") && err.contains("among-2m"), "{err}");
+    assert!(!dir.join("no").exists());
+    // The reference draws them too.
+    let out = dir.join("reference.png");
+    let (code, _, err) = relief(&[
+        "render",
+        "--world",
+        "endless",
+        "--props",
+        "--no-grass",
+        "--method",
+        "reference",
+        "--eye",
+        "2740,1112,-3000",
+        "--look-at",
+        "2710,1106,-3030",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.exists());
+}

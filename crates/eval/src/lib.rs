@@ -15,6 +15,7 @@ pub mod bench;
 pub mod bench_arrival;
 pub mod bench_grass;
 pub mod bench_look;
+pub mod bench_props;
 pub mod bench_temporal;
 pub mod bench_world;
 pub mod bench_world_chart;

@@ -354,7 +354,8 @@ fn world_rays(
             depth_format: None,
             sample_count: 1,
         };
-        let mut world = crate::World::new(&gpu.device, &gpu.queue, targets, params.without_grass())?;
+        let mut world =
+            crate::World::new(&gpu.device, &gpu.queue, targets, params.without_grass())?;
         world.set_props_scene(&gpu.device, scene.clone())?;
         super::offscreen::bake_world_whole(gpu, &mut world, view, None)?;
         Some((world, PropsReference::new(&gpu.device)))
@@ -391,9 +392,14 @@ fn world_rays(
             },
             |caster, encoder| {
                 if let Some((world, pass)) = props.as_mut() {
-                    pass.encode((&gpu.device, encoder), caster, layer_matrix, |encoder, m| {
-                        world.encode_reference_props((&gpu.device, &gpu.queue, encoder), &v, m)
-                    });
+                    pass.encode(
+                        (&gpu.device, encoder),
+                        caster,
+                        layer_matrix,
+                        |encoder, m| {
+                            world.encode_reference_props((&gpu.device, &gpu.queue, encoder), &v, m)
+                        },
+                    );
                 }
                 let frame = ray_layers::RayLayerFrame {
                     eye: v.eye,

@@ -68,6 +68,18 @@ impl World {
         .map(|(d, _)| d)
     }
 
+    /// Marches the props' view rays the seed's way (the benchmark's peer, `relief bench
+    /// --world endless --only props`): from the eye, every step reading the whole fields of
+    /// the props of the 3x3 cells around it, at most half a cell, up to `steps` steps and the
+    /// draw distance, without the band, the bounds or the raster's depth; `None`: relief's
+    /// march (the default). Lasts while the props' passes do (a new scene or props keys make
+    /// new ones).
+    pub fn set_props_peer(&mut self, steps: Option<u32>) {
+        if let Some(props) = &mut self.props {
+            props.set_peer(steps);
+        }
+    }
+
     /// What the world's props are ([`World::set_props_scene`]).
     pub fn props_scene(&self) -> &Scene {
         &self.props_scene
