@@ -35,7 +35,8 @@ struct PropsFrame {
     // depth bounds the march (the props' overlay, props_overlay.wgsl); 64: the reference's
     // march (props_reference.wgsl), every sample's own shadow on the surface.
     flags: u32,
-    _pad0: u32,
+    // The seed's way's steps (flag 16): its view rays' budget; the shadows keep `steps`.
+    peer_steps: u32,
     _pad1: u32,
     _pad2: u32,
 }

@@ -271,11 +271,11 @@ fn walk(o: vec3<f32>, dir: vec3<f32>, t_begin: f32, t_end: f32, shadow: bool) ->
 // The seed's way, for the benchmark's peer (`PropsFrame::flags` bit 16): from the eye, every
 // step reads the whole fields of the props of the 3x3 cells around the point, steps at most
 // half a cell (so no prop beyond them is stepped into), up to the draw distance: no band, no
-// bounds, no depth the raster kept; `pf.steps` steps at most.
+// bounds, no depth the raster kept; `pf.peer_steps` steps at most.
 fn seed_walk(dir: vec3<f32>, t_end: f32) -> Meet {
     let half = i32(pf.side / 2u);
     var t = 0.05;
-    for (var s = 0u; s < pf.steps; s++) {
+    for (var s = 0u; s < pf.peer_steps; s++) {
         let p = dir * t;
         let cell = vec2<i32>(floor((p.xz + pf.eye_in_cell) / pf.cell)) + half;
         var d = 3.0e38;

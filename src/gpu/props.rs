@@ -32,7 +32,8 @@ pub(crate) struct PropsFrame {
     pub(crate) blocks: u32,
     pub(crate) steps: u32,
     pub(crate) flags: u32,
-    _pad: [u32; 3],
+    pub(crate) peer_steps: u32,
+    _pad: [u32; 2],
 }
 
 /// Mirrors `PropKind` in `wgsl/props.wgsl`.
@@ -486,10 +487,10 @@ impl PropsPass {
             pixels,
             band: p.band,
             blocks: self.blocks,
-            steps: match (march, peer) {
-                (March::Reference, _) => REFERENCE_STEPS,
-                (_, Some(steps)) => steps,
-                _ => STEPS,
+            steps: if march == March::Reference {
+                REFERENCE_STEPS
+            } else {
+                STEPS
             },
             flags: if peer.is_some() { PEER_SEED } else { 0 }
                 | match march {
@@ -497,7 +498,8 @@ impl PropsPass {
                     March::Unbounded => UNBOUNDED,
                     March::Reference => REFERENCE,
                 },
-            _pad: [0; 3],
+            peer_steps: peer.unwrap_or(0),
+            _pad: [0; 2],
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
         if !placed.is_empty() {
