@@ -278,7 +278,10 @@ fn seed_walk(dir: vec3<f32>, t_end: f32) -> Meet {
     for (var s = 0u; s < pf.peer_steps; s++) {
         let p = dir * t;
         let cell = vec2<i32>(floor((p.xz + pf.eye_in_cell) / pf.cell)) + half;
+        // The nearest field's value (the hit test, relief's) and the safe step (each field
+        // over its Lipschitz constant).
         var d = 3.0e38;
+        var step = 3.0e38;
         var best = NO_RECORD;
         for (var k = 0; k < 9; k++) {
             let c = cell + vec2<i32>(k % 3 - 1, k / 3 - 1);
@@ -289,7 +292,8 @@ fn seed_walk(dir: vec3<f32>, t_end: f32) -> Meet {
             if prop_grid[i * RECORD].w <= 0.0 {
                 continue;
             }
-            let dc = record_distance(i, p).x / lipschitz_of(i);
+            let dc = record_distance(i, p).x;
+            step = min(step, dc / max(lipschitz_of(i), 1.0));
             if dc < d {
                 d = dc;
                 best = i;
@@ -298,7 +302,7 @@ fn seed_walk(dir: vec3<f32>, t_end: f32) -> Meet {
         if d < max(1e-3, 0.5 * t / pf.pixels) {
             return Meet(t, best);
         }
-        t += min(d, 0.5 * pf.cell);
+        t += min(step, 0.5 * pf.cell);
         if t > t_end {
             break;
         }
