@@ -733,3 +733,155 @@ fn the_reference_draws_the_props_the_methods_draw() {
     assert!(outside * 200 <= changed, "{outside} of {changed}");
     assert!(mean_with * 2.0 < mean_bare, "{mean_with} {mean_bare}");
 }
+
+/// The props' shadows on the ground agree with rays towards the sun through the props' f64
+/// twin: at sampled ground points (the twin's continuous surface under each pixel the march
+/// left without a prop), where the twin's ray meets a prop the frame's props' share of the sun
+/// is under 0.1, and where it passes every prop by half again the penumbra's width the share is
+/// over 0.9, in at least 99% of the points outside the penumbra; both kinds are found (the
+/// test can fail).
+#[test]
+fn the_props_shadows_agree_with_f64_rays_towards_the_sun() {
+    let gpu = common::gpu();
+    let (mut shadowed, mut lit, mut agree, mut penumbra) = (0, 0, 0, 0);
+    // A low sun's long shadows, and a high sun's ground lit between the props.
+    for elevation in [15.0, 40.0] {
+        let mut p = params(true);
+        let v = view(&p);
+        p.sky.sun_elevation = elevation;
+        let mut w = world(&gpu, p);
+        draw(&gpu, &mut w, &v);
+        let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
+        let inverse = w.relative_matrix().as_dmat4().inverse();
+        let scene = w.props_scene().clone();
+        let tapes = scene.compile(&p.props).unwrap();
+        let water = Some(f64::from(p.water_level) / p.land.peak_height);
+        let props = |q: DVec3| {
+            relief::props::query::distance((&scene, &tapes, &p.props), (&p.land, water), q)
+                .map(|(d, _)| d)
+        };
+        let sun = p.sky.sun_direction().as_dvec3();
+        let pixels = f64::from(SIZE.1) / (2.0 * (0.4f64).tan());
+        let land = &p.land;
+        // The twin's ground along a pixel's ray, within 150 m.
+        let ground = |dir: DVec3| -> Option<DVec3> {
+            let above = |t: f64| {
+                let q = v.eye + dir * t;
+                q.y - land.height_at(q.x, q.z)
+            };
+            let (mut t0, mut t) = (0.0, 0.05);
+            while t < 150.0 {
+                if above(t) < 0.0 {
+                    for _ in 0..30 {
+                        let m = 0.5 * (t0 + t);
+                        if above(m) < 0.0 {
+                            t = m;
+                        } else {
+                            t0 = m;
+                        }
+                    }
+                    return Some(v.eye + dir * t0);
+                }
+                t0 = t;
+                t += 0.02 + 0.01 * t;
+            }
+            None
+        };
+        // The props as the frame placed them (sunk past their cut-off, as it marched them), their
+        // fields in f64: the distance from world point `r` to the nearest of those of the
+        // (2k+1)^2 cells around it, or `None` where none stands there.
+        let (side, records) = w.props_records(&gpu.device, &gpu.queue).unwrap().unwrap();
+        let eye_cell = p.props.cell_at(v.eye.x, v.eye.z);
+        let half = i64::from(side / 2);
+        // Each with its displacements' amplitude: the frame's shadows are those of the undisplaced
+        // fields (docs/props.md), so within a displacement of a surface is the penumbra here.
+        let near = |r: DVec3, k: i64| -> Option<(f64, f64)> {
+            let [cx, cz] = p.props.cell_at(r.x, r.z);
+            let mut best: Option<(f64, f64)> = None;
+            for (dx, dz) in (-k..=k).flat_map(|a| (-k..=k).map(move |b| (a, b))) {
+                let (col, row) = (cx + dx - eye_cell[0] + half, cz + dz - eye_cell[1] + half);
+                if col < 0 || row < 0 || col >= i64::from(side) || row >= i64::from(side) {
+                    continue;
+                }
+                let rec = &records[(row * i64::from(side) + col) as usize];
+                if rec[3] > 0.0 {
+                    let rough = tapes[rec[6] as usize].roughness() * f64::from(rec[3]);
+                    let d = record_distance(&tapes, rec, r - v.eye).0;
+                    if best.is_none_or(|b| d < b.0) {
+                        best = Some((d, rough));
+                    }
+                }
+            }
+            best
+        };
+        let band = f64::from(p.props.band);
+        // The twin's ray towards the sun from `q`: Some(true) where it passes `margin` inside a
+        // prop, Some(false) where it passes every prop by half again the penumbra (the march's
+        // share is 8 distance over range) and `margin`, None between. It ends above the band every
+        // prop stands in.
+        let twin_shadow = |q: DVec3, margin: f64| -> Option<bool> {
+            let mut clear = true;
+            let mut t = 0.05;
+            while t < 300.0 {
+                let r = q + sun * t;
+                if r.y > land.height_at(r.x, r.z) + band + 2.0 {
+                    break;
+                }
+                let (d, rough) = near(r, 1).unwrap_or((4.0, 0.0));
+                if d < 0.005 {
+                    // In the shadow where the ray passes deeper inside the prop than its
+                    // displacements reach, by the margin (else it grazes it: the penumbra's edge).
+                    let deepest = (1..100)
+                        .filter_map(|k| near(q + sun * (t + 0.02 * f64::from(k)), 1))
+                        .map(|(d, rough)| d + rough)
+                        .fold(d + rough, f64::min);
+                    return (deepest < -margin).then_some(true);
+                }
+                // Where the 3x3 cells' props leave too little room to say, the 7x7 cells' (those
+                // beyond lie at least 20 m off).
+                let wide = 1.5 * t / 8.0 + margin;
+                if clear && d - rough <= wide {
+                    clear = near(r, 3).map_or(20.0, |(d, rough)| (d - rough).min(20.0)) > wide;
+                }
+                t += d.clamp(0.01, 4.0);
+            }
+            clear.then_some(false)
+        };
+        for (i, h) in hits.iter().enumerate() {
+            if f32::from_bits(h[0]) < 1.0 {
+                continue;
+            }
+            let dir = eye_relative(&inverse, i, 0.5).normalize();
+            let Some(q) = ground(dir) else {
+                continue;
+            };
+            // Not at a prop's foot, where the drawn ground and the twin's part by centimetres.
+            if props(q).is_some_and(|d| d < 0.3) {
+                continue;
+            }
+            let share = f32::from_bits(h[3]);
+            // The frame's shadow ray leaves two pixels' footprints towards the eye from the drawn
+            // ground (so the ground does not shadow itself), and the drawn ground lies within
+            // centimetres of the twin's: the margin of the twin's ray.
+            let margin = 0.1 + 2.0 * (q - v.eye).length() / pixels;
+            match twin_shadow(q + DVec3::Y * 0.02, margin) {
+                Some(true) => {
+                    shadowed += 1;
+                    agree += usize::from(share < 0.1);
+                }
+                Some(false) => {
+                    lit += 1;
+                    agree += usize::from(share > 0.9);
+                }
+                None => penumbra += 1,
+            }
+        }
+    }
+    let sampled = shadowed + lit;
+    eprintln!(
+        "props' shadows: {agree} of {sampled} ground points agree with the twin's rays \
+         ({shadowed} in shadow, {lit} lit; {penumbra} in a penumbra left out)"
+    );
+    assert!(shadowed > 50 && lit > 100, "{shadowed} {lit}");
+    assert!(agree * 100 >= sampled * 99, "{agree} of {sampled}");
+}
