@@ -305,12 +305,14 @@ impl RayMarcher {
     }
 
     /// Its render and ray uniforms, as its last prepare wrote them (what a pass over its cast
-    /// shades with: [`super::props_reference`]).
+    /// shades with: `super::props_reference`).
+    #[cfg(not(target_arch = "wasm32"))]
     pub(crate) fn uniforms(&self) -> (&wgpu::Buffer, &wgpu::Buffer) {
         (&self.render_uniforms, &self.ray_uniforms)
     }
 
     /// Its size in samples.
+    #[cfg(not(target_arch = "wasm32"))]
     pub(crate) fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }

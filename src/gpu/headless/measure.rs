@@ -239,7 +239,7 @@ pub fn render_world_rays(
 
 /// [`render_world_rays`] with props of `scene` where `params` turns them on (else the same):
 /// the reference marches them at its samples, conservatively
-/// ([`crate::gpu::props_reference`]); the seed's ray marches draw none.
+/// (`src/gpu/props_reference.rs`, docs/props.md); the seed's ray marches draw none.
 /// [`render_world_rays`] draws the shipped landscape's ([`crate::props::kinds::landscape`]).
 pub fn render_world_rays_with_props(
     gpu: &Gpu,
