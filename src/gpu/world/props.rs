@@ -139,16 +139,13 @@ impl World {
             return;
         };
         let size = self.target_size.unwrap_or(view.size);
-        let pixels = size.1 as f32 / (2.0 * (0.5 * view.fov_y).tan());
-        let water = (!self.params.no_water)
-            .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32);
         props.encode(
             queue,
             encoder,
             (&self.bind_group, self.params.land.seed, view.eye),
             (
-                pixels,
-                water,
+                pixels_per_tan(size, view),
+                self.water_height(),
                 if marched {
                     March::Raster
                 } else {
@@ -190,14 +187,11 @@ impl World {
         let Some(props) = &self.props else {
             return;
         };
-        let pixels = m.size.1 as f32 / (2.0 * (0.5 * view.fov_y).tan());
-        let water = (!self.params.no_water)
-            .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32);
         props.encode(
             queue,
             encoder,
             (&self.bind_group, self.params.land.seed, view.eye),
-            (pixels, water, m.march),
+            (pixels_per_tan(m.size, view), self.water_height(), m.march),
             None,
         );
         props.encode_march(
@@ -207,6 +201,13 @@ impl World {
             (m.hit, m.size, m.march),
             None,
         );
+    }
+
+    /// The water's normalised level, where there is water: what the props' scatter keeps
+    /// props out of.
+    fn water_height(&self) -> Option<f32> {
+        (!self.params.no_water)
+            .then(|| (f64::from(self.params.water_level) / self.params.land.peak_height) as f32)
     }
 
     /// Draws the props the overlay marched, after the terrain.
@@ -289,4 +290,10 @@ impl World {
         }
         Some(Ok([placed, seen]))
     }
+}
+
+/// Pixels a unit of tan(angle) spans on an image of `size` through `view` (its height over
+/// twice the tangent of half the vertical field of view).
+fn pixels_per_tan(size: (u32, u32), view: &WorldView) -> f32 {
+    size.1 as f32 / (2.0 * (0.5 * view.fov_y).tan())
 }
