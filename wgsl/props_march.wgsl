@@ -105,9 +105,6 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
         lip = max(lip, lipschitz_of(cands[c]));
     }
     var t = span.x;
-    // The last step's distance: a shadow ray estimates from it and this step's where between
-    // them the ray passed nearest the surface (the penumbra without the bands of its steps).
-    var last = 1e10;
     // A view ray's distance a step ago: one that runs out of steps still nearing a surface
     // (grazing it) takes that surface as met, not seen through.
     var before = 3.0e38;
@@ -118,8 +115,6 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
         let p = o + dir * t;
         var d = 3.0e38;
         var best = NO_RECORD;
-        // Whether `d` is a field's value, not a sphere's bound.
-        var exact = true;
         for (var c = 0u; c < n; c++) {
             // Outside a prop's sphere by more than SPHERE_MARGIN, the distance to the sphere
             // bounds the distance to the prop: a view ray reads its field only near it. A
@@ -130,12 +125,10 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
                 continue;
             }
             let penumbra = shadow && SHADOW_SOFTNESS * dc < *share * max(t, 1e-3);
-            var field = false;
             if dc < SPHERE_MARGIN || penumbra {
                 // Then the field without its displacements: a shadow reads it as the field, a
                 // view ray less their amplitude as a bound, and the whole field only near.
                 dc = record_bound(cands[c], p, !shadow);
-                field = true;
                 if !shadow && dc < ROUGH_MARGIN {
                     dc = record_distance(cands[c], p).x;
                 }
@@ -143,17 +136,14 @@ fn trace(o: vec3<f32>, dir: vec3<f32>, span: vec2<f32>, cands: array<u32, 4>, n:
             if dc < d {
                 d = dc;
                 best = cands[c];
-                exact = field;
             }
         }
         let eps = max(1e-3, 0.5 * t / pf.pixels);
         if shadow {
-            let h = max(d, 0.0);
-            // Where the nearest point between this step and the last lies (both the field's).
-            let y = select(0.0, h * h / (2.0 * last), exact && last < 1e9);
-            let nearest = sqrt(max(h * h - y * y, 0.0));
-            *share = min(*share, SHADOW_SOFTNESS * nearest / max(t - y, 1e-3));
-            last = select(1e10, max(h, 1e-6), exact);
+            // The distance at each step: estimating where between two steps the ray passed
+            // nearest darkened the penumbra 3 to 10 times as much (`relief stability --axis
+            // props`, the banding sweep).
+            *share = min(*share, SHADOW_SOFTNESS * max(d, 0.0) / max(t, 1e-3));
             if *share < 0.01 {
                 *share = 0.0;
                 return Meet(t, best);

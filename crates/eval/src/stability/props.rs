@@ -23,6 +23,11 @@
 //!   one frame to the next in how much of its height on screen the cut-off hides, with relief's
 //!   sinking (whole above its cut-off, sunk over the halving below it) and with a hard cut at
 //!   the cut-off, against the cut-off.
+//! - **banding**: a ball's soft shadow on the ground under a sun 30 degrees up: the largest
+//!   error in the sun's share at 200 points across its penumbra against the truth (the least of
+//!   8 distance over range along a march of 1 mm steps), against a shadow ray's least step, for
+//!   relief's march (the distance at each step) and for an estimate of the nearest point
+//!   between two steps.
 //!
 //! relief's defaults sit on the safe side of each: no ray steps past a surface, the budget caps
 //! few rays, and no prop jumps by a pixel (tests in this file pin the boundaries).
@@ -32,14 +37,15 @@ use relief::props::{sdf, Combine, Kind, Node, Shape, Tape, Transform};
 /// One point of a sweep: the sweep, the variant, the setting and what it measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PropsRow {
-    /// `lipschitz`, `smooth`, `budget`, `thin` or `cutoff`.
+    /// `lipschitz`, `smooth`, `budget`, `thin`, `cutoff` or `banding`.
     pub sweep: &'static str,
     /// What is measured (relief's way or another).
     pub variant: String,
-    /// The setting swept: a f, k (metres), the distance (metres) or the cut-off (pixels).
+    /// The setting swept: a f, k (metres), the distance (metres), the cut-off (pixels) or a
+    /// shadow ray's least step (metres).
     pub x: f64,
-    /// The share of rays that failed (lipschitz, smooth, budget) or the largest pop in pixels
-    /// (cutoff).
+    /// The share of rays that failed (lipschitz, smooth, budget), the largest pop in pixels
+    /// (cutoff) or the largest error in the sun's share (banding).
     pub value: f64,
     /// Rays cast (or frames seen).
     pub samples: usize,
@@ -427,6 +433,98 @@ pub fn cutoff(cutoffs: &[f64]) -> Vec<PropsRow> {
     rows
 }
 
+/// The props' soft shadow's penumbra (`wgsl/props_march.wgsl`): a shadow ray's share of the
+/// sun is the least of 8 times its distance to the props over how far it has gone.
+const SHADOW_SOFTNESS: f64 = 8.0;
+/// relief's least step of a shadow ray, metres (`SHADOW_STEP` in `wgsl/props_march.wgsl`).
+pub const SHADOW_STEP: f64 = 0.04;
+
+/// The sun's share at the ground point `o` under a ball of radius 1 m whose centre is 1.5 m
+/// up at the origin, towards the sun `l`: by the GPU's shadow march with a least step of
+/// `floor` metres (`nearest`: also where between two steps the ray passed nearest the ball,
+/// from the circle where their spheres meet; relief reads the distance at each step alone), or
+/// the truth (`None`: the least of the ratio over a march of 1 mm steps).
+fn ball_shadow(o: [f64; 3], l: [f64; 3], how: Option<(f64, bool)>) -> f64 {
+    let d = |t: f64| {
+        let p = along(o, l, t);
+        (p[0] * p[0] + (p[1] - 1.5) * (p[1] - 1.5) + p[2] * p[2]).sqrt() - 1.0
+    };
+    let reach = 20.0;
+    let Some((floor, nearest)) = how else {
+        let mut share = 1.0f64;
+        let mut t = 1e-3;
+        while t < reach {
+            share = share.min(SHADOW_SOFTNESS * d(t).max(0.0) / t);
+            t += 1e-3;
+        }
+        return share.clamp(0.0, 1.0);
+    };
+    let (mut share, mut last, mut stride, mut t) = (1.0f64, 1e10, 0.0, 0.0);
+    for _ in 0..relief::gpu::props::STEPS {
+        if t > reach {
+            break;
+        }
+        let h = d(t).max(0.0);
+        share = share.min(SHADOW_SOFTNESS * h / t.max(1e-3));
+        // The circle where this step's sphere meets the last one's: y back along the ray from
+        // here, where it lies between the two steps.
+        if nearest && last < 1e9 && stride > 0.0 {
+            let y = (h * h - last * last + stride * stride) / (2.0 * stride);
+            if y > 0.0 && y < stride {
+                let near = (h * h - y * y).max(0.0).sqrt();
+                share = share.min(SHADOW_SOFTNESS * near / (t - y).max(1e-3));
+            }
+        }
+        last = h.max(1e-6);
+        if share < 0.01 {
+            return 0.0;
+        }
+        stride = d(t).max(floor);
+        t += stride;
+    }
+    share.clamp(0.0, 1.0)
+}
+
+/// The banding sweep: a ball's soft shadow on the ground under a sun 30 degrees up, at 200
+/// points on two lines across its penumbra: the largest difference of the sun's share from the
+/// truth, for each of `floors` (a shadow ray's least step, metres), relief's way (the distance
+/// at each step) and an estimate of where between two steps the ray passed nearest (from the
+/// circle where their spheres meet: what relief did before this sweep measured it).
+pub fn banding(floors: &[f64]) -> Vec<PropsRow> {
+    let e = 30f64.to_radians();
+    let l = [e.cos(), e.sin(), 0.0];
+    // The centre's shadow lies 1.5 / tan(30 degrees) from under the ball.
+    let c = -1.5 / e.tan();
+    let points: Vec<[f64; 3]> = (0..100)
+        .flat_map(|i| {
+            let s = -3.0 + 6.0 * f64::from(i) / 99.0;
+            [[c, 0.02, s], [c + 2.0 * s, 0.02, 0.4]]
+        })
+        .collect();
+    let truth: Vec<f64> = points.iter().map(|&o| ball_shadow(o, l, None)).collect();
+    let mut rows = Vec::new();
+    for &floor in floors {
+        for (variant, nearest) in [
+            ("relief: the distance at each step", false),
+            ("nearest between two steps", true),
+        ] {
+            let worst = points
+                .iter()
+                .zip(&truth)
+                .map(|(&o, &t)| (ball_shadow(o, l, Some((floor, nearest))) - t).abs())
+                .fold(0.0, f64::max);
+            rows.push(PropsRow {
+                sweep: "banding",
+                variant: variant.into(),
+                x: floor,
+                value: worst,
+                samples: points.len(),
+            });
+        }
+    }
+    rows
+}
+
 /// The whole axis at its settings (`quick`: fewer rays).
 pub fn props(quick: bool) -> Vec<PropsRow> {
     let rays = if quick { 200 } else { 1000 };
@@ -453,6 +551,7 @@ pub fn props(quick: bool) -> Vec<PropsRow> {
         rays,
     ));
     rows.extend(cutoff(&[1.0, 1.5, 2.0, 4.0, 8.0, 16.0]));
+    rows.extend(banding(&[0.01, SHADOW_STEP, 0.16, 0.64, 2.56]));
     rows
 }
 
@@ -506,6 +605,11 @@ pub fn props_chart(rows: &[PropsRow], stem: &std::path::Path) -> relief::error::
             "cutoff",
             "cut-off, pixels (log)",
             "largest pop a frame, pixels",
+        ),
+        (
+            "banding",
+            "a shadow ray's least step, m (log)",
+            "largest error in the sun's share",
         ),
     ];
     for (sweep, x_desc, y_desc) in sweeps {
@@ -641,6 +745,26 @@ mod tests {
         for r in &rows {
             assert_eq!(r.value, 0.0, "{r:?}");
             assert!(r.samples > 100, "{r:?}");
+        }
+    }
+
+    #[test]
+    fn relief_soft_shadows_stay_within_3_percent_of_the_sun_to_16_cm_steps() {
+        let rows = banding(&[SHADOW_STEP, 0.16, 0.64, 2.56]);
+        let at = |floor: f64, relief: bool| {
+            rows.iter()
+                .find(|r| r.x == floor && r.variant.starts_with("relief") == relief)
+                .unwrap()
+                .value
+        };
+        // relief's default floor, and the boundary: a floor past the distance to the ball
+        // steps into it and shadows the penumbra whole.
+        assert!(at(SHADOW_STEP, true) < 0.03, "{}", at(SHADOW_STEP, true));
+        assert!(at(0.16, true) < 0.03, "{}", at(0.16, true));
+        assert!(at(2.56, true) > 0.5, "{}", at(2.56, true));
+        // The estimate between steps darkens the penumbra more at every floor.
+        for floor in [SHADOW_STEP, 0.16] {
+            assert!(at(floor, false) > 2.0 * at(floor, true), "{floor}");
         }
     }
 
