@@ -368,6 +368,8 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
             "motion.csv",
             "motion.png",
             "motion.svg",
+            "props-banding.png",
+            "props-banding.svg",
             "props-budget.png",
             "props-budget.svg",
             "props-cutoff.png",
