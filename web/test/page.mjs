@@ -350,6 +350,19 @@ await withBrowser(webgpu, async (browser) => {
   } catch (e) {
     console.log(`note: no full-page screenshot of the endless world (${String(e).split("\n")[0]})`);
   }
+  // And the page with props, from 2 m among them (the props' landscape's camera).
+  if (process.env.PAGE_PICTURES === "1") try {
+    const full = await browser.newPage({ viewport: { width: 800, height: 500 }, deviceScaleFactor: 1 });
+    await full.goto(`${base}/index.html?world=endless&props=1&no_grass=1&camera=fly` +
+      "&eye=2740,1112,-3000&look_at=2710,1106,-3030&fov=50&pixel_error=6");
+    await waitFrames(full, 2);
+    // On SwiftShader the view bakes and lights for about ten minutes, each frame's march 9-16 s.
+    await full.waitForFunction(() => !/baking/.test(document.querySelector("#readout").textContent), null,
+      { timeout: 900000 });
+    await full.screenshot({ path: path.join(out, "page-props-full.png"), timeout: 300000 });
+  } catch (e) {
+    console.log(`note: no full-page screenshot with props (${String(e).split("\n")[0]})`);
+  }
 });
 
 await withBrowser(webgpu, async (browser) => {
