@@ -232,7 +232,7 @@ impl Choice {
 /// hybrid's) raster, shading and temporal resolve passes, the grass's scatter before it and its
 /// blades' raster. `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade, resolve, grass, blades, props, march] = [
+    let [render, present, raster, shade, resolve, grass, blades, props, shadows, march] = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
@@ -241,13 +241,14 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
         Slot::Grass,
         Slot::Blades,
         Slot::Props,
+        Slot::PropShadows,
         Slot::March,
     ]
     .map(|s| t[s as usize]);
     render.or(present)?;
     Some(
         [
-            render, present, raster, shade, resolve, grass, blades, props, march,
+            render, present, raster, shade, resolve, grass, blades, props, shadows, march,
         ]
         .iter()
         .flatten()

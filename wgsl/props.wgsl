@@ -43,8 +43,9 @@ struct PropsFrame {
 
 // A kind: its tape's first instruction and length, its Lipschitz constant, its cumulative
 // weight; the box of its surface (min xyz and the radius about its axis; max xyz and 1 where
-// it stands on rock); its scale's range (min, max) and the sum of its displacements'
-// amplitudes (what its field may lie below its undisplaced field); a sphere that holds it.
+// it stands on rock); its scale's range (min, max), the sum of its displacements' amplitudes
+// (what its field may lie below its undisplaced field) and the undisplaced field's Lipschitz
+// constant; a sphere that holds it.
 struct PropKind {
     first: u32,
     count: u32,

@@ -134,7 +134,12 @@ fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
             weight,
             lo: [lo[0], lo[1], lo[2], tape.radius() as f32],
             hi: [hi[0], hi[1], hi[2], f32::from(u8::from(kind.on_rock))],
-            scale: [kind.scale.0, kind.scale.1, tape.roughness() as f32, 0.0],
+            scale: [
+                kind.scale.0,
+                kind.scale.1,
+                tape.roughness() as f32,
+                tape.lipschitz_undisplaced as f32,
+            ],
             sphere: {
                 let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
                 let r = [0, 1, 2].map(|a| 0.5 * (hi[a] - lo[a]));
@@ -582,8 +587,8 @@ impl PropsPass {
     /// Records the march of each pixel of an image of `size` through the props into `hit`,
     /// reading the frame's render, world and visibility uniforms and the compute raster's
     /// depth, as `march` says ([`March::Raster`]: the props' shadow on the raster's surface
-    /// first marched a 2x2 block of pixels at a time); timed as
-    /// [`super::timing::Slot::March`].
+    /// first marched a 2x2 block of pixels at a time, timed as
+    /// [`super::timing::Slot::PropShadows`]); timed as [`super::timing::Slot::March`].
     pub fn encode_march(
         &self,
         device: &wgpu::Device,
@@ -626,19 +631,25 @@ impl PropsPass {
             layout: &self.march_layouts[1],
             entries: &entries,
         });
+        let g = super::WORKGROUP;
+        if bounded {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief:props:shadows-pass"),
+                timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::PropShadows)),
+            });
+            pass.set_bind_group(0, &view_group, &[]);
+            pass.set_bind_group(1, &march_group, &[]);
+            pass.set_pipeline(&self.shadows);
+            pass.set_bind_group(2, &quads.write, &[]);
+            let blocks = (size.0.div_ceil(2), size.1.div_ceil(2));
+            pass.dispatch_workgroups(blocks.0.div_ceil(g), blocks.1.div_ceil(g), 1);
+        }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:props:march-pass"),
             timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::March)),
         });
         pass.set_bind_group(0, &view_group, &[]);
         pass.set_bind_group(1, &march_group, &[]);
-        let g = super::WORKGROUP;
-        if bounded {
-            pass.set_pipeline(&self.shadows);
-            pass.set_bind_group(2, &quads.write, &[]);
-            let blocks = (size.0.div_ceil(2), size.1.div_ceil(2));
-            pass.dispatch_workgroups(blocks.0.div_ceil(g), blocks.1.div_ceil(g), 1);
-        }
         pass.set_pipeline(&self.march);
         pass.set_bind_group(2, &quads.read, &[]);
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);

@@ -35,11 +35,14 @@ pub enum Slot {
     Props = 11,
     /// The props' march: each pixel's ray through the placed props, after the raster.
     March = 12,
+    /// The props' shadow and occlusion on the raster's surface, a 2x2 block of pixels at a
+    /// time, before the march.
+    PropShadows = 13,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 13] = [
+    pub const ALL: [Slot; 14] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -52,6 +55,7 @@ impl Slot {
         Slot::Grass,
         Slot::Blades,
         Slot::Props,
+        Slot::PropShadows,
         Slot::March,
     ];
 
@@ -71,6 +75,7 @@ impl Slot {
             Slot::Blades => "blades",
             Slot::Props => "props",
             Slot::March => "march",
+            Slot::PropShadows => "props-shadows",
         }
     }
 }

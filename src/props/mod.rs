@@ -278,6 +278,9 @@ pub struct Tape {
     pub code: Vec<Instruction>,
     /// The field's Lipschitz constant (>= 1): a march divides each step by it.
     pub lipschitz: f64,
+    /// The Lipschitz constant of the field without its displacements (>= 1, at most
+    /// `lipschitz`): a step read from that field (less their amplitudes) is divided by it.
+    pub lipschitz_undisplaced: f64,
     /// A box holding the surface in the kind's frame: min and max corners.
     pub bounds: [[f64; 3]; 2],
     /// The stack slots the tape needs.
@@ -325,6 +328,7 @@ struct Compiler<'a> {
     key: &'a str,
     code: Vec<Instruction>,
     lipschitz: f64,
+    undisplaced: f64,
     depth: usize,
     stack: usize,
     materials: usize,
@@ -416,6 +420,7 @@ impl Compiler<'_> {
                 }
                 let shape = self.shape(shape, path)?;
                 self.lipschitz = self.lipschitz.max(st);
+                self.undisplaced = self.undisplaced.max(st);
                 self.stack = self.stack.max(height + 1);
                 self.code.push(Instruction {
                     op: Op::Shape(shape),
@@ -654,6 +659,7 @@ impl Kind {
             key: &key,
             code: Vec::new(),
             lipschitz: 1.0,
+            undisplaced: 1.0,
             depth: 0,
             stack: 0,
             materials,
@@ -689,6 +695,7 @@ impl Kind {
         Ok(Tape {
             code: c.code,
             lipschitz: c.lipschitz,
+            lipschitz_undisplaced: c.undisplaced,
             bounds,
             stack: c.stack,
         })

@@ -38,8 +38,11 @@ pub struct PropsRow {
     pub props: [u32; 2],
     /// The frame's median GPU time without props and with them, milliseconds.
     pub frame_ms: [Option<f64>; 2],
-    /// The props' scatter's and march's medians, milliseconds.
+    /// The props' scatter's median, milliseconds.
     pub scatter_ms: Option<f64>,
+    /// The median of the props' shadow and occlusion on the raster's surface, a 2x2 block at a
+    /// time (the marching method's own pass before its march), milliseconds.
+    pub shadows_ms: Option<f64>,
     /// The march's median (the overlay's for the mesh and the hybrid), milliseconds.
     pub march_ms: Option<f64>,
     /// FLIP mean of the frame without props against the reference without them, and of the
@@ -195,6 +198,7 @@ pub fn run(
                 props: [0; 2],
                 frame_ms: [None; 2],
                 scatter_ms: None,
+                shadows_ms: None,
                 march_ms: None,
                 flip: [None; 2],
             };
@@ -215,6 +219,7 @@ pub fn run(
                 );
                 if on {
                     row.scatter_ms = measured.scatter_ms;
+                    row.shadows_ms = measured.shadows_ms;
                     row.march_ms = measured.march_ms;
                     row.props = measured.props;
                 }
@@ -230,6 +235,7 @@ pub fn run(
 struct Frame {
     frame_ms: Option<f64>,
     scatter_ms: Option<f64>,
+    shadows_ms: Option<f64>,
     march_ms: Option<f64>,
     props: [u32; 2],
     image: Vec<u8>,
@@ -268,6 +274,7 @@ fn frame(
     Ok(Frame {
         frame_ms: median(times.iter().filter_map(relief::choice::draw_ms)),
         scatter_ms: slot(Slot::Props),
+        shadows_ms: slot(Slot::PropShadows),
         march_ms: slot(Slot::March),
         props,
         image,
@@ -279,13 +286,13 @@ pub fn header(device: &str, size: (u32, u32)) -> String {
     format!(
         "# relief bench --world endless --only props on {device} at {}x{}: each view drawn \
          without props and with them (the shipped landscape's kinds, the props keys' defaults, \
-         the grass off); frame: the median GPU time of its passes, milliseconds; scatter and \
-         march: the props' passes; FLIP (mean) against the reference of the same view without \
+         the grass off); frame: the median GPU time of its passes, milliseconds; scatter, \
+         shadows (on the surface, a 2x2 block at a time) and march: the props' passes; FLIP (mean) against the reference of the same view without \
          and with props (3x3 samples a pixel, the props marched conservatively, none sunk); \
          the seed's way: from the eye, the whole fields of the 3x3 cells around each step, at \
          most the steps named\n\
          view,method,peer_steps,props_placed,props_in_view,frame_ms_without,frame_ms_with,\
-         props_ms,scatter_ms,march_ms,flip_without,flip_with\n",
+         props_ms,scatter_ms,shadows_ms,march_ms,flip_without,flip_with\n",
         size.0, size.1
     )
 }
@@ -295,7 +302,7 @@ pub fn line(r: &PropsRow) -> String {
     let ms = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3}"));
     let flip = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
     format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         r.view,
         r.method,
         r.peer_steps.map_or(String::new(), |s| s.to_string()),
@@ -305,6 +312,7 @@ pub fn line(r: &PropsRow) -> String {
         ms(r.frame_ms[1]),
         ms(r.props_ms()),
         ms(r.scatter_ms),
+        ms(r.shadows_ms),
         ms(r.march_ms),
         flip(r.flip[0]),
         flip(r.flip[1]),
@@ -315,16 +323,42 @@ pub fn line(r: &PropsRow) -> String {
 /// marching method's, with its props' layer's time (scatter and march) and relief's (`None`
 /// where no budget measured reaches relief's FLIP).
 pub fn equal_flip(rows: &[PropsRow], view: &str) -> Option<(u32, f64, f64)> {
-    let layer = |r: &PropsRow| Some(r.scatter_ms? + r.march_ms?);
     let relief = rows
         .iter()
         .find(|r| r.view == view && r.method == "marching")?;
-    let (flip, ms) = (relief.flip[1]?, layer(relief)?);
+    let (flip, ms) = (relief.flip[1]?, layer_ms(relief)?);
     rows.iter()
         .filter(|r| r.view == view && r.peer_steps.is_some())
         .filter(|r| r.flip[1].is_some_and(|f| f <= flip))
         .min_by_key(|r| r.peer_steps)
-        .and_then(|r| Some((r.peer_steps?, layer(r)?, ms)))
+        .and_then(|r| Some((r.peer_steps?, layer_ms(r)?, ms)))
+}
+
+/// The seed's way's most accurate budget on `view`: its steps, FLIP and props' layer's time,
+/// and relief's layer's time (`None` where either was not measured).
+pub fn best_peer(rows: &[PropsRow], view: &str) -> Option<(u32, f64, f64, f64)> {
+    let relief = rows
+        .iter()
+        .find(|r| r.view == view && r.method == "marching")?;
+    let best = rows
+        .iter()
+        .filter(|r| r.view == view && r.peer_steps.is_some())
+        .filter_map(|r| Some((r, r.flip[1]?)))
+        .min_by(|a, b| {
+            a.1.total_cmp(&b.1)
+                .then(a.0.peer_steps.cmp(&b.0.peer_steps))
+        })?;
+    Some((
+        best.0.peer_steps?,
+        best.1,
+        layer_ms(best.0)?,
+        layer_ms(relief)?,
+    ))
+}
+
+/// A row's props' layer: its scatter, shadows and march, milliseconds.
+fn layer_ms(r: &PropsRow) -> Option<f64> {
+    Some(r.scatter_ms? + r.shadows_ms.unwrap_or(0.0) + r.march_ms?)
 }
 
 /// The lines `relief bench` prints: per view, the props' cost to the marching method, its FLIP
@@ -346,19 +380,72 @@ pub fn summary(rows: &[PropsRow]) -> Vec<String> {
                      {seed:.2} ms, {:.1}x relief's",
                     seed / relief
                 ),
-                None => "the seed's way reaches its FLIP at no step budget measured".to_owned(),
+                None => match best_peer(rows, view) {
+                    Some((steps, f, seed, relief)) => format!(
+                        "the seed's way never reaches its FLIP: at best {f:.4} ({steps} steps, \
+                         its props' layer {seed:.2} ms, {:.1}x relief's)",
+                        seed / relief
+                    ),
+                    None => "the seed's way reaches its FLIP at no step budget measured".to_owned(),
+                },
             };
             Some(format!(
-                "props on {view}: {} in view, frame {} -> {} (scatter {}, march {}), FLIP {} \
-                 (without props {}); {peer}",
+                "props on {view}: {} in view, frame {} -> {} (scatter {}, shadows {}, march {}), \
+                 FLIP {} (without props {}); {peer}",
                 r.props[1],
                 ms(r.frame_ms[0]),
                 ms(r.frame_ms[1]),
                 ms(r.scatter_ms),
+                ms(r.shadows_ms),
                 ms(r.march_ms),
                 flip(r.flip[1]),
                 flip(r.flip[0]),
             ))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, peer: Option<u32>, march: f64, flip: f64) -> PropsRow {
+        PropsRow {
+            view: "v".into(),
+            method: method.into(),
+            peer_steps: peer,
+            props: [10, 5],
+            frame_ms: [Some(1.0), Some(1.5)],
+            scatter_ms: Some(0.1),
+            shadows_ms: peer.map_or(Some(0.1), |_| None),
+            march_ms: Some(march),
+            flip: [Some(0.01), Some(flip)],
+        }
+    }
+
+    #[test]
+    fn the_seeds_way_is_compared_at_equal_flip_or_at_its_best() {
+        // relief: layer 0.5 ms at FLIP 0.02; the seed's way reaches it at 100 steps.
+        let mut rows = vec![
+            row("marching", None, 0.3, 0.02),
+            row("seed 50", Some(50), 2.0, 0.03),
+            row("seed 100", Some(100), 4.9, 0.019),
+            row("seed 200", Some(200), 9.9, 0.019),
+        ];
+        assert_eq!(equal_flip(&rows, "v"), Some((100, 5.0, 0.5)));
+        let line = &summary(&rows)[0];
+        assert!(line.contains("reaches its FLIP at 100 steps"), "{line}");
+        assert!(line.contains("shadows 0.10 ms"), "{line}");
+        // relief more accurate than every budget: its best, the fewest steps that give it.
+        rows[0].flip[1] = Some(0.015);
+        assert_eq!(equal_flip(&rows, "v"), None);
+        let (steps, flip, seed, relief) = best_peer(&rows, "v").unwrap();
+        assert_eq!((steps, flip), (100, 0.019));
+        assert!((seed - 5.0).abs() < 1e-9 && (relief - 0.5).abs() < 1e-9);
+        let line = &summary(&rows)[0];
+        assert!(
+            line.contains("never reaches its FLIP: at best 0.0190 (100 steps"),
+            "{line}"
+        );
+    }
 }
