@@ -48,6 +48,20 @@ impl Candidate {
         raster: Raster::Hardware,
     };
 
+    /// [`crate::MethodConfig::MARCHING`]: what `auto` draws, unmeasured, when props are on
+    /// ([`Candidate::for_props`]).
+    pub const MARCHING: Candidate = Candidate {
+        method: crate::MethodConfig::MARCHING.method,
+        samples: crate::MethodConfig::MARCHING.samples,
+        raster: crate::MethodConfig::MARCHING.raster,
+    };
+
+    /// What `auto` draws without measuring: with props on, [`Candidate::MARCHING`], the one
+    /// method that draws their shadows on the ground; else `None` (measure the candidates).
+    pub fn for_props(props: bool) -> Option<Candidate> {
+        props.then_some(Candidate::MARCHING)
+    }
+
     /// `method` at `samples` a pixel, rasterised by the GPU's rasteriser.
     pub const fn new(method: Method, samples: u32) -> Candidate {
         Candidate {
@@ -259,6 +273,19 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn auto_draws_the_marching_method_with_props() {
+        assert_eq!(Candidate::for_props(false), None);
+        let c = Candidate::for_props(true).unwrap();
+        assert_eq!(c.config(), crate::MethodConfig::MARCHING);
+        assert!(c.config().marches_props());
+        assert!(!Candidate::MESH.config().marches_props());
+        assert_eq!(
+            c.to_string(),
+            "visibility at 1 sample a pixel rasterised in compute"
+        );
+    }
 
     const V4: Candidate = Candidate::new(Method::Visibility, 4);
     const V1: Candidate = Candidate::new(Method::Visibility, 1);

@@ -309,6 +309,20 @@ impl MethodConfig {
     /// The forward-shaded mesh: what a renderer draws until told otherwise.
     pub const MESH: Self = Self::new(Method::Mesh);
 
+    /// The marching method: the visibility method at one sample a pixel rasterised in compute,
+    /// the one that marches the props between its raster and its shading, so their shadows and
+    /// their occlusion of the sky fall on the terrain and the grass (the others draw them
+    /// through the overlay, without). What `auto` draws when props are on.
+    pub const MARCHING: Self = Self::new(Method::Visibility)
+        .with_samples(1)
+        .with_raster(Raster::Compute);
+
+    /// Whether it marches the props with their shadows on the ground ([`MethodConfig::MARCHING`]
+    /// at any samples the compute raster takes).
+    pub fn marches_props(&self) -> bool {
+        self.method == Method::Visibility && self.raster == Raster::Compute
+    }
+
     /// `method` at 4 samples a pixel, rasterised by the GPU's rasteriser.
     pub const fn new(method: Method) -> Self {
         Self {

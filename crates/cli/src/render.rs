@@ -364,15 +364,10 @@ pub(super) fn knob_warning(s: &relief::WorldStats, knob: f64, size: (u32, u32)) 
 /// the other mesh-based methods draw them over the terrain (the props' overlay), the reference
 /// marches them at its samples; the seed's ray marches are refused in one line.
 fn props_method(params: &WorldParams, method: Drawn) -> Result<Drawn> {
-    use relief::{choice::Candidate, Method, Raster};
-    let marching = Candidate {
-        method: Method::Visibility,
-        samples: 1,
-        raster: Raster::Compute,
-    };
-    if !params.props.on {
+    use relief::{choice::Candidate, Method};
+    let Some(marching) = Candidate::for_props(params.props.on) else {
         return Ok(method);
-    }
+    };
     match method {
         Drawn::Auto => Ok(Drawn::Pinned(marching)),
         Drawn::Pinned(c) if c.method.is_mesh() || c.method == Method::Reference => Ok(method),

@@ -547,3 +547,49 @@ fn the_window_chooses_its_method_by_measurement_with_method_auto() {
         assert!(says, "{chosen}: {l}");
     }
 }
+
+/// With props on, `relief --method auto` draws the marching method unmeasured (as `relief
+/// render` does): the one that marches the props with their shadows on the ground. The mesh,
+/// the window's first method, draws them without, and says so.
+#[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
+fn props_in_the_window_are_drawn_with_their_shadows_or_said_to_lack_them() {
+    let base = [
+        "--world",
+        "endless",
+        "--props",
+        "--no-grass",
+        "--pixel-error",
+        "16",
+        "--octaves",
+        "6",
+        "--timings",
+        "--exit-after",
+        "60",
+    ];
+    let marched = "awk '/^timings.*march /{n++} END{exit !(n >= 2)}' \"$OUT\"";
+    let args: Vec<&str> = base.iter().copied().chain(["--method", "auto"]).collect();
+    let (code, stdout, err) = window_with_keys(&args, "", marched);
+    assert_eq!(code, 0, "{err}");
+    let marching = relief::choice::Candidate::MARCHING;
+    assert!(
+        err.contains(&format!("props are on: drawing them with {marching}")),
+        "{err}"
+    );
+    assert!(!err.contains("measuring"), "{err}");
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("timings") && l.contains("march ") && l.contains("raster ")),
+        "{stdout}"
+    );
+    // The mesh: the overlay's march, and a notice naming the method that draws the shadows.
+    let (code, stdout, err) = window_with_keys(&base, "", marched);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("the mesh draws them over the terrain without their shadows on the ground"),
+        "{err}"
+    );
+    assert!(err.contains(&marching.to_string()), "{err}");
+    assert!(stdout.lines().any(|l| l.contains("march ")), "{stdout}");
+}

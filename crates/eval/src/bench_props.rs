@@ -19,7 +19,7 @@ use relief::error::{Error, Result};
 use relief::gpu::headless::{render_samples, render_world_rays, Gpu, Offscreen, RayImage};
 use relief::gpu::timing::{GpuTimer, Slot};
 use relief::world::WorldParams;
-use relief::{Method, MethodConfig, Raster, World, WorldView};
+use relief::{Method, MethodConfig, World, WorldView};
 
 /// The seed's way's step budgets measured on the named views (on the random ones, the first
 /// and the last): the fewest whose FLIP is relief's is the seed's way at equal FLIP.
@@ -59,9 +59,7 @@ impl PropsRow {
 
 /// The marching method: the visibility method rasterised in compute.
 pub fn marching() -> MethodConfig {
-    MethodConfig::new(Method::Visibility)
-        .with_samples(1)
-        .with_raster(Raster::Compute)
+    MethodConfig::MARCHING
 }
 
 /// The props' named views of `params`' landscape at `size` (see the module docs).
