@@ -576,3 +576,27 @@ fn props_grass(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgr
         }
     }
 }
+
+// The reference's blades (grass_reference.wgsl, the same four vectors a blade; its lighting
+// the third's y, the sun's share, and z, the sky's): a blade whose root is inside a prop is
+// flattened as `props_grass` does; every other one takes the props' shadow at its middle into
+// its sun's share and their occlusion of the sky at its root into its sky's (the reference
+// lights a blade whole).
+@compute @workgroup_size(64)
+fn props_grass_reference(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let drawn = grass_counts[3];
+    for (var i = id.x; i < drawn; i += groups.x * 64u) {
+        let root = grass_blades[4u * i].xyz;
+        var b = grass_blades[4u * i + 1u];
+        if inside_props(root + vec3<f32>(0.0, 0.01, 0.0)) {
+            b.x = 0.0;
+            b.w = 0.0;
+            grass_blades[4u * i + 1u] = b;
+        } else {
+            var lit = grass_blades[4u * i + 2u];
+            lit.y *= props_shadow(root + vec3<f32>(0.0, 0.5 * b.x, 0.0));
+            lit.z *= ground_ao(root);
+            grass_blades[4u * i + 2u] = lit;
+        }
+    }
+}

@@ -2,7 +2,9 @@
 //! scatter makes (the same cells, the same hash), every one of them to [`REACH`] times the draw
 //! distance at its full height in all four segments (no level of detail, no thinning, no
 //! widening), rooted on the continuous surface the reference's rays meet and lit by that
-//! surface's horizon and valley (`wgsl/grass_reference.wgsl`); drawn as a layer over the cast at
+//! surface's horizon and valley (`wgsl/grass_reference.wgsl`), and with props by the props too
+//! (cut inside them, their shadow and occlusion: `props_grass_reference` in
+//! `wgsl/props_march.wgsl`); drawn as a layer over the cast at
 //! its samples, depth-tested against the surface it found ([`super::ray_layers`]), by the
 //! rasteriser's draw of the frame's blades (`wgsl/grass_draw.wgsl`). The ground under them is
 //! bare earth to that distance (`grass_ground` in `wgsl/shade.wgsl`).
@@ -42,6 +44,8 @@ struct ReferenceFrame {
 pub(crate) struct GrassReference {
     blades: wgpu::Buffer,
     count: u32,
+    /// The counts as the props' pass over the blades reads them (the fourth: `count`).
+    counts: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
     module: wgpu::ShaderModule,
     pipelines: Vec<(Targets, wgpu::RenderPipeline)>,
@@ -189,9 +193,16 @@ impl GrassReference {
             ));
         }
         let (blades, stored) = run(count)?;
+        let count = stored.min(count);
+        let counts = init(
+            "relief:grass-reference:props-counts",
+            bytemuck::cast_slice(&[0, 0, 0, count, 0, 0, 0, 0u32]),
+            storage,
+        );
         Ok(Self {
             blades,
-            count: stored.min(count),
+            count,
+            counts,
             layout: super::grass::draw_layout(device),
             module: super::grass::draw_module(device),
             pipelines: Vec::new(),
@@ -202,6 +213,12 @@ impl GrassReference {
     /// The blades it draws.
     pub fn count(&self) -> u32 {
         self.count
+    }
+
+    /// Its blades and their counts, for the props' pass over them
+    /// ([`crate::World::encode_reference_grass`]).
+    pub fn blades(&self) -> (&wgpu::Buffer, &wgpu::Buffer) {
+        (&self.blades, &self.counts)
     }
 }
 

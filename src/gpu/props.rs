@@ -190,6 +190,12 @@ pub(crate) struct PropsPass {
         wgpu::BindGroupLayout,
         wgpu::BindGroup,
     ),
+    /// The march's module and the scatter's layout, which the reference's treatment of its
+    /// blades is made of when first asked ([`PropsPass::encode_grass_reference`]), and it.
+    #[cfg(not(target_arch = "wasm32"))]
+    reference_parts: (wgpu::ShaderModule, wgpu::BindGroupLayout),
+    #[cfg(not(target_arch = "wasm32"))]
+    reference_grass: std::sync::OnceLock<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
 }
 
 fn buffer_of(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -400,6 +406,8 @@ impl PropsPass {
                 immediate_size: 0,
             });
         let grass = pipeline(&march_module, &grass_pipeline_layout, "props_grass");
+        #[cfg(not(target_arch = "wasm32"))]
+        let reference_parts = (march_module.clone(), scatter_layout.clone());
         Ok(Self {
             scene: scene.clone(),
             props,
@@ -416,6 +424,10 @@ impl PropsPass {
             quad_layouts,
             quads: std::sync::Mutex::new(None),
             grass: (grass, grass_layout, empty_group),
+            #[cfg(not(target_arch = "wasm32"))]
+            reference_parts,
+            #[cfg(not(target_arch = "wasm32"))]
+            reference_grass: std::sync::OnceLock::new(),
         })
     }
 
@@ -655,6 +667,70 @@ impl PropsPass {
         pass.dispatch_workgroups(size.0.div_ceil(g), size.1.div_ceil(g), 1);
     }
 
+    /// Records the props' part in the reference's blades (`wgsl/grass_reference.wgsl`, four
+    /// vectors a blade, `counts`' fourth their number), after the props' scatter: a blade whose
+    /// root is inside a prop is flattened, as [`PropsPass::encode_grass`] does; every other one
+    /// takes the props' shadow at its middle into its sun's share and their occlusion at its
+    /// root into its sky's, as the reference lights a blade whole. `render`: the cast's render
+    /// uniforms (the sun).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(crate) fn encode_grass_reference(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        render: &wgpu::Buffer,
+        (blades, counts): (&wgpu::Buffer, &wgpu::Buffer),
+    ) {
+        let (pipeline, sun_layout) = self.reference_grass.get_or_init(|| {
+            let (module, scatter_layout) = &self.reference_parts;
+            let sun_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("relief:props:grass-reference-sun"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }],
+            });
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("relief:props:grass-reference-layout"),
+                bind_group_layouts: &[Some(&sun_layout), Some(scatter_layout), Some(&self.grass.1)],
+                immediate_size: 0,
+            });
+            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("relief:props:props_grass_reference"),
+                layout: Some(&layout),
+                module,
+                entry_point: Some("props_grass_reference"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            (pipeline, sun_layout)
+        });
+        let sun = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:props:grass-reference-sun"),
+            layout: sun_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: render.as_entire_binding(),
+            }],
+        });
+        let group = self.grass_group(device, (blades, counts));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:props:grass-reference-pass"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &sun, &[]);
+        pass.set_bind_group(1, &self.scatter_group, &[]);
+        pass.set_bind_group(2, &group, &[]);
+        pass.dispatch_workgroups(GRASS_GROUPS, 1, 1);
+    }
+
     /// Records the cut of the grass inside the props: each of the grass's `blades` (its
     /// scatter already recorded, with its `counts`, and the props' scatter) whose root is
     /// inside a prop is flattened to nothing.
@@ -664,10 +740,28 @@ impl PropsPass {
         encoder: &mut wgpu::CommandEncoder,
         (blades, counts): (&wgpu::Buffer, &wgpu::Buffer),
     ) {
-        let (pipeline, layout, empty) = &self.grass;
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let (pipeline, _, empty) = &self.grass;
+        let group = self.grass_group(device, (blades, counts));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("relief:props:grass-pass"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, empty, &[]);
+        pass.set_bind_group(1, &self.scatter_group, &[]);
+        pass.set_bind_group(2, &group, &[]);
+        pass.dispatch_workgroups(GRASS_GROUPS, 1, 1);
+    }
+
+    /// The blades and their counts bound for the grass's cut.
+    fn grass_group(
+        &self,
+        device: &wgpu::Device,
+        (blades, counts): (&wgpu::Buffer, &wgpu::Buffer),
+    ) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:props:grass-group"),
-            layout,
+            layout: &self.grass.1,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -678,16 +772,7 @@ impl PropsPass {
                     resource: counts.as_entire_binding(),
                 },
             ],
-        });
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("relief:props:grass-pass"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, empty, &[]);
-        pass.set_bind_group(1, &self.scatter_group, &[]);
-        pass.set_bind_group(2, &group, &[]);
-        pass.dispatch_workgroups(GRASS_GROUPS, 1, 1);
+        })
     }
 
     /// Cells on a side of its grid around the eye's cell (the eye's is number side / 2).

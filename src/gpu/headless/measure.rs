@@ -362,6 +362,12 @@ fn world_rays(
     } else {
         None
     };
+    // The reference's blades in the props' pass (cut inside them, their shadows on the rest):
+    // once, at the first cast, after its scatter of the props.
+    let mut blades_for_props = grass.as_ref().filter(|_| props.is_some()).map(|g| {
+        let (b, c) = g.blades();
+        (b.clone(), c.clone())
+    });
     let ss = supersample_for(gpu, view.size, supersample);
     let mut sum: Vec<f64> = Vec::new();
     let mut out: Option<RayImage> = None;
@@ -397,7 +403,15 @@ fn world_rays(
                         caster,
                         layer_matrix,
                         |encoder, m| {
-                            world.encode_reference_props((&gpu.device, &gpu.queue, encoder), &v, m)
+                            world.encode_reference_props((&gpu.device, &gpu.queue, encoder), &v, m);
+                            if let Some((b, c)) = blades_for_props.take() {
+                                world.encode_reference_grass(
+                                    &gpu.device,
+                                    encoder,
+                                    m.render,
+                                    (&b, &c),
+                                );
+                            }
                         },
                     );
                 }

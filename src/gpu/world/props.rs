@@ -203,6 +203,23 @@ impl World {
         );
     }
 
+    /// Records the props' part in the reference's blades after [`World::encode_reference_props`]
+    /// (see [`PropsPass::encode_grass_reference`]): the cut inside the props, their shadow and
+    /// occlusion on the rest, by the sun of the cast's `render` uniforms. Nothing where props
+    /// are off.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(crate) fn encode_reference_grass(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        render: &wgpu::Buffer,
+        blades: (&wgpu::Buffer, &wgpu::Buffer),
+    ) {
+        if let Some(props) = &self.props {
+            props.encode_grass_reference(device, encoder, render, blades);
+        }
+    }
+
     /// The water's normalised level, where there is water: what the props' scatter keeps
     /// props out of.
     fn water_height(&self) -> Option<f32> {
