@@ -5,11 +5,10 @@
 //! march of each pixel's ray through them (`wgsl/props_march.wgsl`), which the visibility
 //! method records between its raster and its shading (`PropsPass::encode_march`).
 
-use super::props_wgsl::op_code;
+use super::props_wgsl::gpu_tapes;
 use crate::error::Result;
-use crate::props::place::cumulative;
 use crate::props::Props;
-use crate::props::{Scene, Tape};
+use crate::props::Scene;
 
 /// Mirrors `PropsFrame` in `wgsl/props.wgsl`.
 #[repr(C)]
@@ -34,29 +33,6 @@ pub(crate) struct PropsFrame {
     pub(crate) flags: u32,
     pub(crate) peer_steps: u32,
     _pad: [u32; 2],
-}
-
-/// Mirrors `PropKind` in `wgsl/props.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub(crate) struct PropKind {
-    pub(crate) first: u32,
-    pub(crate) count: u32,
-    pub(crate) lipschitz: f32,
-    pub(crate) weight: f32,
-    pub(crate) lo: [f32; 4],
-    pub(crate) hi: [f32; 4],
-    pub(crate) scale: [f32; 4],
-    pub(crate) sphere: [f32; 4],
-}
-
-/// Mirrors `PropOp` in `wgsl/props.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub(crate) struct PropOp {
-    pub(crate) head: [f32; 4],
-    pub(crate) params: [f32; 4],
-    pub(crate) rows: [[f32; 4]; 3],
 }
 
 /// The most props put at given places a scene holds.
@@ -110,50 +86,6 @@ pub(crate) enum March {
 }
 /// Where the march leaves each pixel's prop (`wgsl/props_march.wgsl`).
 pub(crate) const HIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-
-/// The kinds' tapes as the GPU reads them: the instructions and the kinds.
-fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
-    let weights = cumulative(&scene.kinds);
-    let mut code = Vec::new();
-    let mut kinds = Vec::new();
-    for ((kind, tape), weight) in scene.kinds.iter().zip(tapes).zip(weights) {
-        let first = code.len() as u32;
-        for ins in &tape.code {
-            let (op, params) = op_code(&ins.op);
-            code.push(PropOp {
-                head: [op as f32, ins.material as f32, ins.scale as f32, 0.0],
-                params,
-                rows: ins.to_local.map(|r| r.map(|v| v as f32)),
-            });
-        }
-        let [lo, hi] = tape.bounds.map(|b| b.map(|v| v as f32));
-        kinds.push(PropKind {
-            first,
-            count: tape.code.len() as u32,
-            lipschitz: tape.lipschitz as f32,
-            weight,
-            lo: [lo[0], lo[1], lo[2], tape.radius() as f32],
-            hi: [hi[0], hi[1], hi[2], f32::from(u8::from(kind.on_rock))],
-            scale: [
-                kind.scale.0,
-                kind.scale.1,
-                tape.roughness() as f32,
-                tape.lipschitz_undisplaced as f32,
-            ],
-            sphere: {
-                let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
-                let r = [0, 1, 2].map(|a| 0.5 * (hi[a] - lo[a]));
-                [
-                    c[0],
-                    c[1],
-                    c[2],
-                    (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt(),
-                ]
-            },
-        });
-    }
-    (code, kinds)
-}
 
 /// Cells on a side of the grid around the eye's cell that the draw distance reaches (even: the
 /// eye's cell is number side / 2).

@@ -2,10 +2,78 @@
 //! instruction's transform, shape and parameters written as constants, the stack as local
 //! values), and `kind_distance` choosing among them, in place of the interpreter of
 //! `wgsl/props.wgsl` that reads the tapes from a buffer. Same arithmetic, same order: the two
-//! agree to a rounding (tested).
+//! agree to a rounding (tested). And the tapes and kinds in the buffers that interpreter reads.
 
-use crate::props::{Combine, Op, Shape, Tape};
+use crate::props::place::cumulative;
+use crate::props::{Combine, Op, Scene, Shape, Tape};
 use std::fmt::Write as _;
+
+/// Mirrors `PropKind` in `wgsl/props.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct PropKind {
+    pub(crate) first: u32,
+    pub(crate) count: u32,
+    pub(crate) lipschitz: f32,
+    pub(crate) weight: f32,
+    pub(crate) lo: [f32; 4],
+    pub(crate) hi: [f32; 4],
+    pub(crate) scale: [f32; 4],
+    pub(crate) sphere: [f32; 4],
+}
+
+/// Mirrors `PropOp` in `wgsl/props.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct PropOp {
+    pub(crate) head: [f32; 4],
+    pub(crate) params: [f32; 4],
+    pub(crate) rows: [[f32; 4]; 3],
+}
+
+/// The kinds' tapes as the GPU reads them: the instructions and the kinds.
+pub(crate) fn gpu_tapes(scene: &Scene, tapes: &[Tape]) -> (Vec<PropOp>, Vec<PropKind>) {
+    let weights = cumulative(&scene.kinds);
+    let mut code = Vec::new();
+    let mut kinds = Vec::new();
+    for ((kind, tape), weight) in scene.kinds.iter().zip(tapes).zip(weights) {
+        let first = code.len() as u32;
+        for ins in &tape.code {
+            let (op, params) = op_code(&ins.op);
+            code.push(PropOp {
+                head: [op as f32, ins.material as f32, ins.scale as f32, 0.0],
+                params,
+                rows: ins.to_local.map(|r| r.map(|v| v as f32)),
+            });
+        }
+        let [lo, hi] = tape.bounds.map(|b| b.map(|v| v as f32));
+        kinds.push(PropKind {
+            first,
+            count: tape.code.len() as u32,
+            lipschitz: tape.lipschitz as f32,
+            weight,
+            lo: [lo[0], lo[1], lo[2], tape.radius() as f32],
+            hi: [hi[0], hi[1], hi[2], f32::from(u8::from(kind.on_rock))],
+            scale: [
+                kind.scale.0,
+                kind.scale.1,
+                tape.roughness() as f32,
+                tape.lipschitz_undisplaced as f32,
+            ],
+            sphere: {
+                let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
+                let r = [0, 1, 2].map(|a| 0.5 * (hi[a] - lo[a]));
+                [
+                    c[0],
+                    c[1],
+                    c[2],
+                    (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt(),
+                ]
+            },
+        });
+    }
+    (code, kinds)
+}
 
 /// The instruction's code in `wgsl/props.wgsl` and its parameters.
 pub(crate) fn op_code(op: &Op) -> (u32, [f32; 4]) {

@@ -466,7 +466,8 @@ fn grass_uniforms_match_wgsl() {
 
 mod props_tests {
     use super::{layout, offset, parse};
-    use crate::gpu::props::{PropKind, PropOp, PropsFrame};
+    use crate::gpu::props::PropsFrame;
+    use crate::gpu::props_wgsl::{PropKind, PropOp};
     use crate::props::Props;
     use std::mem::{offset_of, size_of};
 
