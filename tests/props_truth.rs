@@ -47,23 +47,7 @@ fn the_reference_draws_the_props_the_methods_draw() {
     let (w_px, h_px) = (SIZE.0 as usize, SIZE.1 as usize);
     // What the marching method marks (a prop, its shadow or its occlusion), grown by a pixel:
     // the reference's 3x3 samples see a prop's edge a sample sooner.
-    let mark = |i: usize| {
-        let h = hits[i];
-        f32::from_bits(h[0]) < 1.0 || f32::from_bits(h[3]) < 0.99 || f32::from_bits(h[1]) < 0.99
-    };
-    let near_mark = |i: usize| {
-        let (x, y) = ((i % w_px) as i64, (i / w_px) as i64);
-        (-1..=1).any(|dy| {
-            (-1..=1).any(|dx| {
-                let (nx, ny) = (x + dx, y + dy);
-                nx >= 0
-                    && ny >= 0
-                    && (nx as usize) < w_px
-                    && (ny as usize) < h_px
-                    && mark(ny as usize * w_px + nx as usize)
-            })
-        })
-    };
+    let near_mark = |i: usize| near_props_mark(&hits, (w_px, h_px), i, 1);
     let (mut props, mut drawn, mut changed, mut outside, mut sunk) = (0, 0, 0, 0, 0);
     let (mut err_with, mut err_bare, mut n) = (0u64, 0u64, 0u64);
     for i in 0..w_px * h_px {
@@ -83,7 +67,7 @@ fn the_reference_draws_the_props_the_methods_draw() {
             props += 1;
             drawn += usize::from(differs);
         }
-        if mark(i) {
+        if near_props_mark(&hits, (w_px, h_px), i, 0) {
             let diff = |img: &[u8]| -> u64 {
                 px(img)
                     .iter()
@@ -301,21 +285,7 @@ fn the_references_grass_takes_the_props_shadows() {
         f64::from(img[4 * i]) + f64::from(img[4 * i + 1]) + f64::from(img[4 * i + 2])
     };
     let (wide, high) = (size.0 as usize, size.1 as usize);
-    let mark = |i: usize| {
-        let h = hits[i];
-        f32::from_bits(h[0]) < 1.0 || f32::from_bits(h[3]) < 0.99 || f32::from_bits(h[1]) < 0.99
-    };
-    let near_mark = |i: usize| {
-        let (x, y) = ((i % wide) as i64, (i / wide) as i64);
-        (-2..=2).any(|dy| {
-            (-2..=2).any(|dx| {
-                let (nx, ny) = (x + dx, y + dy);
-                (0..wide as i64).contains(&nx)
-                    && (0..high as i64).contains(&ny)
-                    && mark(ny as usize * wide + nx as usize)
-            })
-        })
-    };
+    let near_mark = |i: usize| near_props_mark(&hits, (wide, high), i, 2);
     let (mut dark, mut bright, mut shadowed) = (0.0, 0.0, 0);
     let (mut clear, mut agree) = (0, 0);
     for i in 0..wide * high {

@@ -76,3 +76,20 @@ pub fn eye_relative(inverse: &glam::DMat4, i: usize, depth: f32) -> DVec3 {
 pub fn eye_distance(inverse: &glam::DMat4, i: usize, depth: f32) -> f64 {
     eye_relative(inverse, i, depth).length()
 }
+
+/// Whether pixel `i` of an image of `size` lies within `grow` pixels of one the marching
+/// method's props' hits (`World::props_hits`) mark: a prop, its shadow or its occlusion.
+pub fn near_props_mark(hits: &[[u32; 4]], size: (usize, usize), i: usize, grow: i64) -> bool {
+    let mark = |h: [u32; 4]| {
+        f32::from_bits(h[0]) < 1.0 || f32::from_bits(h[3]) < 0.99 || f32::from_bits(h[1]) < 0.99
+    };
+    let (x, y) = ((i % size.0) as i64, (i / size.0) as i64);
+    (-grow..=grow).any(|dy| {
+        (-grow..=grow).any(|dx| {
+            let (nx, ny) = (x + dx, y + dy);
+            (0..size.0 as i64).contains(&nx)
+                && (0..size.1 as i64).contains(&ny)
+                && mark(hits[ny as usize * size.0 + nx as usize])
+        })
+    })
+}
