@@ -1,4 +1,4 @@
-// import: shade, world_rays, march, vis_common
+// import: shade, world_rays, march, vis_common, props_map
 // The hybrid method (src/gpu/visibility.rs, the endless world): the clipmap mesh, each level's
 // vertices raised by a bound on how far the continuous surface rises above that level's mesh
 // (clipmap::level_raise), is rasterised by the visibility method's raster pass. Where a
@@ -115,7 +115,7 @@ fn hybrid_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, horizon: f32, va
         let n = normalize(vec3<f32>(-g.y * ray.peak, 1.0, -g.z * ray.peak));
         let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR, fade).x;
         let rel = t * dir;
-        let color = shade(lin, rel, n, g.x, tint, occlusion(lin, g.x, horizon, valley));
+        let color = shade(lin, rel, n, g.x, tint, occlusion(lin, g.x, horizon, valley) * props_map_at(lin, rel));
         out = vec4<f32>(color, min(depth_of(rel), 0.99999994));
     }
     return out;

@@ -1,4 +1,4 @@
-// import: world, vis_common, props, props_grid, props_look
+// import: world, ground, vis_common, props, props_grid, props_look
 // The props' march (src/gpu/visibility/props.rs): a thread a pixel, after the raster and
 // before the shading. Its ray walks the grid of placed props (props_grid.wgsl) from the eye up
 // to the depth the raster kept (or the props' draw distance): block by block and dual cell by
@@ -431,6 +431,42 @@ fn props_shadows(@builtin(global_invocation_id) id: vec3<u32>) {
         best.y = 3.0e38;
     }
     textureStore(quad_out, id.xy, vec4<f32>(best, 0.0));
+}
+
+// The props' shade map (props_map.wgsl reads it, src/gpu/props_map.rs bakes it): a thread a
+// texel of a rectangle of one level, the props' shadow and occlusion on the drawn surface
+// under its centre (ground.wgsl), marched as a pixel's are. Its own group 2, and a group 0 of
+// the world's that binds no map (the map is written here).
+struct MapRect {
+    // The camera-relative x and z of the rectangle's first texel's corner, metres.
+    origin: vec2<f32>,
+    // That texel's column and row in the texture.
+    first: vec2<u32>,
+    size: vec2<u32>,
+    level: u32,
+    texel: f32,
+}
+
+@group(2) @binding(0) var props_map_out: texture_storage_2d_array<rgba8unorm, write>;
+@group(2) @binding(1) var<uniform> map_rect: MapRect;
+
+// How far over the drawn surface a texel's shadow ray leaves, metres.
+const MAP_LIFT: f32 = 0.05;
+
+@compute @workgroup_size(8, 8)
+fn props_map_bake(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= map_rect.size.x || id.y >= map_rect.size.y {
+        return;
+    }
+    let xz = map_rect.origin + (vec2<f32>(id.xy) + 0.5) * map_rect.texel;
+    let p = ground_at(xz).rel;
+    var shade = vec2<f32>(1.0);
+    if length(p) < pf.distance + pf.cell {
+        shade = vec2<f32>(props_shadow(p + vec3<f32>(0.0, MAP_LIFT, 0.0)), ground_ao(p));
+    }
+    let side = u32(textureDimensions(props_map_out).x);
+    let t = (map_rect.first + id.xy) % side;
+    textureStore(props_map_out, t, map_rect.level, vec4<f32>(shade, 0.0, 1.0));
 }
 
 @compute @workgroup_size(8, 8)

@@ -68,9 +68,13 @@ struct RenderUniforms {
     // Where the frame draws grass, the blades a ray crosses in its field per unit of the
     // cotangent of its elevation (src/grass.rs: field_cover): `grass_ground`.
     grass_cover: f32,
-    _pad_end0: f32,
+    // Where the terrain's shading reads the props' shade map (props_map.wgsl), its levels
+    // (0: it reads none); per level, the camera-relative xz of its first texel's corner and that
+    // texel's place in the texture.
+    props_map_levels: u32,
     _pad_end1: f32,
     _pad_end2: f32,
+    props_map: array<vec4<f32>, 3>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.

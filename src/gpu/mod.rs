@@ -14,6 +14,7 @@ pub mod layer;
 mod light_queue;
 pub(crate) mod normals;
 pub mod props;
+pub(crate) mod props_map;
 pub(crate) mod props_overlay;
 #[cfg(not(target_arch = "wasm32"))]
 pub(crate) mod props_reference;

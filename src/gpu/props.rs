@@ -107,7 +107,7 @@ pub(crate) struct PropsPass {
     side: u32,
     blocks: u32,
     scatter: [wgpu::ComputePipeline; 4],
-    scatter_group: wgpu::BindGroup,
+    pub(super) scatter_group: wgpu::BindGroup,
     march: wgpu::ComputePipeline,
     march_layouts: [wgpu::BindGroupLayout; 2],
     /// The props' shadow on the raster's surface, a 2x2 block of pixels a thread, and the
@@ -123,9 +123,10 @@ pub(crate) struct PropsPass {
         wgpu::BindGroup,
     ),
     /// The march's module and the scatter's layout, which the reference's treatment of its
-    /// blades is made of when first asked ([`PropsPass::encode_grass_reference`]), and it.
-    #[cfg(not(target_arch = "wasm32"))]
-    reference_parts: (wgpu::ShaderModule, wgpu::BindGroupLayout),
+    /// blades ([`PropsPass::encode_grass_reference`]) and the bake of the props' shade map
+    /// ([`super::props_map`]) are made of when first asked, and they.
+    pub(super) parts: (wgpu::ShaderModule, wgpu::BindGroupLayout),
+    pub(super) map_bake: std::sync::OnceLock<wgpu::ComputePipeline>,
     #[cfg(not(target_arch = "wasm32"))]
     reference_grass: std::sync::OnceLock<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
 }
@@ -338,8 +339,7 @@ impl PropsPass {
                 immediate_size: 0,
             });
         let grass = pipeline(&march_module, &grass_pipeline_layout, "props_grass");
-        #[cfg(not(target_arch = "wasm32"))]
-        let reference_parts = (march_module.clone(), scatter_layout.clone());
+        let parts = (march_module.clone(), scatter_layout.clone());
         Ok(Self {
             scene: scene.clone(),
             props,
@@ -356,8 +356,8 @@ impl PropsPass {
             quad_layouts,
             quads: std::sync::Mutex::new(None),
             grass: (grass, grass_layout, empty_group),
-            #[cfg(not(target_arch = "wasm32"))]
-            reference_parts,
+            parts,
+            map_bake: std::sync::OnceLock::new(),
             #[cfg(not(target_arch = "wasm32"))]
             reference_grass: std::sync::OnceLock::new(),
         })
@@ -614,7 +614,7 @@ impl PropsPass {
         (blades, counts): (&wgpu::Buffer, &wgpu::Buffer),
     ) {
         let (pipeline, sun_layout) = self.reference_grass.get_or_init(|| {
-            let (module, scatter_layout) = &self.reference_parts;
+            let (module, scatter_layout) = &self.parts;
             let sun_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:props:grass-reference-sun"),
                 entries: &[wgpu::BindGroupLayoutEntry {

@@ -90,8 +90,14 @@ pub struct RenderUniforms {
     /// cotangent of the ray's elevation above the ground ([`crate::grass::Grass::field_cover`]):
     /// how much of the ground the field hides, seen from the eye (`grass_ground`).
     pub grass_cover: f32,
+    /// Where the terrain's shading reads the props' shade map (`src/gpu/props_map.rs`), its
+    /// levels (0: it reads none).
+    pub props_map_levels: u32,
     /// Padding.
-    pub _pad: [f32; 3],
+    pub _pad: [f32; 2],
+    /// Per level of the props' shade map: the camera-relative x and z of its first texel's
+    /// corner, metres, and that texel's column and row in the texture.
+    pub props_map: [[f32; 4]; 3],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -146,7 +152,9 @@ impl RenderUniforms {
             sand_band: 0.0,
             palette: 0,
             grass_cover: 0.0,
-            _pad: [0.0; 3],
+            props_map_levels: 0,
+            _pad: [0.0; 2],
+            props_map: [[0.0; 4]; 3],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(

@@ -41,6 +41,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     props,
     props_grid,
     props_look,
+    props_map,
     props_march,
     props_overlay,
     props_reference,

@@ -126,6 +126,8 @@ pub(crate) struct WorldBindings<'a> {
     pub tile_terrain: &'a wgpu::TextureView,
     pub tile_normals: &'a wgpu::TextureView,
     pub tile_sampler: &'a wgpu::Sampler,
+    /// The props' shade map (`wgsl/props_map.wgsl`).
+    pub props_map: &'a wgpu::TextureView,
     /// The world's patch instances (the compute raster reads them).
     pub instances: &'a wgpu::Buffer,
 }
@@ -285,6 +287,7 @@ impl Visibility {
             super::storage_entry(11, SHADED_DEPTH_FORMAT),
             super::uniform_entry::<VisUniforms>(12, c),
             props::hit_entry(c),
+            super::props_map::PropsMap::entry(23),
         ];
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
@@ -620,6 +623,7 @@ impl Visibility {
             entry(11, TextureView(&shaded_depth)),
             entry(12, self.uniforms.as_entire_binding()),
             entry(22, TextureView(&prop_hit)),
+            entry(23, TextureView(world.props_map)),
         ];
         if let Some(rays) = &self.ray_uniforms {
             entries.push(entry(18, rays.as_entire_binding()));

@@ -15,15 +15,9 @@ impl World {
         if map.patch != self.map.patch {
             (self.indices, self.index_counts) = patch_indices(device, &map);
         }
-        self.bind_group = bind(
-            device,
-            &self.layout,
-            (&self.render_uniforms, &self.world_uniforms),
-            (&texture, &light.texture),
-            &self.tile_textures,
-        );
         self.light = light;
         self.texture = texture;
+        self.rebind(device);
         self.bake_target = target;
         self.map = map;
         self.map.morphing = morphing;

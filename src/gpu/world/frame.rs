@@ -166,6 +166,11 @@ impl World {
                     u.grass_distance = self.params.grass.distance;
                     u.grass_cover = self.params.grass.field_cover();
                 }
+                // The props' shade map, where the overlay draws the props (its bake follows).
+                if self.props_overlaid() {
+                    u.props_map_levels = crate::gpu::props_map::LEVELS as u32;
+                    u.props_map = crate::gpu::props_map::placement(eye);
+                }
                 u
             }
         };

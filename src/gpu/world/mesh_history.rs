@@ -439,7 +439,7 @@ impl World {
                 device,
                 &self.layout,
                 (render, &self.world_uniforms),
-                (&self.texture, &self.light.texture),
+                (&self.texture, &self.light.texture, self.props_map.view()),
                 &self.tile_textures,
             )
         });

@@ -85,6 +85,8 @@ pub struct World {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
+    /// The same without the props' shade map (its bake's: it writes the map).
+    bind_group_unmapped: wgpu::BindGroup,
     sky: super::sky::SkyPass,
     /// The mesh's and the sky's pipelines for the targets drawn into before, kept for a switch
     /// back (the window's methods draw with 4 samples or 1): at most [`KEPT_TARGETS`].
@@ -152,6 +154,9 @@ pub struct World {
     props_scene: crate::props::Scene,
     /// The props drawn over a frame whose method does not march them, where props are on.
     props_overlay: Option<crate::gpu::props_overlay::PropsOverlay>,
+    /// The props' shade map the overlay's methods shade the terrain with (a texel a level until
+    /// the overlay first draws).
+    props_map: crate::gpu::props_map::PropsMap,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -257,6 +262,7 @@ impl World {
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
+                    crate::gpu::props_map::PropsMap::entry(23),
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
@@ -265,11 +271,12 @@ impl World {
             let world_uniforms =
                 super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
             let tile_textures = TileTextures::new(device, &crate::gpu::Textures::new(device, 1));
+            let props_map = crate::gpu::props_map::PropsMap::new(device);
             let bind_group = bind(
                 device,
                 &layout,
                 (&render_uniforms, &world_uniforms),
-                (&texture, &light.texture),
+                (&texture, &light.texture, props_map.view()),
                 &tile_textures,
             );
             let (indices, index_counts) = patch_indices(device, &map);
@@ -302,6 +309,7 @@ impl World {
                 light_bake,
                 pipeline,
                 layout,
+                bind_group_unmapped: bind_group.clone(),
                 bind_group,
                 sky: super::sky::SkyPass::new(device, &targets, &render_uniforms),
                 kept: Vec::new(),
@@ -340,6 +348,7 @@ impl World {
                 props: None,
                 props_scene: crate::props::Scene::default(),
                 props_overlay: None,
+                props_map,
             }
         })
     }
@@ -630,18 +639,30 @@ impl World {
         if let Some(v) = &mut self.visibility {
             v.unbind();
         }
-        self.bind_group = bind(
-            device,
-            &self.layout,
-            (&self.render_uniforms, &self.world_uniforms),
-            (&self.texture, &self.light.texture),
-            &self.tile_textures,
-        );
+        self.rebind(device);
+    }
+
+    /// Binds the world's resources anew (new levels, tile textures or props' shade map): the
+    /// bind group everything draws with, and one without the props' map, which its bake
+    /// writes through.
+    fn rebind(&mut self, device: &wgpu::Device) {
+        let group = |map| {
+            bind(
+                device,
+                &self.layout,
+                (&self.render_uniforms, &self.world_uniforms),
+                (&self.texture, &self.light.texture, map),
+                &self.tile_textures,
+            )
+        };
+        self.bind_group = group(self.props_map.view());
+        self.bind_group_unmapped = group(self.props_map.empty_view());
     }
 
     fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         if params != self.params {
             self.history.reset("parameters");
+            self.props_map.forget();
         }
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =

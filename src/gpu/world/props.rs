@@ -27,6 +27,7 @@ impl World {
                 PropsPass::new(device, &self.layout, (&self.props_scene, props))
             })??;
             self.props = Some(pass);
+            self.props_map.forget();
         }
         Ok(())
     }
@@ -116,6 +117,7 @@ impl World {
     pub fn props_bytes(&self) -> u64 {
         self.props.as_ref().map_or(0, PropsPass::bytes)
             + self.props_overlay.as_ref().map_or(0, PropsOverlay::bytes)
+            + self.props.as_ref().map_or(0, |_| self.props_map.bytes())
     }
 
     /// Records the frame's scatter of props where the method draws them, through `view` (the
@@ -134,6 +136,13 @@ impl World {
         }
         if !overlaid {
             self.props_overlay = None;
+        } else if self.props_map.allocate(device) {
+            // The shade map is bound from now on, in the world's groups and the visibility
+            // method's.
+            if let Some(vis) = &mut self.visibility {
+                vis.unbind();
+            }
+            self.rebind(device);
         }
         let Some(props) = self.props.as_ref().filter(|_| marched || overlaid) else {
             return;
@@ -159,6 +168,18 @@ impl World {
             props.encode_grass(device, encoder, (blades.blades, blades.counts));
         }
         if overlaid {
+            let frame = (
+                view.eye,
+                self.params.sky.sun_direction().to_array(),
+                self.heights_pending() == 0,
+            );
+            self.props_map.encode(
+                (device, queue, encoder),
+                props,
+                (&self.bind_group_unmapped, &self.layout),
+                frame,
+                timer,
+            );
             let overlay = self
                 .props_overlay
                 .get_or_insert_with(|| PropsOverlay::new(device, &self.targets));

@@ -142,7 +142,7 @@ pub(super) fn bind(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     (render, world): (&wgpu::Buffer, &wgpu::Buffer),
-    (texture, light): (&wgpu::Texture, &wgpu::Texture),
+    (texture, light, props_map): (&wgpu::Texture, &wgpu::Texture, &wgpu::TextureView),
     tile: &TileTextures,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -176,6 +176,10 @@ pub(super) fn bind(
             wgpu::BindGroupEntry {
                 binding: 6,
                 resource: wgpu::BindingResource::Sampler(&tile.sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 23,
+                resource: wgpu::BindingResource::TextureView(props_map),
             },
         ],
     })
