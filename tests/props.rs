@@ -211,15 +211,16 @@ fn props_change_the_frame_only_where_they_stand_and_their_shadows_fall() {
 }
 
 /// The forward mesh, the hybrid and the visibility method rasterised by the GPU draw the props
-/// through the overlay: the props the marching method shows, at its depths, changing nothing
-/// but the pixels their march marks.
+/// through the overlay: the props the marching method shows, at its depths, and their shadows
+/// on the ground from the props' shade map where it marches them, changing nothing but the
+/// pixels its march marks (grown by two pixels: the map's texels are a quarter metre).
 #[test]
 fn every_mesh_based_method_draws_the_props() {
     let gpu = common::gpu();
     let on = params(true);
     let v = view(&on);
     let mut w = world(&gpu, on);
-    draw(&gpu, &mut w, &v);
+    let marched_image = draw(&gpu, &mut w, &v);
     assert!(!w.props_overlaid());
     let marched = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
     let inverse = w.relative_matrix().as_dmat4().inverse();
@@ -237,13 +238,30 @@ fn every_mesh_based_method_draws_the_props() {
         assert!(w.draws_props() && w.props_overlaid(), "{config:?}");
         let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
         let (mut shown, mut same, mut seen, mut outside) = (0, 0, 0, 0);
+        let (mut shadowed, mut dark, mut lit, mut march_dark) = (0, 0.0, 0.0, 0.0);
+        let size = (SIZE.0 as usize, SIZE.1 as usize);
+        let brightness = |img: &[u8], i: usize| -> f64 {
+            img[4 * i..4 * i + 3].iter().map(|&c| f64::from(c)).sum()
+        };
         for (i, (h, m)) in hits.iter().zip(&marched).enumerate() {
             let differs = bare[4 * i..4 * i + 4]
                 .iter()
                 .zip(&image[4 * i..4 * i + 4])
                 .any(|(a, b)| a.abs_diff(*b) > 1);
             let (d, dm) = (f32::from_bits(h[0]), f32::from_bits(m[0]));
-            outside += usize::from(differs && d >= 1.0);
+            outside += usize::from(differs && !near_props_mark(&marched, size, i, 2));
+            // The ground the marching method darkens in the props' shadow.
+            let march = brightness(&marched_image, i);
+            if d >= 1.0
+                && dm >= 1.0
+                && f32::from_bits(m[3]) < 0.5
+                && march < 0.8 * brightness(&bare, i)
+            {
+                shadowed += 1;
+                dark += brightness(&image, i);
+                lit += brightness(&bare, i);
+                march_dark += march;
+            }
             if dm < 1.0 {
                 shown += 1;
                 // Within two pixels' footprint (the march stops within half of one; where a prop
@@ -255,8 +273,18 @@ fn every_mesh_based_method_draws_the_props() {
         }
         eprintln!(
             "{:?}: of {shown} prop pixels, {same} at the marched depth, {seen} drawn; \
-             {outside} changed outside the props",
-            config.method
+             {outside} changed outside the props and their marks; the {shadowed} pixels \
+             the marching method darkens by their shadow {:.2} as bright as bare ({:.2} there)",
+            config.method,
+            dark / lit,
+            march_dark / lit
+        );
+        // Their shadow, as dark within a tenth of the bare ground's brightness as the marching
+        // method's (without the map the overlay left these as bright as bare).
+        assert!(shadowed > 50, "{shadowed}");
+        assert!(
+            (dark - march_dark).abs() < 0.1 * lit,
+            "{dark} {march_dark} {lit}"
         );
         assert!(shown > 300, "{shown}");
         assert!(same * 100 >= shown * 99, "{same} of {shown}");
