@@ -115,7 +115,7 @@ fn hybrid_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, horizon: f32, va
         let n = normalize(vec3<f32>(-g.y * ray.peak, 1.0, -g.z * ray.peak));
         let tint = world_channel(p.xz, ray.octaves, CHANNEL_COLOR, fade).x;
         let rel = t * dir;
-        let color = shade(lin, rel, n, g.x, tint, occlusion(lin, g.x, horizon, valley) * props_map_at(lin, rel));
+        let color = shade(lin, rel, n, g.x, tint, occlusion(lin, g.x, horizon, valley) * props_map_at(rel));
         out = vec4<f32>(color, min(depth_of(rel), 0.99999994));
     }
     return out;

@@ -31,7 +31,7 @@ fn shade_sample(lin: RenderUniforms, pixel: vec2<f32>, d: f32, s: vec4<f32>, val
     if vis.world != 0u {
         let h = (rel.y + w.eye.y) / w.peak;
         let n = normalize(vec3<f32>(-s.x, 1.0, -s.y));
-        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley) * props * props_map_at(lin, rel));
+        return shade(lin, rel, n, h, s.z, occlusion(lin, h, s.w, valley) * props * props_map_at(rel));
     }
     let uv = (rel.xz + w.tile_eye) * w.tile_inv + r.shift;
     let n = normalize(textureSampleLevel(tile_normals, tile_sampler, uv, 0.0).xyz);

@@ -243,7 +243,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let s = in.sample;
     // Gradient per metre of normalised height, to a unit normal in metres.
     let n = normalize(vec3<f32>(-s.y * w.peak, 1.0, -s.z * w.peak));
-    let occl = occlusion(r, s.x, in.light.x, in.light.y) * props_map_at(r, in.rel);
+    let occl = occlusion(r, s.x, in.light.x, in.light.y) * props_map_at(in.rel);
     return vec4<f32>(shade(r, in.rel, n, s.x, s.w, occl), 1.0);
 }
 

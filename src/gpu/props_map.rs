@@ -58,6 +58,8 @@ pub(crate) struct PropsMap {
     view: wgpu::TextureView,
     /// A texel a level, bound where the map is written.
     empty: wgpu::TextureView,
+    /// Bilinear, repeating (the toroidal addressing wraps).
+    sampler: wgpu::Sampler,
     layout: wgpu::BindGroupLayout,
     rects: wgpu::Buffer,
     stride: u64,
@@ -168,6 +170,14 @@ impl PropsMap {
         Self {
             view: Self::array_view(&texture),
             empty: Self::array_view(&texture),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("relief:props-map:sampler"),
+                address_mode_u: wgpu::AddressMode::Repeat,
+                address_mode_v: wgpu::AddressMode::Repeat,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
             texture,
             layout,
             rects,
@@ -202,28 +212,44 @@ impl PropsMap {
         })
     }
 
-    /// The layout entry of the map as the world's shading reads it (`props_map_tex`).
-    pub(crate) fn entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-        wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
+    /// The layout entries of the map and its sampler as the world's shading reads them
+    /// (`props_map_tex` at 23, `props_map_sampler` at 24).
+    pub(crate) fn entries() -> [wgpu::BindGroupLayoutEntry; 2] {
+        let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        [
+            wgpu::BindGroupLayoutEntry {
+                binding: 23,
+                visibility,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+                count: None,
             },
-            count: None,
-        }
+            wgpu::BindGroupLayoutEntry {
+                binding: 24,
+                visibility,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ]
     }
 
-    /// The view the world's shading reads.
-    pub(crate) fn view(&self) -> &wgpu::TextureView {
-        &self.view
-    }
-
-    /// A view of no map, for the bind group the bake reads the world through.
-    pub(crate) fn empty_view(&self) -> &wgpu::TextureView {
-        &self.empty
+    /// The bind group entries of [`PropsMap::entries`]: the map, or (`empty`) a texel a
+    /// level, for the bind group the bake reads the world through (it writes the map).
+    pub(crate) fn bindings(&self, empty: bool) -> [wgpu::BindGroupEntry<'_>; 2] {
+        let view = if empty { &self.empty } else { &self.view };
+        [
+            wgpu::BindGroupEntry {
+                binding: 23,
+                resource: wgpu::BindingResource::TextureView(view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 24,
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            },
+        ]
     }
 
     /// Makes the map its whole size (once; the caller binds the new view). Returns whether it

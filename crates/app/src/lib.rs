@@ -284,8 +284,6 @@ impl App {
                      mesh-based method draws them; relief render --method reference draws \
                      the props' reference)"
                 ));
-            } else if let Some(why) = overlay_notice(world.props.on, &self.options) {
-                self.report.notice(&why);
             }
         }
         self.changed();
@@ -398,14 +396,6 @@ impl App {
         };
         if let Err(e) = state.use_candidate(drawn) {
             self.report.warn(&e.to_string());
-        }
-        // Props drawn without their shadows: said from the first frame (only after a loss,
-        // where it was said before).
-        let props = state.world.as_ref().is_some_and(|w| w.params().props.on);
-        if self.recoveries == 0 {
-            if let Some(why) = overlay_notice(props, &self.options) {
-                self.report.notice(&why);
-            }
         }
         self.state = Some(state);
         self.last_tick = Instant::now();
@@ -644,25 +634,6 @@ impl App {
     }
 }
 
-/// What the window and the page say where props are on and the method draws them through
-/// the overlay, without their shadows on the ground (`None`: it marches them, or no props).
-fn overlay_notice(props: bool, o: &AppOptions) -> Option<String> {
-    let config = relief::MethodConfig {
-        method: o.method,
-        samples: o.samples,
-        raster: o.raster,
-    };
-    (props && !o.auto && o.method.ray_path().is_none() && !config.marches_props()).then(|| {
-        let m = relief::choice::Candidate::MARCHING;
-        format!(
-            "props: the {} draws them over the terrain without their shadows on the ground; \
-             {m} marches them with their shadows (relief --method visibility --samples 1 \
-             --raster compute, or --method auto)",
-            o.method
-        )
-    })
-}
-
 /// "bake 0.186 ms, normals 0.016 ms, render 1.103 ms" for the passes that ran.
 pub fn format_timings(t: &Timings) -> String {
     Slot::ALL
@@ -685,29 +656,5 @@ mod tests {
             assert!(!acts_on_repeat(&Key::Character(k.into())), "{k}");
         }
         assert!(!acts_on_repeat(&Key::Named(NamedKey::Space)));
-    }
-
-    #[test]
-    fn props_drawn_without_their_shadows_are_said() {
-        let mut o = AppOptions::default();
-        // The mesh (the page's and the window's first method): said, naming the method that
-        // draws their shadows.
-        let said = overlay_notice(true, &o).expect("the mesh draws no props' shadows");
-        assert!(said.contains("the mesh draws them") && said.contains("--raster compute"));
-        assert!(said.contains(&relief::choice::Candidate::MARCHING.to_string()));
-        assert_eq!(overlay_notice(false, &o), None);
-        // The marching method, and auto (which picks it), say nothing.
-        o.method = relief::Method::Visibility;
-        o.samples = 1;
-        o.raster = relief::Raster::Compute;
-        assert_eq!(overlay_notice(true, &o), None);
-        o.raster = relief::Raster::Hardware;
-        assert!(overlay_notice(true, &o).is_some());
-        o.auto = true;
-        assert_eq!(overlay_notice(true, &o), None);
-        // A ray caster has its own notice.
-        o.auto = false;
-        o.method = relief::Method::Reference;
-        assert_eq!(overlay_notice(true, &o), None);
     }
 }

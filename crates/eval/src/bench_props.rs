@@ -45,6 +45,9 @@ pub struct PropsRow {
     pub shadows_ms: Option<f64>,
     /// The march's median (the overlay's for the mesh and the hybrid), milliseconds.
     pub march_ms: Option<f64>,
+    /// The props' shade map's whole bake (the overlay's methods: on arrival, a turned sun or
+    /// new props; a still frame bakes none), median, milliseconds.
+    pub map_ms: Option<f64>,
     /// FLIP mean of the frame without props against the reference without them, and of the
     /// frame with props against the reference with them.
     pub flip: [Option<f64>; 2],
@@ -198,6 +201,7 @@ pub fn run(
                 scatter_ms: None,
                 shadows_ms: None,
                 march_ms: None,
+                map_ms: None,
                 flip: [None; 2],
             };
             // The seed's way differs only with props: its frame without them is the marching
@@ -219,6 +223,7 @@ pub fn run(
                     row.scatter_ms = measured.scatter_ms;
                     row.shadows_ms = measured.shadows_ms;
                     row.march_ms = measured.march_ms;
+                    row.map_ms = measured.map_ms;
                     row.props = measured.props;
                 }
             }
@@ -235,6 +240,7 @@ struct Frame {
     scatter_ms: Option<f64>,
     shadows_ms: Option<f64>,
     march_ms: Option<f64>,
+    map_ms: Option<f64>,
     props: [u32; 2],
     image: Vec<u8>,
 }
@@ -264,6 +270,17 @@ fn frame(
         target.draw(encoder, &world, wgpu::Color::BLACK, timer);
     })?;
     let slot = |s: Slot| median(times.iter().filter_map(|t| t[s as usize]));
+    // The overlay's shade map baked whole each frame.
+    let map_ms = if params.props.on && world.props_overlaid() {
+        let (times, _) = measure(gpu, options, timer, |encoder, timer| {
+            world.forget_props_map();
+            let _ = world.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer);
+            target.draw(encoder, &world, wgpu::Color::BLACK, timer);
+        })?;
+        median(times.iter().filter_map(|t| t[Slot::PropShadows as usize]))
+    } else {
+        None
+    };
     let props = match world.props_counts(&gpu.device, &gpu.queue) {
         Some(counts) => counts?,
         None => [0; 2],
@@ -274,6 +291,7 @@ fn frame(
         scatter_ms: slot(Slot::Props),
         shadows_ms: slot(Slot::PropShadows),
         march_ms: slot(Slot::March),
+        map_ms,
         props,
         image,
     })
@@ -285,12 +303,13 @@ pub fn header(device: &str, size: (u32, u32)) -> String {
         "# relief bench --world endless --only props on {device} at {}x{}: each view drawn \
          without props and with them (the shipped landscape's kinds, the props keys' defaults, \
          the grass off); frame: the median GPU time of its passes, milliseconds; scatter, \
-         shadows (on the surface, a 2x2 block at a time) and march: the props' passes; FLIP (mean) against the reference of the same view without \
+         shadows (on the surface, a 2x2 block at a time) and march: the props' passes; map: the \
+         overlay's props' shade map baked whole; FLIP (mean) against the reference of the same view without \
          and with props (3x3 samples a pixel, the props marched conservatively, none sunk); \
          the seed's way: from the eye, the whole fields of the 3x3 cells around each step, at \
          most the steps named\n\
          view,method,peer_steps,props_placed,props_in_view,frame_ms_without,frame_ms_with,\
-         props_ms,scatter_ms,shadows_ms,march_ms,flip_without,flip_with\n",
+         props_ms,scatter_ms,shadows_ms,march_ms,flip_without,flip_with,map_ms\n",
         size.0, size.1
     )
 }
@@ -300,7 +319,7 @@ pub fn line(r: &PropsRow) -> String {
     let ms = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3}"));
     let flip = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
     format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         r.view,
         r.method,
         r.peer_steps.map_or(String::new(), |s| s.to_string()),
@@ -314,6 +333,7 @@ pub fn line(r: &PropsRow) -> String {
         ms(r.march_ms),
         flip(r.flip[0]),
         flip(r.flip[1]),
+        ms(r.map_ms),
     )
 }
 
@@ -417,6 +437,7 @@ mod tests {
             scatter_ms: Some(0.1),
             shadows_ms: peer.map_or(Some(0.1), |_| None),
             march_ms: Some(march),
+            map_ms: None,
             flip: [Some(0.01), Some(flip)],
         }
     }

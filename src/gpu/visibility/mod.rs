@@ -127,7 +127,7 @@ pub(crate) struct WorldBindings<'a> {
     pub tile_normals: &'a wgpu::TextureView,
     pub tile_sampler: &'a wgpu::Sampler,
     /// The props' shade map (`wgsl/props_map.wgsl`).
-    pub props_map: &'a wgpu::TextureView,
+    pub props_map: &'a crate::gpu::props_map::PropsMap,
     /// The world's patch instances (the compute raster reads them).
     pub instances: &'a wgpu::Buffer,
 }
@@ -287,8 +287,8 @@ impl Visibility {
             super::storage_entry(11, SHADED_DEPTH_FORMAT),
             super::uniform_entry::<VisUniforms>(12, c),
             props::hit_entry(c),
-            super::props_map::PropsMap::entry(23),
         ];
+        entries.extend(super::props_map::PropsMap::entries());
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
@@ -623,7 +623,6 @@ impl Visibility {
             entry(11, TextureView(&shaded_depth)),
             entry(12, self.uniforms.as_entire_binding()),
             entry(22, TextureView(&prop_hit)),
-            entry(23, TextureView(world.props_map)),
         ];
         if let Some(rays) = &self.ray_uniforms {
             entries.push(entry(18, rays.as_entire_binding()));
@@ -631,6 +630,7 @@ impl Visibility {
         if let Some(raster) = &mut self.compute_raster {
             entries.push(entry(19, raster.depth(device, size).as_entire_binding()));
         }
+        entries.extend(world.props_map.bindings(false));
         let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:visibility:compute-group"),
             layout: &self.compute_layout,

@@ -439,8 +439,8 @@ impl World {
                 device,
                 &self.layout,
                 (render, &self.world_uniforms),
-                (&self.texture, &self.light.texture, self.props_map.view()),
-                &self.tile_textures,
+                (&self.texture, &self.light.texture),
+                (&self.tile_textures, self.props_map.bindings(false)),
             )
         });
         let [whole, subs] = self.instance_counts;

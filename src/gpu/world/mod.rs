@@ -262,7 +262,8 @@ impl World {
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
-                    crate::gpu::props_map::PropsMap::entry(23),
+                    crate::gpu::props_map::PropsMap::entries()[0],
+                    crate::gpu::props_map::PropsMap::entries()[1],
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
@@ -276,8 +277,8 @@ impl World {
                 device,
                 &layout,
                 (&render_uniforms, &world_uniforms),
-                (&texture, &light.texture, props_map.view()),
-                &tile_textures,
+                (&texture, &light.texture),
+                (&tile_textures, props_map.bindings(false)),
             );
             let (indices, index_counts) = patch_indices(device, &map);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
@@ -646,17 +647,17 @@ impl World {
     /// bind group everything draws with, and one without the props' map, which its bake
     /// writes through.
     fn rebind(&mut self, device: &wgpu::Device) {
-        let group = |map| {
+        let group = |empty| {
             bind(
                 device,
                 &self.layout,
                 (&self.render_uniforms, &self.world_uniforms),
-                (&self.texture, &self.light.texture, map),
-                &self.tile_textures,
+                (&self.texture, &self.light.texture),
+                (&self.tile_textures, self.props_map.bindings(empty)),
             )
         };
-        self.bind_group = group(self.props_map.view());
-        self.bind_group_unmapped = group(self.props_map.empty_view());
+        self.bind_group = group(false);
+        self.bind_group_unmapped = group(true);
     }
 
     fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {

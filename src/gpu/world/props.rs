@@ -194,6 +194,13 @@ impl World {
         }
     }
 
+    /// Forgets what the props' shade map holds: the next frame that draws the props through
+    /// the overlay bakes it whole, as a turned sun or new props make it (the benchmark measures
+    /// that cost this way).
+    pub fn forget_props_map(&mut self) {
+        self.props_map.forget();
+    }
+
     /// Records the reference's props over a cast through `view` (the cast's: see
     /// [`crate::gpu::props_reference`]): the frame's uniforms, the props' scatter for the
     /// cast's samples, and their march into what `m` gives. Nothing where props are off.

@@ -142,9 +142,10 @@ pub(super) fn bind(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     (render, world): (&wgpu::Buffer, &wgpu::Buffer),
-    (texture, light, props_map): (&wgpu::Texture, &wgpu::Texture, &wgpu::TextureView),
-    tile: &TileTextures,
+    (texture, light): (&wgpu::Texture, &wgpu::Texture),
+    (tile, props_map): (&TileTextures, [wgpu::BindGroupEntry<'_>; 2]),
 ) -> wgpu::BindGroup {
+    let [map, map_sampler] = props_map;
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("relief:world:bind-group"),
         layout,
@@ -177,10 +178,8 @@ pub(super) fn bind(
                 binding: 6,
                 resource: wgpu::BindingResource::Sampler(&tile.sampler),
             },
-            wgpu::BindGroupEntry {
-                binding: 23,
-                resource: wgpu::BindingResource::TextureView(props_map),
-            },
+            map,
+            map_sampler,
         ],
     })
 }

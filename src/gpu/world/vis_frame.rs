@@ -65,7 +65,7 @@ impl World {
             tile_terrain: &self.tile_textures.terrain,
             tile_normals: &self.tile_textures.normals,
             tile_sampler: &self.tile_textures.sampler,
-            props_map: self.props_map.view(),
+            props_map: &self.props_map,
             instances: &self.instances,
         };
         let draw = |pass: &mut wgpu::RenderPass<'_>| {
