@@ -57,7 +57,8 @@ impl Candidate {
     };
 
     /// What `auto` draws without measuring: with props on, [`Candidate::MARCHING`], the one
-    /// method that draws their shadows on the ground; else `None` (measure the candidates).
+    /// method that marches each pixel's props and their shadow (the nearest the reference);
+    /// else `None` (measure the candidates).
     pub fn for_props(props: bool) -> Option<Candidate> {
         props.then_some(Candidate::MARCHING)
     }

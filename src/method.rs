@@ -317,8 +317,9 @@ impl MethodConfig {
         .with_samples(1)
         .with_raster(Raster::Compute);
 
-    /// Whether it marches the props with their shadows on the ground ([`MethodConfig::MARCHING`]
-    /// at any samples the compute raster takes).
+    /// Whether it marches the props and each pixel's props' shadow on the ground
+    /// ([`MethodConfig::MARCHING`] at any samples the compute raster takes; the other
+    /// mesh-based methods draw them through the overlay and its shade map).
     pub fn marches_props(&self) -> bool {
         self.method == Method::Visibility && self.raster == Raster::Compute
     }

@@ -6,9 +6,10 @@
 //! shades the pixels that hold a prop and writes their depth, and the host's depth test keeps
 //! those nearer than the terrain and the host's geometry. It needs a depth attachment.
 //!
-//! What it does not draw that the compute-rasterised visibility method draws: the props'
-//! shadows on the terrain and the grass (the terrain is shaded before the props are marched),
-//! and it marches the props behind the terrain too (the depth test discards them).
+//! The terrain under it is shaded before the props are marched: it takes the props' shadow
+//! and occlusion from the props' shade map ([`super::props_map`]), at the map's texels rather
+//! than each pixel's own, and the grass's blades take none. The overlay marches the props
+//! behind the terrain too (the depth test discards them).
 
 use super::props::{PropsPass, HIT_FORMAT};
 use super::visibility::VisUniforms;

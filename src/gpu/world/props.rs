@@ -107,8 +107,8 @@ impl World {
 
     /// Whether the props are drawn over the terrain by the props' overlay
     /// (`src/gpu/props_overlay.rs`): with the forward mesh, the hybrid, and the visibility
-    /// method rasterised by the GPU, where the host's pass has depth. The overlay draws no
-    /// props' shadows on the terrain or the grass.
+    /// method rasterised by the GPU, where the host's pass has depth. Their terrain takes the
+    /// props' shadows from the props' shade map (`src/gpu/props_map.rs`), their grass none.
     pub fn props_overlaid(&self) -> bool {
         self.props.is_some() && self.targets.depth_format.is_some() && !self.props_marched()
     }
