@@ -327,12 +327,11 @@ impl PropsMap {
             return Vec::new();
         }
         super::write_slots(queue, &self.rects, self.stride, slots.iter().copied());
-        let at = slots
+        slots
             .into_iter()
             .enumerate()
             .map(|(i, s)| ((i as u64 * self.stride) as u32, s))
-            .collect();
-        at
+            .collect()
     }
 
     /// Records the frame's bake of the map (what the eye uncovered, or all of it) through the
