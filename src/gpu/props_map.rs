@@ -213,9 +213,8 @@ impl PropsMap {
     }
 
     /// The layout entries of the map and its sampler as the world's shading reads them
-    /// (`props_map_tex` at 23, `props_map_sampler` at 24).
-    pub(crate) fn entries() -> [wgpu::BindGroupLayoutEntry; 2] {
-        let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+    /// (`props_map_tex` at 23, `props_map_sampler` at 24), for the stages `visibility`.
+    pub(crate) fn entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 2] {
         [
             wgpu::BindGroupLayoutEntry {
                 binding: 23,

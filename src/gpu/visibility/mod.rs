@@ -288,7 +288,7 @@ impl Visibility {
             super::uniform_entry::<VisUniforms>(12, c),
             props::hit_entry(c),
         ];
-        entries.extend(super::props_map::PropsMap::entries());
+        entries.extend(super::props_map::PropsMap::entries(c));
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }

@@ -247,6 +247,8 @@ impl World {
             let module = shader::module(device, "relief:world:shader", &shader::source("world"));
             // Compute too: the visibility method's compute raster places the same vertices.
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+            let map_entries =
+                crate::gpu::props_map::PropsMap::entries(wgpu::ShaderStages::FRAGMENT);
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:world:bind-group-layout"),
                 entries: &[
@@ -262,8 +264,10 @@ impl World {
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
-                    crate::gpu::props_map::PropsMap::entries()[0],
-                    crate::gpu::props_map::PropsMap::entries()[1],
+                    // The forward mesh's fragment shader alone reads the props' shade map
+                    // through this group (the world's compute passes bind it unread).
+                    map_entries[0],
+                    map_entries[1],
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
