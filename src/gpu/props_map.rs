@@ -9,8 +9,8 @@
 //! [`TEXELS`]`[l]` metres; a world texel's place in the texture is its index modulo the side,
 //! so as the eye moves only the rows and columns it uncovers are baked (a turned sun, new
 //! props or a jump past a level's side bake the level whole). The props and the sun are still
-//! between bakes; the surface under a texel is the one drawn when it was baked (while the
-//! world's first heights arrive, every frame bakes the whole map).
+//! between bakes; the surface under a texel is the one drawn when it was baked (a map baked
+//! while the world's heights were still arriving is baked whole again once they all have).
 
 /// Levels of the map (`PROPS_MAP_TEXELS` in `wgsl/props_map.wgsl`).
 pub(crate) const LEVELS: usize = 3;
@@ -132,6 +132,26 @@ pub(crate) fn placement(eye: glam::DVec3) -> [[f32; 4]; LEVELS] {
         let [cx, cz] = modulo(f[l]);
         [x, z, cx as f32, cz as f32]
     })
+}
+
+/// What a frame bakes after `baked` (`None`: nothing held) for levels whose first texels are
+/// `new`, the sun towards `sun`, the world's heights all baked or not (`settled`): the
+/// uncovered rows and columns, or every level whole where the sun turned, or where the map was
+/// baked over heights still arriving and they now all have; and what the map holds after.
+fn to_bake(
+    baked: Option<Baked>,
+    (new, sun, settled): ([[i64; 2]; LEVELS], [f32; 3], bool),
+) -> (Vec<Rect>, Baked) {
+    let kept = baked.filter(|b| b.sun == sun && (b.settled || !settled));
+    let rects = (0..LEVELS)
+        .flat_map(|l| uncovered(l, kept.map(|b| b.firsts[l]), new[l]))
+        .collect();
+    let after = Baked {
+        firsts: new,
+        sun,
+        settled: kept.map_or(settled, |b| b.settled),
+    };
+    (rects, after)
 }
 
 impl PropsMap {
@@ -288,26 +308,16 @@ impl PropsMap {
 
     /// The rectangles the frame at world `eye` with the sun towards `sun` bakes, written into
     /// the rectangles' slots (camera-relative), each with its slot's offset (none before the
-    /// map is allocated). `settled`: the world's heights are all
-    /// baked (else the next frame bakes the whole map again).
+    /// map is allocated). `settled`: the world's heights are all baked; the first settled
+    /// frame after a whole bake that was not bakes the whole map again (once: not every frame
+    /// of an arrival, which on a software GPU is minutes of frames).
     pub(crate) fn plan(
         &mut self,
         queue: &wgpu::Queue,
         (eye, sun, settled): (glam::DVec3, [f32; 3], bool),
     ) -> Vec<(u32, MapRect)> {
-        let new = firsts([eye.x, eye.z]);
-        let keep = self
-            .baked
-            .filter(|b| b.sun == sun && b.settled)
-            .map(|b| b.firsts);
-        let rects: Vec<Rect> = (0..LEVELS)
-            .flat_map(|l| uncovered(l, keep.map(|f| f[l]), new[l]))
-            .collect();
-        self.baked = Some(Baked {
-            firsts: new,
-            sun,
-            settled,
-        });
+        let (rects, baked) = to_bake(self.baked, (firsts([eye.x, eye.z]), sun, settled));
+        self.baked = Some(baked);
         let relative = |l: usize, first: [i64; 2]| relative(TEXELS[l], first, eye);
         if self.group.is_none() {
             return Vec::new();
@@ -389,6 +399,29 @@ impl PropsMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_arrival_bakes_the_map_whole_twice_and_a_turned_sun_once() {
+        let sun = [0.0, 1.0, 0.0];
+        let at = firsts([0.0, 0.0]);
+        let whole = |r: &[Rect]| r.len() == LEVELS && r.iter().all(|r| r.size == [SIDE; 2]);
+        // Heights still arriving: whole once, then only what the eye uncovers.
+        let (r, b) = to_bake(None, (at, sun, false));
+        assert!(whole(&r));
+        let (r, b) = to_bake(Some(b), (at, sun, false));
+        assert!(r.is_empty());
+        // They have all arrived: whole again, once.
+        let (r, b) = to_bake(Some(b), (at, sun, true));
+        assert!(whole(&r));
+        let (r, b) = to_bake(Some(b), (at, sun, true));
+        assert!(r.is_empty());
+        // A level moving again uncovers heights: the map keeps what it holds.
+        let (r, b) = to_bake(Some(b), (at, sun, false));
+        assert!(r.is_empty() && b.settled);
+        // A turned sun: whole.
+        let (r, _) = to_bake(Some(b), (at, [0.0, 0.8, 0.6], true));
+        assert!(whole(&r));
+    }
 
     #[test]
     fn a_moving_eye_bakes_only_what_it_uncovers() {
