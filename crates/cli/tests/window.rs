@@ -137,8 +137,12 @@ fn a_lost_device_is_reported_and_recovered_once() {
 /// command line, run once the window has drawn; `$w` is the window) presses keys in it, then,
 /// once the shell condition `until` holds (`$OUT` is the window's standard output so far),
 /// presses Escape: the window ends as soon as what the test looks for has happened, and its
-/// `--exit-after` is only a cap for a slow machine. Returns (status, stdout, stderr); stdout
-/// holds what `keys` printed, then the window's.
+/// `--exit-after` is only a cap for a slow machine. `keys` may call `title` (prints the
+/// window's title), `shows PATTERN` and `drops PATTERN` (wait, at most 30 s, until the title
+/// matches the grep pattern or no longer does) and `settles` (waits, at most 60 s, until the
+/// title holds for a second): a slow machine draws the frame that answers a key seconds after
+/// it, so a test waits for the answer, never a fixed time. Returns (status, stdout, stderr);
+/// stdout holds what `keys` printed, then the window's.
 fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, String) {
     let relief = env!("CARGO_BIN_EXE_relief");
     // A scratch folder of its own for each window (the tests run side by side).
@@ -148,7 +152,11 @@ fn window_with_keys(args: &[&str], keys: &str, until: &str) -> (i32, String, Str
     let out = dir.join("stdout.txt");
     let keys = if keys.is_empty() { ":" } else { keys };
     let script = format!(
-        "\"$0\" \"$@\" > \"$OUT\" & pid=$!; \
+        "title() {{ xdotool getwindowname \"$w\"; }}; \
+         shows() {{ i=0; until title | grep -q -- \"$1\" || [ $i -ge 150 ]; do sleep 0.2; i=$((i+1)); done; }}; \
+         drops() {{ i=0; while title | grep -q -- \"$1\" && [ $i -lt 150 ]; do sleep 0.2; i=$((i+1)); done; }}; \
+         settles() {{ i=0; a=; b=$(title); while [ \"$a\" != \"$b\" ] && [ $i -lt 60 ]; do a=$b; sleep 1; b=$(title); i=$((i+1)); done; }}; \
+         \"$0\" \"$@\" > \"$OUT\" & pid=$!; \
          w=; while [ -z \"$w\" ] && kill -0 $pid 2>/dev/null; do \
            w=$(xdotool search --name '^relief' 2>/dev/null | head -n 1); sleep 0.2; done; \
          if [ -n \"$w\" ]; then \
@@ -250,19 +258,29 @@ fn the_endless_world_flies_while_a_key_is_held_and_rests_when_released() {
         stdout.contains("idle after frame"),
         "at rest again after the key: {stdout}"
     );
-    // On the fly-through path the camera moves by itself: frames keep coming.
-    let (code, stdout, err) = window(&[
-        "--world",
-        "endless",
-        "--no-temporal",
-        "--pixel-error",
-        "16",
-        "--timings",
-        "--exit-after",
-        "4",
-        "--camera",
-        "path",
-    ]);
+    // On the fly-through path the camera moves by itself: frames keep coming. The window
+    // ends once it has reported a frame past those a still window draws (a slow machine's
+    // first frames, building pipelines and baking, take seconds each: a fixed time once saw
+    // one frame).
+    let enough = still + 3;
+    let (code, stdout, err) = window_with_keys(
+        &[
+            "--world",
+            "endless",
+            "--no-temporal",
+            "--pixel-error",
+            "16",
+            "--timings",
+            "--exit-after",
+            "60",
+            "--camera",
+            "path",
+        ],
+        "",
+        &format!(
+            "[ \"$(grep -o '(frame [0-9]*' \"$OUT\" | tail -n 1 | tr -dc 0-9)\" -gt {enough} ] 2>/dev/null"
+        ),
+    );
     assert_eq!(code, 0, "{err}");
     assert!(frames_drawn(&stdout) > still + 2, "{stdout}");
     assert!(!stdout.contains("idle"), "{stdout}");
@@ -285,8 +303,8 @@ fn m_steps_the_window_to_the_next_method() {
     ];
     let (code, stdout, err) = window_with_keys(
         &args,
-        "xdotool getwindowname \"$w\"; xdotool key m; sleep 3; xdotool getwindowname \"$w\"; \
-         xdotool key m; sleep 3; xdotool getwindowname \"$w\"",
+        "title; xdotool key m; shows '^relief: visibility'; title; \
+         xdotool key m; shows '^relief: hybrid'; title",
         "grep -q ', visibility at 4 samples a pixel)' \"$OUT\" \
          && grep -q ', hybrid at 4 samples a pixel)' \"$OUT\"",
     );
@@ -355,11 +373,12 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     // again once (a toggle ignores its key's repeats), and - held as long lowers the sun step
     // after step (the sun keys act on each). A loaded machine can delay a tap's release past
     // the repeat delay too, so a tapped sun key may step more than once.
-    let keys = "xdotool getwindowname \"$w\"; xdotool key bracketright; sleep 1; \
-                xdotool key minus; sleep 1; xdotool key f; sleep 1; xdotool key l; sleep 1; xdotool key g; sleep 1; \
-                xdotool getwindowname \"$w\"; xdotool keydown f; sleep 1.5; xdotool keyup f; \
-                xdotool keydown minus; sleep 1.5; xdotool keyup minus; sleep 1; \
-                xdotool getwindowname \"$w\"";
+    let keys = "title; xdotool key bracketright; drops ' 145° az'; \
+                xdotool key minus; drops ' 12° up'; xdotool key f; shows 'fog 0 '; \
+                xdotool key l; shows 'water off'; xdotool key g; shows 'grass off'; settles; \
+                title; xdotool keydown f; sleep 1.5; xdotool keyup f; shows 'fog 0.03 '; \
+                xdotool keydown minus; sleep 1.5; xdotool keyup minus; settles; \
+                title";
     let (code, stdout, err) = window_with_keys(&args, keys, "true");
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
@@ -416,9 +435,9 @@ fn the_t_key_and_no_temporal_turn_the_history_off_and_the_title_says_so() {
         "--exit-after",
         "30",
     ];
-    let keys = "xdotool getwindowname \"$w\"; xdotool key t; sleep 1; \
-                xdotool getwindowname \"$w\"; xdotool key t; sleep 1; \
-                xdotool getwindowname \"$w\"";
+    let keys = "title; xdotool key t; shows 'history off'; \
+                title; xdotool key t; shows 'history on'; \
+                title";
     let (code, stdout, err) = window_with_keys(&args, keys, "true");
     assert_eq!(code, 0, "{err}");
     let history: Vec<&str> = stdout
@@ -436,7 +455,7 @@ fn the_t_key_and_no_temporal_turn_the_history_off_and_the_title_says_so() {
     assert_eq!(history, ["on", "off", "on"], "{stdout}");
     let mut off = args.to_vec();
     off.push("--no-temporal");
-    let (code, stdout, err) = window_with_keys(&off, "xdotool getwindowname \"$w\"", "true");
+    let (code, stdout, err) = window_with_keys(&off, "title", "true");
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("history off (T)"), "{stdout}");
 }
