@@ -8,6 +8,12 @@
 //! finest coarser level's light that does ([`LightQueue::light_from`]), or unshadowed where
 //! none does; a turned sun leaves the old light in place, drawn until each level is relit.
 //!
+//! A relight goes in rounds: a turned sun starts one (every level stale, relit coarsest
+//! first), and a sun that turns again while a round is under way (a running day turns it every
+//! frame) does not restart it, which would relight the coarse levels over and over and never
+//! reach the fine ones: the round goes on, each texel lit for the sun of the frame that lights
+//! it, and the next round starts when it ends. No light drawn is older than two rounds.
+//!
 //! CPU only: the [`super::world::World`] asks it what to bake and what each level reads.
 
 use crate::clipmap::{Clipmap, Strip};
@@ -47,6 +53,8 @@ pub(crate) struct LightQueue {
     levels: Vec<LevelQueue>,
     /// The sun's azimuth the baked light is for (None: nothing lit yet).
     azimuth: Option<f32>,
+    /// The sun turned while a relight round was under way: another round follows it.
+    turned_during_round: bool,
 }
 
 fn area(s: &Strip) -> u64 {
@@ -84,6 +92,7 @@ impl LightQueue {
         let mut q = Self {
             levels: vec![LevelQueue::default(); levels],
             azimuth: None,
+            turned_during_round: false,
         };
         q.forget();
         q
@@ -93,24 +102,38 @@ impl LightQueue {
     pub fn forget(&mut self) {
         self.levels.iter_mut().for_each(LevelQueue::clear_missing);
         self.azimuth = None;
+        self.turned_during_round = false;
     }
 
     /// The sun's azimuth is now `azimuth`: a turn leaves every level's light in place, stale,
-    /// to be relit.
+    /// to be relit in a round (or after the round under way: see the module docs).
     pub fn set_sun(&mut self, azimuth: f32) {
         match self.azimuth {
             Some(a) if a == azimuth => {}
-            Some(_) => {
-                for q in &mut self.levels {
-                    q.all_stale = true;
-                    q.stale.clear();
-                }
-            }
+            Some(_) if self.relighting() => self.turned_during_round = true,
+            Some(_) => self.start_round(),
             None => {
                 self.levels.iter_mut().for_each(LevelQueue::clear_missing);
+                self.turned_during_round = false;
             }
         }
         self.azimuth = Some(azimuth);
+    }
+
+    /// Whether a relight round is under way (some level still holds stale light).
+    fn relighting(&self) -> bool {
+        self.levels
+            .iter()
+            .any(|q| q.all_stale || !q.stale.is_empty())
+    }
+
+    /// Every level's light stale, to be relit.
+    fn start_round(&mut self) {
+        for q in &mut self.levels {
+            q.all_stale = true;
+            q.stale.clear();
+        }
+        self.turned_during_round = false;
     }
 
     /// Strips whose heights were just baked: their light is missing.
@@ -150,6 +173,9 @@ impl LightQueue {
         usable: impl Fn(usize) -> bool,
     ) -> Vec<Strip> {
         self.prune(map);
+        if self.turned_during_round && !self.relighting() {
+            self.start_round();
+        }
         let mut out = Vec::new();
         let mut left = budget.max(1);
         for l in (0..self.levels.len()).rev() {
@@ -392,5 +418,48 @@ mod tests {
         // Forgetting the light (nothing read it) makes every level unshadowed again.
         q.forget();
         assert!(active.clone().all(|l| q.light_from(&map, l) == NO_LIGHT));
+    }
+
+    #[test]
+    fn a_sun_turning_every_frame_relights_every_level_in_rounds() {
+        let (mut map, eye) = map_at(0.0);
+        map.update(&eye, 8.0);
+        map.take(u64::MAX, usize::MAX);
+        let mut q = LightQueue::new(map.levels.len());
+        q.set_sun(90.0);
+        while !q.take(&map, u64::MAX, 96, |_| true).is_empty() {}
+        let whole = u64::from(map.side()).pow(2);
+        let active: Vec<usize> = (0..map.levels.len())
+            .filter(|&l| map.levels[l].active)
+            .collect();
+        let all = whole * active.len() as u64;
+        // A budget that lights a fifth of the levels a frame, and a sun that turns every
+        // frame (a running day): each level is lit once per round, the finest too, and a round
+        // takes the frames its texels need (no restart from the coarsest level).
+        let budget = all / 5;
+        let mut lit = vec![0u64; map.levels.len()];
+        let mut frames = 0;
+        for frame in 0..60 {
+            q.set_sun(91.0 + frame as f32 * 0.1);
+            for r in q.take(&map, budget, 96, |_| true) {
+                lit[r.level] += area(&r);
+            }
+            frames += 1;
+            if active.iter().all(|&l| lit[l] >= 2 * whole) {
+                break;
+            }
+        }
+        assert!(
+            active.iter().all(|&l| lit[l] >= 2 * whole),
+            "two rounds in {frames} frames: {lit:?}"
+        );
+        assert!(frames <= 12, "two rounds took {frames} frames");
+        // The sun stands still again: the round under way and one more, then nothing.
+        let mut rest = 0;
+        while !q.take(&map, budget, 96, |_| true).is_empty() {
+            rest += 1;
+            assert!(rest <= 12);
+        }
+        assert_eq!(q.pending_texels(&map), 0);
     }
 }
