@@ -80,6 +80,7 @@
 pub mod camera;
 pub mod choice;
 pub mod clipmap;
+pub mod day;
 pub mod error;
 pub mod gpu;
 pub mod grass;

@@ -37,6 +37,15 @@ pub struct Sky {
     pub sun_elevation: f32,
     /// Extinction per kilometre of green light; 0 for clear air (no aerial perspective).
     pub fog: f32,
+    /// The hour (local solar time, in [0, 24)) the sun stands at ([`crate::day`]): where it
+    /// is set, `sun_azimuth` and `sun_elevation` are the day's at that hour
+    /// ([`crate::day::at_time`]); [`crate::day::NO_TIME`] (the default) where the sun is placed
+    /// by them.
+    pub time_of_day: f32,
+    /// Seconds of the frame's clock a whole day takes ([`crate::day::sky_at`]): the sun runs
+    /// through the day from `time_of_day` (or the time nearest where it stands); 0 (the
+    /// default) holds it still.
+    pub day_length: f32,
 }
 
 impl Default for Sky {
@@ -48,6 +57,8 @@ impl Default for Sky {
             sun_azimuth: 145.0,
             sun_elevation: 12.0,
             fog: 0.03,
+            time_of_day: crate::day::NO_TIME,
+            day_length: 0.0,
         }
     }
 }

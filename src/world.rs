@@ -161,7 +161,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 26] = [
+pub static WORLD_PARAMS: [WorldParam; 28] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -332,6 +332,10 @@ pub static WORLD_PARAMS: [WorldParam; 26] = [
         get: |p| Value::Float(p.sky.sun_azimuth),
         set: |p, v| {
             if let Value::Float(x) = v {
+                // A sun placed by hand leaves the day's path.
+                if x != p.sky.sun_azimuth {
+                    p.sky.time_of_day = crate::day::NO_TIME;
+                }
                 p.sky.sun_azimuth = x;
             }
         },
@@ -351,10 +355,15 @@ pub static WORLD_PARAMS: [WorldParam; 26] = [
         get: |p| Value::Float(p.sky.sun_elevation),
         set: |p, v| {
             if let Value::Float(x) = v {
+                if x != p.sky.sun_elevation {
+                    p.sky.time_of_day = crate::day::NO_TIME;
+                }
                 p.sky.sun_elevation = x;
             }
         },
     },
+    crate::day::TIME_OF_DAY,
+    crate::day::DAY_LENGTH,
     Param {
         key: "fog",
         doc: "aerial perspective: extinction per km of green light (blue more, red less); 0 for clear air",

@@ -283,7 +283,7 @@ impl World {
         strips: &[crate::clipmap::Strip],
         timer: Option<&GpuTimer>,
     ) {
-        let azimuth = self.params.sky.sun_azimuth;
+        let azimuth = self.sky().sun_azimuth;
         if self.tile.is_some()
             || (self.params.no_shadows && self.params.palette == crate::palette::Palette::Blog)
         {

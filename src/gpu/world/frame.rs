@@ -158,6 +158,7 @@ impl World {
             None => {
                 let now = WorldParams {
                     clock: self.clock(),
+                    sky: self.sky(),
                     ..self.params
                 };
                 let mut u = render_uniforms(&now, &self.shading, (matrix, region, eye), encode);
@@ -235,6 +236,11 @@ pub fn render_uniforms(
     (matrix, region, eye): (Mat4, [f64; 4], DVec3),
     encode_srgb: bool,
 ) -> RenderUniforms {
+    // The sun where a running day has it at the frame's clock.
+    let params = &WorldParams {
+        sky: crate::day::sky_at(params.sky, params.clock),
+        ..*params
+    };
     let horizon = horizon(region, eye);
     let mut u = base_uniforms(params, shading, matrix, encode_srgb, 0);
     let sun = glam::Vec4::from(u.sun_color).truncate().to_array();

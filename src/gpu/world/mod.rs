@@ -606,6 +606,12 @@ impl World {
         self.params.clock + self.time
     }
 
+    /// The sky the next frame is drawn with: the parameters' sky at [`World::clock`], its sun
+    /// moved along a running day ([`crate::day::sky_at`]).
+    pub fn sky(&self) -> crate::sky::Sky {
+        crate::day::sky_at(self.params.sky, self.clock())
+    }
+
     /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out,
     /// and the shading keys (snow, AO, the sun, fog) change nothing baked.
     pub fn set_params(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {

@@ -170,7 +170,7 @@ impl World {
         if overlaid {
             let frame = (
                 view.eye,
-                self.params.sky.sun_direction().to_array(),
+                self.sky().sun_direction().to_array(),
                 self.heights_pending() == 0,
             );
             self.props_map.encode(
