@@ -82,7 +82,10 @@ pub fn sun_at(hours: f32) -> (f32, f32) {
     let east = -dec.cos() * hour_angle.sin();
     let north = dec.sin() * lat.cos() - dec.cos() * lat.sin() * hour_angle.cos();
     let azimuth = east.atan2(north).to_degrees().rem_euclid(360.0);
-    (azimuth as f32, up.clamp(-1.0, 1.0).asin().to_degrees() as f32)
+    (
+        azimuth as f32,
+        up.clamp(-1.0, 1.0).asin().to_degrees() as f32,
+    )
 }
 
 /// The time of day (hours in [0, 24)) whose sun is nearest `sky`'s (by the angle between
@@ -233,4 +236,3 @@ mod tests {
         assert!(world_param("day_length").unwrap().parse("-5").is_err());
     }
 }
-

@@ -170,6 +170,9 @@ impl ApplicationHandler<UserEvent> for App {
                     {
                         self.sky_key(&c.to_lowercase());
                     }
+                    Key::Character(c) if c.eq_ignore_ascii_case("n") && self.fly.is_some() => {
+                        self.day_key();
+                    }
                     Key::Character(c) if c.eq_ignore_ascii_case("t") && self.fly.is_some() => {
                         let off = if self.options.temporal { "1" } else { "0" };
                         if let Err(e) = self.set("no_temporal", off) {

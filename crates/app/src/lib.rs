@@ -12,6 +12,7 @@
 //! Only the edges differ by platform: native creates the device by blocking, the web
 //! asynchronously (`web.rs`), and each reports to its user its own way ([`Report`]).
 
+mod day;
 mod events;
 #[cfg(not(target_arch = "wasm32"))]
 mod native;
@@ -156,6 +157,8 @@ pub struct App {
     proxy: EventLoopProxy<UserEvent>,
     /// The fog the F key turns back on.
     fog_off: f32,
+    /// The hour the title shows (" at 14:05", or empty): a running day's title follows it.
+    shown_hour: String,
     /// The endless world's per-frame bake budgets, scaled to the device's pace.
     pacer: pacer::Pacer,
     /// How far the bake in progress has come.
@@ -208,6 +211,7 @@ impl App {
             report,
             proxy,
             fog_off: relief::sky::Sky::default().fog,
+            shown_hour: String::new(),
             pacer: pacer::Pacer::default(),
             progress: pacer::Progress::default(),
             baking_since: None,
@@ -248,6 +252,7 @@ impl App {
     fn set(&mut self, key: &str, value: &str) -> Result<()> {
         let mut options = self.options;
         options.set(key, value)?;
+        self.keep_the_day(&mut options, key)?;
         if let Some(s) = &mut self.state {
             match (&mut s.world, options.world) {
                 // Unchanged parameters (a new method, say) keep the levels as they are.
@@ -299,7 +304,7 @@ impl App {
         });
         baking
             || match self.fly {
-                Some(_) => !self.held.is_empty() || self.path.is_some(),
+                Some(_) => !self.held.is_empty() || self.path.is_some() || self.day_running(),
                 None => self.options.animating(),
             }
     }
@@ -560,7 +565,13 @@ impl App {
         let Some((world, _)) = self.options.world else {
             return;
         };
-        let sky = world.sky;
+        let Some(sky) = self.sky_now() else {
+            return;
+        };
+        if SUN_KEYS.contains(&key) && world.sky.day_length > 0.0 {
+            // A sun moved by hand stops the day where it stands, then moves.
+            self.day_key();
+        }
         let (name, value) = match key {
             "[" | "]" => {
                 let turn = if key == "[" { -10.0 } else { 10.0 };
@@ -612,10 +623,11 @@ impl App {
             .map_or(String::new(), |p| format!(" · baking {p}%"));
         match &o.world {
             Some((w, _)) => format!(
-                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up · fog {} /km · water {} · grass {} · history {} (T) · [ ] - = move the sun, F fog, L water, G grass",
+                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up{} · fog {} /km · water {} · grass {} · history {} (T) · [ ] - = move the sun, N run the day, F fog, L water, G grass",
                 w.land.seed,
-                w.sky.sun_azimuth,
-                w.sky.sun_elevation,
+                self.sky_now().unwrap_or(w.sky).sun_azimuth,
+                self.sky_now().unwrap_or(w.sky).sun_elevation,
+                self.title_hour(),
                 w.sky.fog,
                 if w.no_water { "off" } else { "on" },
                 if w.grass.on { "on" } else { "off" },

@@ -209,7 +209,10 @@ impl App {
             }
             _ => {}
         }
-        if before != self.stats.baking {
+        // A running day: the title follows the hour (once a minute of the day).
+        let hour = self.title_hour();
+        if before != self.stats.baking || hour != self.shown_hour {
+            self.shown_hour = hour;
             if let Some(w) = &self.window {
                 w.set_title(&self.title());
             }

@@ -58,9 +58,9 @@ pub fn options_markdown() -> String {
     {
         let applies = match p.key {
             "pixel_error" => "render --world endless",
-            "sun_azimuth" | "sun_elevation" | "time_of_day" | "day_length" | "fog" | "water_level" | "no_water" | "palette"
-            | "no_shadows" | "clock" | "wind_speed" | "wind_azimuth" | "no_grass"
-            | "grass_density" | "grass_height" | "grass_distance" => {
+            "sun_azimuth" | "sun_elevation" | "time_of_day" | "day_length" | "fog"
+            | "water_level" | "no_water" | "palette" | "no_shadows" | "clock" | "wind_speed"
+            | "wind_azimuth" | "no_grass" | "grass_density" | "grass_height" | "grass_distance" => {
                 "window, render, scene files, URL --world endless"
             }
             _ => "render, height --world endless",

@@ -85,6 +85,8 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "ao_exponent" => "3",
             "sun_azimuth" => "300",
             "sun_elevation" => "40",
+            "time_of_day" => "7",
+            "day_length" => "60",
             "fog" => "0.4",
             "water_level" => "1300",
             "no_water" => "1",
@@ -174,6 +176,10 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         } else if row.key == "clock" {
             args.extend(lake);
             render_endless(&dir, "lake", &lake).0
+        } else if row.key == "day_length" {
+            // Half a day on at clock 30: the same clock without the day is the base.
+            args.extend(["--clock", "30"]);
+            render_endless(&dir, "clock-30", &["--clock", "30"]).0
         } else {
             base.clone()
         };
@@ -205,7 +211,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         if blog {
             knob.push_str("palette = \"blog\"\n");
         }
-        if windy {
+        if windy || row.key == "day_length" {
             knob.push_str("clock = 30\n");
         }
         // Over the lake for the clock and the wind (the flags override the scene's camera).
@@ -362,6 +368,15 @@ fn bad_camera_and_world_input_exits_2_and_writes_nothing() {
         &["--grass-density", "raymarch", "mesh"],
     );
     render(&["--no-grass"], &["--no-grass", "endless"]);
+    // The time of day: past a day is refused (not wrapped), as is a negative day length.
+    render(
+        &["--world", "endless", "--time-of-day", "25"],
+        &["--time-of-day", "25", "24"],
+    );
+    render(
+        &["--world", "endless", "--day-length", "-60"],
+        &["--day-length", "-60"],
+    );
     render(&["--eye", "1,2"], &["--eye", "X,Y,Z"]);
     render(&["--look-at", "1,2,3,4"], &["--look-at", "X,Y,Z"]);
     render(&["--eye", "1e300,0,0"], &["--eye", "X,Y,Z"]);

@@ -420,6 +420,52 @@ fn the_sun_fog_and_water_keys_move_the_sun_and_the_title_says_where() {
     );
 }
 
+/// N runs the day: the title gives the hour, which moves on with the clock (a day in 60 s),
+/// and the sun with it; N again holds the sun where it stands.
+#[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
+fn the_n_key_runs_the_day_and_holds_it() {
+    let args = [
+        "--world",
+        "endless",
+        "--no-temporal",
+        "--pixel-error",
+        "16",
+        "--octaves",
+        "6",
+        "--time-of-day",
+        "9",
+        "--exit-after",
+        "60",
+    ];
+    let keys = "title; xdotool key n; drops ' up at 09:00'; sleep 1; title; \
+                xdotool key n; shows 'up at'; settles; title; sleep 2; title";
+    let (code, stdout, err) = window_with_keys(&args, keys, "true");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a clean run prints nothing on stderr");
+    let hours: Vec<(f64, f64)> = stdout
+        .lines()
+        .filter(|l| l.starts_with("relief: "))
+        .map(|l| {
+            let hm = l.split(" up at ").nth(1).expect("the hour in the title");
+            let minutes = hm[..2].parse::<f64>().unwrap() * 60.0 + hm[3..5].parse::<f64>().unwrap();
+            (minutes / 60.0, sky_in_title(l).0)
+        })
+        .collect();
+    assert_eq!(hours.len(), 4, "{stdout}");
+    assert_eq!(
+        hours[0],
+        (9.0, relief::day::sun_at(9.0).0.round() as f64),
+        "{stdout}"
+    );
+    // Running: later in the morning, the sun further round towards the south.
+    assert!(hours[1].0 > 9.2 && hours[1].0 < 16.0, "{stdout}");
+    assert!(hours[1].1 > hours[0].1, "{stdout}");
+    // Held: the hour stays.
+    assert!(hours[2].0 >= hours[1].0, "{stdout}");
+    assert_eq!(hours[2], hours[3], "{stdout}");
+}
+
 /// T turns the temporal service off and on, and the title says so; `--no-temporal` starts
 /// with it off.
 #[test]

@@ -6,6 +6,11 @@
 //! [`TURN`] degrees (a slider or a key: every level relit). The core's default per-frame
 //! budgets ([`relief::gpu::world::DEFAULT_BAKE_BUDGET`],
 //! [`relief::gpu::world::DEFAULT_LIGHT_BUDGET`]) are what a GPU's window reaches.
+//!
+//! Then the day runs (a day in [`DAY_LENGTH`] seconds from 9:00, the window's N): [`DAY_FRAMES`]
+//! frames standing where the arrival ended, then as many flying on, each frame's sun moved by
+//! the clock and its light relit in rounds within the same budget: what a moving sun costs a
+//! frame, and how many frames a round of relight takes (how far the shadows lag the sun).
 
 use glam::DVec3;
 use relief::error::Result;
@@ -19,6 +24,34 @@ pub const SPEED: f64 = 200.0;
 
 /// How far the sun turns halfway through, degrees.
 pub const TURN: f32 = 10.0;
+
+/// Seconds of the clock a day takes in the running day's frames.
+pub const DAY_LENGTH: f32 = 60.0;
+
+/// Frames of the running day standing, and as many flying.
+pub const DAY_FRAMES: u32 = 120;
+
+/// What the world does in a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Arriving: a fresh world, flown through (the sun turned once halfway).
+    Arrival,
+    /// The day running, the camera still.
+    DayStanding,
+    /// The day running, the camera flying on.
+    DayFlying,
+}
+
+impl Phase {
+    /// As the CSV names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Arrival => "arrival",
+            Phase::DayStanding => "day-standing",
+            Phase::DayFlying => "day-flying",
+        }
+    }
+}
 
 /// One frame of the arrival.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,6 +77,10 @@ pub struct ArrivalFrame {
     pub since_start_ms: f64,
     /// Whether the sun turned just before this frame.
     pub turned: bool,
+    /// What the world does in it.
+    pub phase: Phase,
+    /// Texels of light a whole relight round lights (every active level).
+    pub round_texels: u64,
 }
 
 /// The arrival of each method measured: `frames` frames at `size`.
@@ -92,14 +129,36 @@ pub fn run(
                 .with_samples(samples)
                 .with_raster(raster),
         )?;
-        for frame in 0..frames {
+        // A short run (`--quick`) runs a short day.
+        let day_frames = DAY_FRAMES.min(frames / 2);
+        for frame in 0..frames + 2 * day_frames {
             let turned = frame > 0 && frame == frames / 2;
             if turned {
                 let mut p = *world.params();
                 p.sky.sun_azimuth = (p.sky.sun_azimuth + TURN) % 360.0;
                 world.set_params(&gpu.device, p)?;
             }
-            let view = camera(f64::from(frame) / 60.0);
+            let phase = match frame.checked_sub(frames) {
+                None => Phase::Arrival,
+                Some(k) if k < day_frames => Phase::DayStanding,
+                Some(_) => Phase::DayFlying,
+            };
+            if frame == frames {
+                let mut p = *world.params();
+                p.sky = relief::day::at_time(p.sky, 9.0);
+                p.sky.day_length = DAY_LENGTH;
+                world.set_params(&gpu.device, p)?;
+            }
+            if phase != Phase::Arrival {
+                world.set_time(f64::from(frame - frames) / 60.0);
+            }
+            // Standing: where the arrival ended; flying: on from there.
+            let moving = match phase {
+                Phase::Arrival => frame,
+                Phase::DayStanding => frames,
+                Phase::DayFlying => frame - day_frames,
+            };
+            let view = camera(f64::from(moving) / 60.0);
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             let t = timer.as_ref();
             let texels_baked =
@@ -126,6 +185,12 @@ pub fn run(
                 pending: world.pending_texels(),
                 since_start_ms: start.elapsed().as_secs_f64() * 1e3,
                 turned,
+                phase,
+                round_texels: {
+                    let map = world.clipmap();
+                    map.levels.iter().filter(|l| l.active).count() as u64
+                        * u64::from(map.side()).pow(2)
+                },
             });
         }
     }
@@ -144,11 +209,11 @@ pub fn csv(frames: &[ArrivalFrame], device: &str, size: (u32, u32)) -> String {
         size.0, size.1
     );
     out.push_str(
-        "method,frame,gpu_ms,bake_ms,light_ms,texels_baked,light_texels,pending,since_start_ms,sun_turned\n",
+        "method,frame,gpu_ms,bake_ms,light_ms,texels_baked,light_texels,pending,since_start_ms,sun_turned,phase\n",
     );
     for f in frames {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{:.1},{}\n",
+            "{},{},{},{},{},{},{},{},{:.1},{},{}\n",
             f.method,
             f.frame,
             opt(f.gpu_ms),
@@ -158,7 +223,8 @@ pub fn csv(frames: &[ArrivalFrame], device: &str, size: (u32, u32)) -> String {
             f.light_texels,
             f.pending,
             f.since_start_ms,
-            u8::from(f.turned)
+            u8::from(f.turned),
+            f.phase.name()
         ));
     }
     out
@@ -171,7 +237,12 @@ pub fn summary(frames: &[ArrivalFrame]) -> Vec<String> {
     methods
         .into_iter()
         .map(|m| {
-            let own: Vec<&ArrivalFrame> = frames.iter().filter(|f| f.method == m).collect();
+            let all: Vec<&ArrivalFrame> = frames.iter().filter(|f| f.method == m).collect();
+            let own: Vec<&ArrivalFrame> = all
+                .iter()
+                .copied()
+                .filter(|f| f.phase == Phase::Arrival)
+                .collect();
             let ms = |v: Option<f64>| v.map_or("?".to_owned(), |v| format!("{v:.2} ms"));
             let first = own.first().map(|f| ms(f.gpu_ms)).unwrap_or_default();
             let worst = own
@@ -193,11 +264,42 @@ pub fn summary(frames: &[ArrivalFrame]) -> Vec<String> {
                         format!("the sun turned {TURN}°: relit over {} frames", n + 1)
                     })
             });
-            format!(
+            let mut line = format!(
                 "arrival ({m}): first frame {first} of GPU time, everything baked and lit by {done}, \
                  worst frame {worst}{}",
                 relit.map_or(String::new(), |r| format!("; {r}"))
-            )
+            );
+            for phase in [Phase::DayStanding, Phase::DayFlying] {
+                let day: Vec<&ArrivalFrame> =
+                    all.iter().copied().filter(|f| f.phase == phase).collect();
+                if let Some(text) = day_summary(&day) {
+                    line.push_str(&format!("; {}: {text}", phase.name()));
+                }
+            }
+            line
         })
         .collect()
+}
+
+/// The median of `v` (None when empty).
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    v.sort_by(f64::total_cmp);
+    (!v.is_empty()).then(|| v[v.len() / 2])
+}
+
+/// A running day's frames in words: the light's cost a frame (median and worst), the whole
+/// frame's, and how many frames a round of relight takes at the texels a frame lights.
+fn day_summary(day: &[&ArrivalFrame]) -> Option<String> {
+    let light = median(day.iter().filter_map(|f| f.light_ms).collect())?;
+    let worst = day.iter().filter_map(|f| f.light_ms).fold(0.0, f64::max);
+    let gpu = median(day.iter().filter_map(|f| f.gpu_ms).collect()).unwrap_or(f64::NAN);
+    let texels = median(day.iter().map(|f| f.light_texels as f64).collect()).unwrap_or(0.0);
+    let round = day.last().map_or(0, |f| f.round_texels) as f64;
+    let frames = round / texels.max(1.0);
+    // The day moves 24 h / (DAY_LENGTH s x 60 frames) a frame; shadows lag at most two rounds.
+    let minutes = 2.0 * frames * 24.0 * 60.0 / (f64::from(DAY_LENGTH) * 60.0);
+    Some(format!(
+        "light {light:.2} ms a frame (worst {worst:.2}), frame {gpu:.2} ms, a relight round \
+         {frames:.0} frames (shadows at most {minutes:.0} min of the day behind)"
+    ))
 }
