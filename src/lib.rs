@@ -80,7 +80,6 @@
 pub mod camera;
 pub mod choice;
 pub mod clipmap;
-pub mod day;
 pub mod error;
 pub mod gpu;
 pub mod grass;
@@ -96,6 +95,7 @@ pub mod table;
 pub mod temporal;
 pub(crate) mod tile;
 pub mod world;
+pub use world::day;
 
 pub use camera::WorldView;
 pub use camera::{FlyCamera, OrbitCamera, PathCamera, View};

@@ -23,6 +23,8 @@ use glam::Vec3;
 pub(crate) const FOG_SPECTRUM: [f32; 3] = [0.714, 1.0, 1.721];
 /// Optical depth per air mass of red, green and blue beyond the zenith's, for the sun's colour.
 pub(crate) const SUN_TAU: [f32; 3] = [0.02, 0.05, 0.11];
+/// [`Sky::time_of_day`] when the sun is placed by azimuth and elevation, not by a time.
+pub const NO_TIME: f32 = -1.0;
 /// Angular radius of the drawn sun disc, radians (0.5 degrees).
 pub const SUN_RADIUS: f32 = 0.008_726_646;
 /// How fast the horizon's haze gives way to the zenith colour with the direction's height.
@@ -37,12 +39,11 @@ pub struct Sky {
     pub sun_elevation: f32,
     /// Extinction per kilometre of green light; 0 for clear air (no aerial perspective).
     pub fog: f32,
-    /// The hour (local solar time, in [0, 24)) the sun stands at ([`crate::day`]): where it
-    /// is set, `sun_azimuth` and `sun_elevation` are the day's at that hour
-    /// ([`crate::day::at_time`]); [`crate::day::NO_TIME`] (the default) where the sun is placed
-    /// by them.
+    /// The hour (local solar time, in [0, 24)) the sun stands at (the `day` module of
+    /// `world`): where it is set, `sun_azimuth` and `sun_elevation` are the day's at that hour;
+    /// [`NO_TIME`] (the default) where the sun is placed by them.
     pub time_of_day: f32,
-    /// Seconds of the frame's clock a whole day takes ([`crate::day::sky_at`]): the sun runs
+    /// Seconds of the frame's clock a whole day takes (`day::sky_at`): the sun runs
     /// through the day from `time_of_day` (or the time nearest where it stands); 0 (the
     /// default) holds it still.
     pub day_length: f32,
@@ -57,7 +58,7 @@ impl Default for Sky {
             sun_azimuth: 145.0,
             sun_elevation: 12.0,
             fog: 0.03,
-            time_of_day: crate::day::NO_TIME,
+            time_of_day: NO_TIME,
             day_length: 0.0,
         }
     }

@@ -5,6 +5,8 @@
 //! clipmap renderer ([`crate::gpu::world::World`]), whose parameters are [`WORLD_PARAMS`]. A key
 //! of one world's table that the other lacks is refused under the other (never ignored).
 
+pub mod day;
+
 use crate::error::{Error, Result};
 use crate::landscape::{Landscape, TerrainFn};
 use crate::palette::Palette;
@@ -334,7 +336,7 @@ pub static WORLD_PARAMS: [WorldParam; 28] = [
             if let Value::Float(x) = v {
                 // A sun placed by hand leaves the day's path.
                 if x != p.sky.sun_azimuth {
-                    p.sky.time_of_day = crate::day::NO_TIME;
+                    p.sky.time_of_day = day::NO_TIME;
                 }
                 p.sky.sun_azimuth = x;
             }
@@ -356,14 +358,14 @@ pub static WORLD_PARAMS: [WorldParam; 28] = [
         set: |p, v| {
             if let Value::Float(x) = v {
                 if x != p.sky.sun_elevation {
-                    p.sky.time_of_day = crate::day::NO_TIME;
+                    p.sky.time_of_day = day::NO_TIME;
                 }
                 p.sky.sun_elevation = x;
             }
         },
     },
-    crate::day::TIME_OF_DAY,
-    crate::day::DAY_LENGTH,
+    day::TIME_OF_DAY,
+    day::DAY_LENGTH,
     Param {
         key: "fog",
         doc: "aerial perspective: extinction per km of green light (blue more, red less); 0 for clear air",

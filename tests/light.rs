@@ -36,6 +36,7 @@ fn params(azimuth: f32, elevation: f32) -> WorldParams {
             sun_azimuth: azimuth,
             sun_elevation: elevation,
             fog: 0.0,
+            ..Default::default()
         },
         no_water: true,
         // The terrain alone: grass (on by default) is tests/grass.rs's.

@@ -33,6 +33,7 @@ fn params(fog: f32) -> WorldParams {
             sun_azimuth: 200.0,
             sun_elevation: 20.0,
             fog,
+            ..Default::default()
         },
         no_water: true,
         // The terrain alone: grass (on by default) is tests/grass.rs's.

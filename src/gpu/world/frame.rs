@@ -238,7 +238,7 @@ pub fn render_uniforms(
 ) -> RenderUniforms {
     // The sun where a running day has it at the frame's clock.
     let params = &WorldParams {
-        sky: crate::day::sky_at(params.sky, params.clock),
+        sky: crate::world::day::sky_at(params.sky, params.clock),
         ..*params
     };
     let horizon = horizon(region, eye);

@@ -607,9 +607,9 @@ impl World {
     }
 
     /// The sky the next frame is drawn with: the parameters' sky at [`World::clock`], its sun
-    /// moved along a running day ([`crate::day::sky_at`]).
+    /// moved along a running day ([`crate::world::day::sky_at`]).
     pub fn sky(&self) -> crate::sky::Sky {
-        crate::day::sky_at(self.params.sky, self.clock())
+        crate::world::day::sky_at(self.params.sky, self.clock())
     }
 
     /// Changes the parameters: a new terrain re-bakes every level, a new knob re-lays them out,

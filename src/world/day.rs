@@ -10,9 +10,10 @@
 //! At night the sky holds the faint dusk light [`crate::sky::SkyLight`] gives a sun far below
 //! the horizon (no moon, no stars).
 
+use super::WorldParam;
 use crate::sky::Sky;
+pub use crate::sky::NO_TIME;
 use crate::table::{Control, Kind, Param, Value};
-use crate::world::WorldParam;
 
 /// Latitude of the place, degrees north.
 pub const LATITUDE: f64 = 45.0;
@@ -20,10 +21,8 @@ pub const LATITUDE: f64 = 45.0;
 pub const DECLINATION: f64 = 15.0;
 /// Hours in a day.
 pub const HOURS: f32 = 24.0;
-/// [`Sky::time_of_day`] when the sun is placed by azimuth and elevation, not by a time.
-pub const NO_TIME: f32 = -1.0;
 
-/// The `time_of_day` row of [`crate::world::WORLD_PARAMS`].
+/// The `time_of_day` row of [`super::WORLD_PARAMS`].
 pub const TIME_OF_DAY: WorldParam = Param {
     key: "time_of_day",
     doc: "the hour, 0 to 24 (local solar time at 45° north in early May): sets the sun's \
@@ -50,7 +49,7 @@ pub const TIME_OF_DAY: WorldParam = Param {
     },
 };
 
-/// The `day_length` row of [`crate::world::WORLD_PARAMS`].
+/// The `day_length` row of [`super::WORLD_PARAMS`].
 pub const DAY_LENGTH: WorldParam = Param {
     key: "day_length",
     doc: "seconds a whole day takes on the frame's clock: the sun runs through the day from \
@@ -58,7 +57,7 @@ pub const DAY_LENGTH: WorldParam = Param {
           (N in the window runs a day in 60 s)",
     kind: Kind::Float {
         min: 0.0,
-        max: crate::world::MAX_CLOCK,
+        max: super::MAX_CLOCK,
     },
     control: Control::Slider {
         min: 0.0,
