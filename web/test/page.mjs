@@ -292,7 +292,8 @@ await withBrowser(webgpu, async (browser) => {
   // Every row of the endless world's table reaches it through the URL, and has its control.
   const wrows = await page.evaluate(async () =>
     JSON.parse((await import("./web/pkg/relief.js")).world_params_table()));
-  const walt = (r) => r.key === "method" ? "raymarch"
+  // time_of_day sets the sun's rows (its own check follows): here it stays unset (-1).
+  const walt = (r) => r.key === "method" ? "raymarch" : r.key === "time_of_day" ? "-1"
     : r.control === "select" ? r.choices[0] === "eroded" ? r.choices[1] : r.choices[0]
     : r.key === "feature_size" ? "2048" : String(r.min + r.step);
   const wurl = `${base}/index.html?world=endless&` + wrows.map((r) => `${r.key}=${walt(r)}`).join("&");
@@ -305,6 +306,13 @@ await withBrowser(webgpu, async (browser) => {
     wcontrols.map((r) => r.key));
   check(wmissing.length === 0 && wpresent === wcontrols.length,
     `all ${wrows.length} endless-world rows set through the URL (missing: ${wmissing.join(",") || "none"}), ${wpresent} controls`);
+  // The hour puts the sun where the day has it: the URL keeps the hour and the sun it sets.
+  const dusk = await openPage(browser, `${base}/index.html?${ENDLESS}&time_of_day=19`, errors);
+  await waitFrames(dusk, 1);
+  const dq = await dusk.evaluate(() => document.body.dataset.query || "");
+  const dslider = await dusk.evaluate(() => document.querySelector('[data-key="time_of_day"]')?.value);
+  check(dq.includes("time_of_day=19") && !dq.includes("sun_azimuth=145&") && dslider === "19",
+    `time_of_day=19 reaches the URL, moves the sun and its slider shows it (${dslider}; ${dq})`);
 
   // A ray caster instead of the mesh (`method` in the URL and its control): run.sh compares
   // the canvas with `relief render --method raymarch` of the same view.
