@@ -281,3 +281,75 @@ fn a_light_budget_lights_coarse_levels_first_and_ends_as_a_whole_bake() {
         );
     }
 }
+
+/// Under a running day the light is relit in rounds while the sun moves on: at each frame the
+/// shadows agree with that frame's sun (f64 rays) outside the band, as the still sun's do, at
+/// the default budget's pace on a GPU (a round in 48 frames of a day in 60 s at 60 frames a
+/// second: 19.2 minutes of the day a round), after rounds enough that every level has been
+/// relit while the sun moved.
+#[test]
+fn under_a_running_day_the_shadows_agree_with_each_frames_sun() {
+    let gpu = common::gpu();
+    // Frames a round takes here, and the clock a frame, so that a round is 19.2 minutes of a
+    // day of 60 s.
+    const ROUND: u64 = 6;
+    let step = 19.2 / ROUND as f64 / 1440.0 * 60.0;
+    // Morning and evening, an hour of a low sun (about 8° up at the end): long shadows.
+    for start in [4.8, 17.3] {
+        let mut p = params(0.0, 0.0);
+        p.sky = relief::day::at_time(p.sky, start);
+        p.sky.day_length = 60.0;
+        let v = view(&p.land);
+        let mut w = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+        let frame = |w: &mut World, seconds: f64| {
+            w.set_time(seconds);
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            w.encode_bake(&gpu.device, &gpu.queue, &mut encoder, &v)
+                .unwrap();
+            gpu.queue.submit([encoder.finish()]);
+        };
+        w.set_bake_budget(u64::MAX);
+        w.set_light_budget(u64::MAX);
+        frame(&mut w, 0.0);
+        let map = w.clipmap();
+        let active = map.levels.iter().filter(|l| l.active).count() as u64;
+        w.set_light_budget(active * u64::from(map.side()).pow(2) / ROUND);
+        for k in 1..=3 * ROUND {
+            frame(&mut w, k as f64 * step);
+        }
+        let sky = w.sky();
+        assert!(
+            w.pending_texels() > 0,
+            "a running day leaves light to relight"
+        );
+        let first = w.clipmap().first_drawn();
+        for l in first..first + 3 {
+            let band = 2.0 * w.clipmap().levels[l].spacing();
+            let points = texels(&gpu, &w, l);
+            let a = agreement(&p.land, &points, (sky.sun_azimuth, sky.sun_elevation), band);
+            let share = a.agree as f64 / a.judged.max(1) as f64;
+            eprintln!(
+                "day from {start} h, at {} (sun {:.1}° az, {:.1}° up), level {l}: {} of {} judged texels agree ({:.2} %), {} lit",
+                relief::day::clock(sky.time_of_day),
+                sky.sun_azimuth,
+                sky.sun_elevation,
+                a.agree,
+                a.judged,
+                100.0 * share,
+                a.lit
+            );
+            assert!(a.judged >= 100, "{start} h, level {l}: {} judged", a.judged);
+            assert!(
+                a.lit > 0 && a.lit < a.judged,
+                "{start} h, level {l}: {} of {} lit: no shadow edge in view",
+                a.lit,
+                a.judged
+            );
+            assert!(
+                share >= 0.99,
+                "day from {start} h, level {l}: lit or shadowed agrees with the f64 ray towards the frame's sun at {:.2} % of texels (want 99 %)",
+                100.0 * share
+            );
+        }
+    }
+}

@@ -246,9 +246,14 @@ impl LightQueue {
             .map_or(NO_LIGHT, |j| j as u32)
     }
 
-    /// Texels still to light (missing or stale) over the active levels.
+    /// Texels still to light (missing or stale) over the active levels: every level where the
+    /// sun turned since the last round began and none is under way (the next round's).
     pub fn pending_texels(&self, map: &Clipmap) -> u64 {
         let whole = u64::from(map.side()).pow(2);
+        if self.turned_during_round && !self.relighting() {
+            let active = map.levels.iter().filter(|l| l.active).count() as u64;
+            return whole * active;
+        }
         self.levels
             .iter()
             .enumerate()
@@ -454,6 +459,14 @@ mod tests {
             "two rounds in {frames} frames: {lit:?}"
         );
         assert!(frames <= 12, "two rounds took {frames} frames");
+        // A round that ends as the sun turns leaves the next one due (frames must come).
+        while !q.take(&map, budget, 96, |_| true).is_empty() {}
+        q.set_sun(200.0);
+        q.set_sun(201.0);
+        while q.relighting() {
+            q.take(&map, budget, 96, |_| true);
+        }
+        assert_eq!(q.pending_texels(&map), all, "the next round is due");
         // The sun stands still again: the round under way and one more, then nothing.
         let mut rest = 0;
         while !q.take(&map, budget, 96, |_| true).is_empty() {

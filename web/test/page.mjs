@@ -208,7 +208,9 @@ await withBrowser(webgpu, async (browser) => {
   const scatter = await g.waitForFunction(
     () => (/grass ([0-9.]+) ms/.exec(document.querySelector("#readout").textContent) || [])[1],
     null, { timeout: 120000 }).then((h) => h.jsonValue(), () => "");
-  await shot(g, "page-grass.png");
+  // The shot is a picture, not a check: on SwiftShader a grass frame takes 15-20 s of the GPU
+  // process, and the canvas may not hold still for Playwright within its 120 s.
+  await shot(g, "page-grass.png").catch((e) => console.log(`# no page-grass.png: ${String(e).split("\n")[0]}`));
   const gerror = await g.evaluate(() => document.body.dataset.error || "");
   const gq = await g.evaluate(() => document.body.dataset.query || "");
   fs.appendFileSync(path.join(out, "metrics.txt"),

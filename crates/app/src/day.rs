@@ -54,7 +54,10 @@ impl App {
         let (Some(now), Some((params, _))) = (self.sky_now(), options.world.as_mut()) else {
             return Ok(());
         };
+        let was = self.options.world.map_or(0.0, |(w, _)| w.sky.day_length);
         let hours = match key.as_str() {
+            // The same length (a control's echo): nothing moves.
+            "day_length" if params.sky.day_length == was => return Ok(()),
             "day_length" => day::time_nearest(&now),
             "time_of_day" if params.sky.time_of_day >= 0.0 => params.sky.time_of_day,
             _ => return Ok(()),
