@@ -184,7 +184,16 @@ fn bench_world_endless_quick_writes_landscape_csv() {
         .skip(1)
         .map(|l| l.split(',').collect())
         .collect();
-    assert_eq!(frames.len(), 2 * 6, "{arrival}");
+    // Two methods, six frames of arrival each, then a short running day: three frames
+    // standing and three flying.
+    assert_eq!(frames.len(), 2 * (6 + 2 * 3), "{arrival}");
+    let phases: Vec<&str> = frames[..12].iter().map(|f| f[10]).collect();
+    let want: Vec<&str> = ["arrival"; 6]
+        .into_iter()
+        .chain(["day-standing"; 3])
+        .chain(["day-flying"; 3])
+        .collect();
+    assert_eq!(phases, want, "{arrival}");
     for f in &frames {
         let lit: u64 = f[6].parse().unwrap();
         assert!(lit <= relief::gpu::world::DEFAULT_LIGHT_BUDGET, "{f:?}");
