@@ -5,6 +5,7 @@
 //! clipmap renderer ([`crate::gpu::world::World`]), whose parameters are [`WORLD_PARAMS`]. A key
 //! of one world's table that the other lacks is refused under the other (never ignored).
 
+pub mod clouds;
 pub mod day;
 
 use crate::error::{Error, Result};
@@ -89,6 +90,8 @@ pub struct WorldParams {
     /// How props are scattered ([`crate::props`]): off by default. What they are is the
     /// world's [`crate::props::Scene`] (`World::set_props_scene`).
     pub props: crate::props::Props,
+    /// The cloud layer (none by default).
+    pub clouds: clouds::Clouds,
 }
 
 /// The wind: a speed and the bearing it comes from.
@@ -146,6 +149,7 @@ impl Default for WorldParams {
             wind: Wind::default(),
             grass: crate::grass::Grass::default(),
             props: crate::props::Props::default(),
+            clouds: clouds::Clouds::default(),
         }
     }
 }
@@ -163,7 +167,7 @@ fn float(v: Value) -> Option<f64> {
 
 /// The endless world's parameters: keys shared with the tile's table ([`crate::params::PARAMS`])
 /// mean the same there; the others are the endless world's own.
-pub static WORLD_PARAMS: [WorldParam; 28] = [
+pub static WORLD_PARAMS: [WorldParam; 32] = [
     Param {
         key: "seed",
         doc: "hash seed: the same seed gives the same terrain on every GPU and on the CPU",
@@ -366,6 +370,10 @@ pub static WORLD_PARAMS: [WorldParam; 28] = [
     },
     day::TIME_OF_DAY,
     day::DAY_LENGTH,
+    clouds::CLOUD_COVERAGE,
+    clouds::CLOUD_BASE,
+    clouds::CLOUD_TOP,
+    clouds::CLOUD_TYPE,
     Param {
         key: "fog",
         doc: "aerial perspective: extinction per km of green light (blue more, red less); 0 for clear air",
@@ -690,6 +698,7 @@ impl WorldParams {
         for row in &WORLD_PARAMS {
             row.check((row.get)(self))?;
         }
+        self.clouds.check()?;
         let l = &self.land;
         if !(0..=20).contains(&l.feature_log2) {
             return Err(Error::invalid(

@@ -39,7 +39,7 @@ fn prop_light(lin: RenderUniforms, rel: vec3<f32>, n: vec3<f32>, albedo: vec3<f3
     let half_vec = normalize(l + v);
     let spec = 0.04 * pow(max(dot(n, half_vec), 0.0), 24.0) * ndl;
     let rim = lin.sky_horizon.rgb * 0.2 * pow(1.0 - clamp(dot(n, v), 0.0, 1.0), 5.0);
-    let sunlight = lin.sun_color.rgb * sun;
+    let sunlight = lin.sun_color.rgb * (sun * cloud_shadow(lin, rel));
     let lit = albedo * ((sky + back) * ao + sunlight * ndl) + rim * ao + sunlight * spec;
     let air = air_at(lin, rel);
     return to_target(lin, lit * air.keep + air.light);

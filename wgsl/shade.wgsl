@@ -1,3 +1,4 @@
+// import: clouds
 // Shading shared by every way relief draws terrain (the mesh in world.wgsl, the
 // ray casters in raymarch.wgsl and world_rays.wgsl, the sky pass in sky.wgsl): Blinn-Phong under
 // a directional sun with a noise-jittered snow line, in one of two palettes (src/palette.rs):
@@ -75,6 +76,14 @@ struct RenderUniforms {
     _pad_end1: f32,
     _pad_end2: f32,
     props_map: array<vec4<f32>, 3>,
+    // The clouds (clouds.wgsl, src/world/clouds.rs): coverage (0: none), base and top
+    // altitudes (metres), type; cloud-space xz of the eye for the shapes and for the detail
+    // (the wind's drift reduced modulo CLOUD_PERIOD); the eye's altitude, the view ray's steps
+    // and the frame's step offset; the sun's light at the layer (rgb).
+    clouds: vec4<f32>,
+    cloud_origin: vec4<f32>,
+    cloud_march: vec4<f32>,
+    cloud_sun: vec4<f32>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.
@@ -149,7 +158,29 @@ fn to_target(r: RenderUniforms, linear: vec3<f32>) -> vec3<f32> {
 
 // The sky's colour along unit `dir`, ready to store: what the sky pass and a missed ray show.
 fn sky_pixel(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
-    return to_target(r, sky_light(r, dir, true));
+    return to_target(r, sky_clouded(r, dir));
+}
+
+// The sky's light along unit `dir` with its sun disc, behind the clouds.
+fn sky_clouded(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
+    let sky = sky_light(r, dir, true);
+    if r.clouds.x <= 0.0 {
+        return sky;
+    }
+    let a = through_clouds(r, Air(vec3<f32>(1.0), vec3<f32>(0.0)), dir, 1e30);
+    return sky * a.keep + a.light;
+}
+
+// `a`, the air along unit `dir` to `far`, with the clouds on that stretch: they hide what is
+// behind them, and the air in front of them takes their light as it takes the terrain's.
+fn through_clouds(r: RenderUniforms, a: Air, dir: vec3<f32>, far: f32) -> Air {
+    let c = clouds_along(r, dir, far);
+    if c.keep >= 1.0 {
+        return a;
+    }
+    let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
+    let k = exp(-r.fog.rgb * c.dist);
+    return Air(a.keep * c.keep, a.light * c.keep + c.light * k + air * (1.0 - k) * (1.0 - c.keep));
 }
 
 // What the air between the eye and `world` does to light from there: the colour seen is
@@ -167,19 +198,25 @@ fn air_at(r: RenderUniforms, world: vec3<f32>) -> Air {
     var out: Air;
     out.keep = vec3<f32>(1.0);
     out.light = vec3<f32>(0.0);
-    if r.fade_end <= 0.0 && all(r.fog.rgb == vec3<f32>(0.0)) {
+    let clear = r.fade_end <= 0.0 && all(r.fog.rgb == vec3<f32>(0.0));
+    if clear && r.clouds.x <= 0.0 {
         return out;
     }
     let rel = world - r.camera_pos.xyz;
     let d = length(rel);
     let dir = rel / max(d, 1e-30);
-    let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
-    var keep = exp(-r.fog.rgb * d);
-    if r.fade_end > 0.0 {
-        keep *= 1.0 - smoothstep(r.fade_start, r.fade_end, length(rel.xz));
+    if !clear {
+        let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
+        var keep = exp(-r.fog.rgb * d);
+        if r.fade_end > 0.0 {
+            keep *= 1.0 - smoothstep(r.fade_start, r.fade_end, length(rel.xz));
+        }
+        out.keep = keep;
+        out.light = air * (1.0 - keep);
     }
-    out.keep = keep;
-    out.light = air * (1.0 - keep);
+    if r.clouds.x > 0.0 {
+        out = through_clouds(r, out, dir, d);
+    }
     return out;
 }
 
@@ -245,7 +282,7 @@ fn water_surface(r: RenderUniforms, world: vec3<f32>, lit: vec3<f32>, sunlit: f3
     reflected.y = abs(reflected.y);
     let cos_v = clamp(-dot(view, n), 0.0, 1.0);
     let fresnel = 0.02 + 0.98 * pow(1.0 - cos_v, 5.0);
-    let color = mix(below, sky_light(r, reflected, true), fresnel);
+    let color = mix(below, sky_clouded(r, reflected), fresnel);
     return array<vec3<f32>, 2>(color, surface);
 }
 
@@ -340,7 +377,7 @@ fn blade_radiance(lin: RenderUniforms, rel: vec3<f32>, normal: vec3<f32>, along:
     n = select(n, -n, dot(n, v) < 0.0);
     let rounded = normalize(n + vec3<f32>(0.0, 0.8, 0.0));
     let shade = look.x;
-    let sun = lin.sun_color.rgb * look.y;
+    let sun = lin.sun_color.rgb * (look.y * cloud_shadow(lin, rel));
     let ao = look.z * mix(0.4, 1.0, along);
     let albedo = mix(BLADE_LUSH, BLADE_DRY, shade * shade) * mix(0.55, 1.2, along);
     // The sun on the side seen, and through the blade from the other side.
@@ -443,7 +480,9 @@ fn shade(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, o
 
 // `shade` with the air between the eye and `world` given (`air_at` there, or interpolated from
 // the vertices around it).
-fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl: vec2<f32>, air: Air) -> vec3<f32> {
+fn shade_through(r: RenderUniforms, world: vec3<f32>, n: vec3<f32>, h: f32, tint: f32, occl_in: vec2<f32>, air: Air) -> vec3<f32> {
+    // The clouds' shadow takes the sun's share as the terrain's own does.
+    let occl = vec2<f32>(occl_in.x * cloud_shadow(r, world - r.camera_pos.xyz), occl_in.y);
     let blog = r.palette == PALETTE_BLOG;
     var albedo: vec3<f32>;
     if blog {

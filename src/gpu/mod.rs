@@ -201,9 +201,10 @@ fn tile_world(
         no_shadows: true,
         clock: 0.0,
         wind: crate::world::Wind::default(),
-        // The tile grows no grass and has no props.
+        // The tile grows no grass and has no props or clouds.
         grass: crate::grass::Grass::default(),
         props: crate::props::Props::default(),
+        clouds: crate::world::clouds::Clouds::default(),
     };
     let setup = world::TileSetup {
         region: frame.region(),

@@ -98,6 +98,18 @@ pub struct RenderUniforms {
     /// Per level of the props' shade map: the camera-relative x and z of its first texel's
     /// corner, metres, and that texel's column and row in the texture.
     pub props_map: [[f32; 4]; 3],
+    /// The clouds (`wgsl/clouds.wgsl`): coverage (0: none), base and top altitudes in metres,
+    /// type ([`crate::world::clouds::Clouds`]).
+    pub clouds: [f32; 4],
+    /// Cloud-space x and z of the eye for the clouds' shapes, then for their detail: the
+    /// eye less the wind's drift, reduced modulo `CLOUD_PERIOD`.
+    pub cloud_origin: [f32; 4],
+    /// The eye's altitude (metres), the view ray's steps through the layer, the frame's step
+    /// offset (0 to 1), unused.
+    pub cloud_march: [f32; 4],
+    /// The sun's linear light at the cloud layer's middle (which sees a sun a little below
+    /// the ground's horizon); w unused.
+    pub cloud_sun: [f32; 4],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -155,6 +167,10 @@ impl RenderUniforms {
             props_map_levels: 0,
             _pad: [0.0; 2],
             props_map: [[0.0; 4]; 3],
+            clouds: [0.0; 4],
+            cloud_origin: [0.0; 4],
+            cloud_march: [0.0; 4],
+            cloud_sun: [0.0; 4],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(

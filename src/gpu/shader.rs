@@ -20,6 +20,7 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     bake,
     blit,
     blog,
+    clouds,
     composite,
     fullscreen,
     grass,

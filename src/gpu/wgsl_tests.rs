@@ -232,6 +232,10 @@ fn uniform_structs_match_wgsl() {
         ("ripple_origin", offset_of!(RenderUniforms, ripple_origin)),
         ("sand_band", offset_of!(RenderUniforms, sand_band)),
         ("palette", offset_of!(RenderUniforms, palette)),
+        ("clouds", offset_of!(RenderUniforms, clouds)),
+        ("cloud_origin", offset_of!(RenderUniforms, cloud_origin)),
+        ("cloud_march", offset_of!(RenderUniforms, cloud_march)),
+        ("cloud_sun", offset_of!(RenderUniforms, cloud_sun)),
     ] {
         assert_eq!(offset(&m, name), rust, "RenderUniforms.{name}");
     }
@@ -246,6 +250,19 @@ fn the_water_periods_agree_with_shade_wgsl() {
     ] {
         let line = format!("const {name}: f32 = {value:.1};");
         assert!(shade.contains(&line), "shade.wgsl lacks `{line}`");
+    }
+}
+
+#[test]
+fn the_cloud_constants_agree_with_clouds_wgsl() {
+    use crate::world::clouds;
+    let text = shader::file("clouds").unwrap();
+    for (name, value) in [
+        ("CLOUD_PERIOD", clouds::CLOUD_PERIOD),
+        ("EARTH_RADIUS", clouds::EARTH_RADIUS),
+    ] {
+        let line = format!("const {name}: f32 = {value:.1};");
+        assert!(text.contains(&line), "clouds.wgsl lacks `{line}`");
     }
 }
 

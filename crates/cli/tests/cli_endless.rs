@@ -5,6 +5,8 @@ use std::path::Path;
 
 #[path = "common/cli.rs"]
 mod cli_common;
+#[path = "common/rows.rs"]
+mod rows;
 use cli_common::*;
 
 /// Renders the endless world small and loose (fast on a software GPU); returns the pixels and
@@ -73,37 +75,7 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
     // Every row of the endless world's table, through its flag: the picture changes (the
     // knob changes the triangles; the picture may stay nearly the same).
     for row in &relief::world::WORLD_PARAMS {
-        let value = match row.key {
-            "seed" => "8",
-            "octaves" => "6",
-            "gain" => "0.6",
-            "feature_size" => "1024",
-            "peak_height" => "900",
-            "terrain" => "fbm",
-            "pixel_error" => "4",
-            "snow_height" => "0.3",
-            "ao_exponent" => "3",
-            "sun_azimuth" => "300",
-            "sun_elevation" => "40",
-            "time_of_day" => "7",
-            "day_length" => "60",
-            "fog" => "0.4",
-            "water_level" => "1300",
-            "no_water" => "1",
-            "palette" => "blog",
-            "no_shadows" => "1",
-            "clock" => "30",
-            "wind_speed" => "12",
-            "wind_azimuth" => "90",
-            "no_grass" => "1",
-            "grass_density" => "8",
-            "grass_height" => "1.2",
-            "grass_distance" => "12",
-            "props" => "1",
-            "props_density" => "0.1",
-            "props_distance" => "30",
-            other => panic!("no test value for {other}: add one"),
-        };
+        let value = rows::test_value(row.key);
         let flag = format!("--{}", row.flag());
         let mut args: Vec<&str> = match row.kind {
             relief::table::Kind::Bool => vec![&flag],
@@ -140,6 +112,8 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
             "--no-grass",
         ];
         let propped = row.key.starts_with("props");
+        // The layer's knobs with clouds on (none by default).
+        let cloudy = row.key.starts_with("cloud_") && row.key != "cloud_coverage";
         let base = if propped {
             args.extend(among);
             let mut at = among.to_vec();
@@ -165,6 +139,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
                 assert!(triangles >= drawn && triangles <= 7.0 * drawn, "{s:?}");
             }
             img
+        } else if cloudy {
+            args.extend(["--cloud-coverage", "0.5"]);
+            render_endless(&dir, "cloudy", &["--cloud-coverage", "0.5"]).0
         } else if blog {
             args.extend(["--palette", "blog"]);
             render_endless(&dir, "blog", &["--palette", "blog"]).0
@@ -207,6 +184,9 @@ fn the_endless_world_renders_and_every_one_of_its_parameters_changes_it() {
         }
         if blog {
             knob.push_str("palette = \"blog\"\n");
+        }
+        if cloudy {
+            knob.push_str("cloud_coverage = 0.5\n");
         }
         if windy {
             knob.push_str("clock = 30\n");

@@ -319,6 +319,10 @@ fn world_rays(
     let render = |view: &WorldView, matrix| {
         let mut u =
             crate::gpu::world::render_uniforms(params, shading, (matrix, region, view.eye), true);
+        // The reference marches the clouds in many small steps.
+        if method == crate::Method::Reference {
+            u.cloud_march[1] = crate::world::clouds::REFERENCE_STEPS as f32;
+        }
         if params.grass.on {
             u.grass_distance = crate::gpu::grass_reference::REACH * params.grass.distance;
             u.grass_reference = 1;

@@ -162,6 +162,9 @@ impl World {
                     ..self.params
                 };
                 let mut u = render_uniforms(&now, &self.shading, (matrix, region, eye), encode);
+                if u.clouds[0] > 0.0 {
+                    u.cloud_march[2] = self.cloud_offset(view.size);
+                }
                 // The ground under the grass, where the method draws its blades.
                 if self.grass.is_some() && self.method.is_mesh() {
                     u.grass_distance = self.params.grass.distance;
@@ -273,7 +276,35 @@ pub fn render_uniforms(
         ];
         u.sand_band = (SAND_BAND / peak) as f32;
     }
+    if params.clouds.on() {
+        cloud_uniforms(&mut u, params, eye, (&light, sun));
+    }
     u
+}
+
+/// The clouds' uniforms (`wgsl/clouds.wgsl`): the layer, where the eye is in it (the wind's
+/// drift reduced in f64), the sun the layer sees; and the overcast: the sky's colours, and so
+/// the ambient light and the air's, go grey as the coverage grows.
+fn cloud_uniforms(
+    u: &mut RenderUniforms,
+    params: &WorldParams,
+    eye: DVec3,
+    (light, above): (&SkyLight, [f32; 3]),
+) {
+    use crate::world::clouds::{self, Clouds};
+    let c = &params.clouds;
+    u.clouds = [c.coverage, c.base, c.top, c.kind];
+    u.cloud_origin = Clouds::origin(eye, params.wind.velocity() * params.clock);
+    u.cloud_march = [eye.y as f32, clouds::STEPS as f32, 0.5, 0.0];
+    let seen = SkyLight::new(c.sun_direction(light.sun_dir), above);
+    u.cloud_sun = [seen.sun[0], seen.sun[1], seen.sun[2], 0.0];
+    let grey = 0.6 * c.coverage * c.coverage;
+    for colour in [&mut u.sky_zenith, &mut u.sky_horizon, &mut u.ambient_color] {
+        let y = 0.2126 * colour[0] + 0.7152 * colour[1] + 0.0722 * colour[2];
+        for v in colour.iter_mut().take(3) {
+            *v += (y - *v) * grey;
+        }
+    }
 }
 
 /// The tile's uniforms: the [`Shading`]'s sun and sky (as the tile always had), the blog

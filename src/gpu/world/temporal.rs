@@ -87,6 +87,17 @@ impl World {
         }
     }
 
+    /// The clouds' step offset for the next frame (`cloud_march.z`): the next jitter's x
+    /// (a base-2 radical inverse) moved to [0, 1), so successive frames march the clouds at
+    /// offsets that fill the step between them evenly; 0.5 where the service is inactive.
+    pub(super) fn cloud_offset(&self, size: (u32, u32)) -> f32 {
+        if !self.temporal_active() {
+            return 0.5;
+        }
+        let size = self.target_size.unwrap_or(size);
+        (self.history.next_jitter(size)[0] + 0.5).fract()
+    }
+
     /// Plans the frame just shaded (drawn from `view` jittered) and records its resolve.
     pub(super) fn encode_resolve(
         &mut self,

@@ -1,0 +1,337 @@
+// part of: shade
+// Clouds (src/world/clouds.rs): a layer of 3-D density between a base and a top altitude,
+// marched along each view ray in `air_at` and `sky_pixel` (shade.wgsl), so every method that
+// shades through the air draws them, and towards the sun for their shadows on everything lit.
+//
+// Density at a point: a weather field (two octaves of 2-D gradient noise, 4096 m cells) says
+// how cloudy the column is; the layer's height profile (flat-bottomed, its top rounded and
+// lower for a stratus `type` 0 than for a cumulus 1) times 3-D base noise (two octaves, 1024 m
+// cells) is kept above a threshold the coverage lowers; 3-D detail noise (256 m cells) erodes
+// its edges. Every noise repeats every CLOUD_PERIOD metres in x and z, so the CPU reduces the
+// wind's drift modulo that period in f64 (`cloud_origin`), as it does the ripples'.
+//
+// Light: Beer's law towards the sun (three samples of the shape's first octave) with a
+// sum of three scattering octaves for the light scattered many times (each weaker, less
+// extinguished and less forward: Wrenninge's approximation), a Henyey-Greenstein phase, and
+// the sky's ambient light, brighter towards the top. The layer curves with the planet (the
+// altitude along a ray grows by t^2 / 2R), so a ray to the horizon meets the base far away,
+// where the aerial perspective has taken it: no line marks the horizon.
+
+const CLOUD_PERIOD: f32 = 40960.0;
+const EARTH_RADIUS: f32 = 6371000.0;
+// Extinction per metre at density 1 (a mean free path of 40 m, a thin cumulus's).
+const CLOUD_SIGMA: f32 = 0.025;
+// The longest stretch of the layer one view ray marches, metres.
+const CLOUD_SPAN: f32 = 60000.0;
+// The longest stretch towards the sun the shadow samples, metres.
+const CLOUD_SHADOW_SPAN: f32 = 6000.0;
+
+fn cloud_hash(x: u32, y: u32, z: u32) -> u32 {
+    var h = (x * 0x8da6b343u) ^ (y * 0xd8163841u) ^ (z * 0xcb1ab31fu);
+    h = (h ^ (h >> 16u)) * 0x7feb352du;
+    h = (h ^ (h >> 15u)) * 0x846ca68bu;
+    return h ^ (h >> 16u);
+}
+
+fn cloud_wrap(i: f32, period: u32) -> u32 {
+    let p = i32(period);
+    return u32(((i32(i) % p) + p) % p);
+}
+
+fn cloud_fade(t: vec3<f32>) -> vec3<f32> {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Dot of the corner offset `f` with one of the twelve cube-edge gradients (and four repeated),
+// chosen by the hash's top four bits.
+fn cloud_grad(h: u32, f: vec3<f32>) -> f32 {
+    let k = h >> 28u;
+    let u = select(f.y, f.x, k < 8u);
+    let v = select(select(f.z, f.x, k == 12u || k == 14u), f.y, k < 4u);
+    return select(-u, u, (k & 1u) == 0u) + select(-v, v, (k & 2u) == 0u);
+}
+
+// 3-D gradient noise in about [-1, 1] at `p` (cells), repeating every `period` cells in x and z.
+fn cloud_noise3(p: vec3<f32>, period: u32) -> f32 {
+    let i = floor(p);
+    let f = p - i;
+    let x0 = cloud_wrap(i.x, period);
+    let x1 = cloud_wrap(i.x + 1.0, period);
+    let z0 = cloud_wrap(i.z, period);
+    let z1 = cloud_wrap(i.z + 1.0, period);
+    let y0 = bitcast<u32>(i32(i.y));
+    let y1 = y0 + 1u;
+    let u = cloud_fade(f);
+    let a = mix(
+        mix(cloud_grad(cloud_hash(x0, y0, z0), f), cloud_grad(cloud_hash(x1, y0, z0), f - vec3<f32>(1.0, 0.0, 0.0)), u.x),
+        mix(cloud_grad(cloud_hash(x0, y1, z0), f - vec3<f32>(0.0, 1.0, 0.0)), cloud_grad(cloud_hash(x1, y1, z0), f - vec3<f32>(1.0, 1.0, 0.0)), u.x),
+        u.y
+    );
+    let b = mix(
+        mix(cloud_grad(cloud_hash(x0, y0, z1), f - vec3<f32>(0.0, 0.0, 1.0)), cloud_grad(cloud_hash(x1, y0, z1), f - vec3<f32>(1.0, 0.0, 1.0)), u.x),
+        mix(cloud_grad(cloud_hash(x0, y1, z1), f - vec3<f32>(0.0, 1.0, 1.0)), cloud_grad(cloud_hash(x1, y1, z1), f - vec3<f32>(1.0, 1.0, 1.0)), u.x),
+        u.y
+    );
+    return mix(a, b, u.z);
+}
+
+fn cloud_fade2(t: vec2<f32>) -> vec2<f32> {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Dot of the corner offset `f` with one of eight unit gradients (the hash's top three bits).
+fn cloud_grad2(h: u32, f: vec2<f32>) -> f32 {
+    let k = h >> 29u;
+    let g = select(vec2<f32>(1.0, 0.0), vec2<f32>(0.70710678, 0.70710678), (k & 1u) == 1u);
+    let q = select(g, vec2<f32>(-g.y, g.x), (k & 2u) == 2u);
+    let r = select(q, -q, (k & 4u) == 4u);
+    return dot(r, f);
+}
+
+// 2-D gradient noise in about [-0.7, 0.7] at `p` (cells), repeating every `period` cells.
+fn cloud_noise2(p: vec2<f32>, period: u32, stream: u32) -> f32 {
+    let i = floor(p);
+    let f = p - i;
+    let x0 = cloud_wrap(i.x, period);
+    let x1 = cloud_wrap(i.x + 1.0, period);
+    let y0 = cloud_wrap(i.y, period);
+    let y1 = cloud_wrap(i.y + 1.0, period);
+    let u = cloud_fade2(f);
+    return mix(
+        mix(cloud_grad2(cloud_hash(x0, stream, y0), f), cloud_grad2(cloud_hash(x1, stream, y0), f - vec2<f32>(1.0, 0.0)), u.x),
+        mix(cloud_grad2(cloud_hash(x0, stream, y1), f - vec2<f32>(0.0, 1.0)), cloud_grad2(cloud_hash(x1, stream, y1), f - vec2<f32>(1.0, 1.0)), u.x),
+        u.y
+    );
+}
+
+// The weather: how cloudy the column at cloud-space `xz` is, 0 to 1.
+fn cloud_weather(xz: vec2<f32>) -> f32 {
+    let p = xz * (10.0 / CLOUD_PERIOD);
+    let n = cloud_noise2(p, 10u, 0x51u) + 0.5 * cloud_noise2(p * 2.0, 20u, 0x52u);
+    return clamp(0.5 + 0.8 * n, 0.0, 1.0);
+}
+
+// The layer's height profile at `hf` (0 at the base, 1 at the top) for `kind` (0 stratus, 1
+// cumulus).
+fn cloud_profile(hf: f32, kind: f32) -> f32 {
+    let top = mix(0.35, 1.0, kind);
+    return smoothstep(0.0, 0.08, hf) * (1.0 - smoothstep(0.4 * top, top, hf));
+}
+
+// The layer's parameters and the eye: what the density needs.
+struct CloudLayer {
+    coverage: f32,
+    base: f32,
+    top: f32,
+    kind: f32,
+    origin: vec2<f32>,
+    detail: vec2<f32>,
+    eye: f32,
+}
+
+fn cloud_layer(r: RenderUniforms) -> CloudLayer {
+    return CloudLayer(r.clouds.x, r.clouds.y, r.clouds.z, r.clouds.w, r.cloud_origin.xy, r.cloud_origin.zw, r.cloud_march.x);
+}
+
+// How much of the layer's column at camera-relative `rel` the weather lets the coverage
+// fill, 0 to 1.
+fn cloud_local(c: CloudLayer, rel: vec3<f32>) -> f32 {
+    return min(c.coverage * (0.5 + cloud_weather(rel.xz + c.origin)), 1.0);
+}
+
+// Density (0 to 1) at camera-relative `rel` whose altitude is `alt`, in a column the weather
+// fills `local` of (`cloud_local`); with `detail` above 0, two octaves of the shapes eroded
+// by that much of the detail noise (what the view sees: less far away, where a step is longer
+// than the detail), at 0 one octave (what light and shadows use).
+fn cloud_density(c: CloudLayer, rel: vec3<f32>, alt: f32, local: f32, detail: f32) -> f32 {
+    let hf = (alt - c.base) / (c.top - c.base);
+    if hf <= 0.0 || hf >= 1.0 {
+        return 0.0;
+    }
+    let profile = cloud_profile(hf, c.kind);
+    // The shapes' noise is at most 1: where the profile cannot reach the threshold, no
+    // noise is needed.
+    if profile <= 1.0 - local || local <= 0.0 {
+        return 0.0;
+    }
+    let xz = rel.xz + c.origin;
+    let p = vec3<f32>(xz.x, alt, xz.y) * (40.0 / CLOUD_PERIOD);
+    var n = cloud_noise3(p, 40u);
+    if detail > 0.0 {
+        n += 0.5 * cloud_noise3(p * 2.0, 80u);
+    }
+    let base = 0.5 + 0.5 * n;
+    var d = clamp((base * profile - (1.0 - local)) / max(local, 0.05), 0.0, 1.0);
+    if detail > 0.0 && d > 0.0 {
+        let q = vec3<f32>(rel.x + c.detail.x, alt, rel.z + c.detail.y) * (160.0 / CLOUD_PERIOD);
+        let e = 0.3 * detail * (0.5 + 0.5 * cloud_noise3(q, 160u));
+        d = clamp((d - e) / (1.0 - e), 0.0, 1.0);
+    }
+    return d;
+}
+
+fn cloud_phase(g: f32, mu: f32) -> f32 {
+    let k = 1.0 + g * g - 2.0 * g * mu;
+    return (1.0 - g * g) / (12.566371 * k * sqrt(k));
+}
+
+// Where a ray from altitude `a0` with vertical direction `dy` meets altitude `h` over the
+// curved planet (a(t) = a0 + dy t + (1 - dy^2) t^2 / 2R): both roots, the smaller first, or
+// (-1, -1) where it never does.
+fn cloud_cross(a0: f32, dy: f32, h: f32) -> vec2<f32> {
+    let k = max((1.0 - dy * dy) / (2.0 * EARTH_RADIUS), 1e-12);
+    let c = a0 - h;
+    let disc = dy * dy - 4.0 * k * c;
+    if disc < 0.0 {
+        return vec2<f32>(-1.0);
+    }
+    let q = -0.5 * (dy + select(-1.0, 1.0, dy >= 0.0) * sqrt(disc));
+    let r0 = q / k;
+    let r1 = select(c / q, -1e30, q == 0.0);
+    return vec2<f32>(min(r0, r1), max(r0, r1));
+}
+
+// The stretch [t0, t1] of the view ray along unit `dir` from the eye that first lies in the
+// layer, cut at `far`; t1 <= t0 where it lies in none.
+fn cloud_span(c: CloudLayer, dir: vec3<f32>, far: f32) -> vec2<f32> {
+    let b = cloud_cross(c.eye, dir.y, c.base);
+    let t = cloud_cross(c.eye, dir.y, c.top);
+    var t0 = 0.0;
+    var t1 = 0.0;
+    if c.eye < c.base {
+        // Below: in at the base's far root, out at the top's.
+        t0 = b.y;
+        t1 = t.y;
+    } else if c.eye <= c.top {
+        // Inside: out at the base going down, else at the top.
+        t1 = select(t.y, b.x, b.x > 0.0);
+    } else {
+        // Above: in at the top's near root, if the ray comes down to it.
+        if t.x <= 0.0 {
+            return vec2<f32>(0.0);
+        }
+        t0 = t.x;
+        t1 = select(t.y, b.x, b.x > 0.0);
+    }
+    return vec2<f32>(t0, min(min(t1, far), t0 + CLOUD_SPAN));
+}
+
+// The sun's light at a sample, as scattered towards the eye: Beer's law through `od` (optical
+// depth towards the sun) over three scattering octaves.
+fn cloud_sunlit(od: f32, mu: f32) -> f32 {
+    var sum = 0.0;
+    var a = 1.0;
+    var b = 1.0;
+    var g = 0.6;
+    for (var i = 0; i < 3; i++) {
+        sum += a * exp(-b * od) * mix(cloud_phase(g, mu), cloud_phase(-0.2, mu), 0.25);
+        a *= 0.5;
+        b *= 0.5;
+        g *= 0.5;
+    }
+    return sum;
+}
+
+// Optical depth of the shape from camera-relative `rel` (altitude `alt`, in a column the
+// weather fills `local` of: the light's samples lie within a weather cell) towards unit
+// `to_sun` over `span` metres, three samples spaced wider the further they go.
+fn cloud_optical_depth(c: CloudLayer, rel: vec3<f32>, alt: f32, local: f32, to_sun: vec3<f32>, span: f32) -> f32 {
+    var od = 0.0;
+    var at = 0.0;
+    for (var i = 0u; i < 3u; i++) {
+        let step = span * (f32(1u << i) / 7.0);
+        at += step;
+        let mid = at - 0.5 * step;
+        od += cloud_density(c, rel + to_sun * mid, alt + to_sun.y * mid, local, 0.0) * step;
+    }
+    return od * CLOUD_SIGMA;
+}
+
+// What the clouds between the eye and `far` along unit `dir` do: x is the light kept
+// (transmittance), yzw the light they scatter towards the eye (linear), and `dist` their
+// transmittance-weighted distance (for the air in front of them).
+struct CloudLight {
+    keep: f32,
+    light: vec3<f32>,
+    dist: f32,
+}
+
+fn cloud_none() -> CloudLight {
+    return CloudLight(1.0, vec3<f32>(0.0), 0.0);
+}
+
+fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
+    if r.clouds.x <= 0.0 {
+        return cloud_none();
+    }
+    let c = cloud_layer(r);
+    let span = cloud_span(c, dir, far);
+    if span.y <= span.x {
+        return cloud_none();
+    }
+    let steps = max(u32(r.cloud_march.y), 1u);
+    let length = span.y - span.x;
+    let inv = 1.0 / f32(steps);
+    // A step offset a pixel's own (its direction's bits and the frame's seed): banding becomes
+    // noise, which the temporal service averages away.
+    let bits = bitcast<vec3<u32>>(dir);
+    let jitter = fract(f32(cloud_hash(bits.x, bits.y, bits.z) >> 8u) / 16777216.0 + r.cloud_march.z);
+    let to_sun = r.sun_dir.xyz;
+    let mu = dot(dir, to_sun);
+    let curve = (1.0 - dir.y * dir.y) / (2.0 * EARTH_RADIUS);
+    var keep = 1.0;
+    var light = vec3<f32>(0.0);
+    var dist = 0.0;
+    for (var i = 0u; i < steps; i++) {
+        // Steps spaced as the square of their index: short where the ray enters the layer,
+        // whose first optical depths make most of what is seen.
+        let u = (f32(i) + jitter) * inv;
+        let t = span.x + length * u * u;
+        let dt = length * inv * (2.0 * u + inv);
+        let rel = dir * t;
+        let alt = c.eye + rel.y + curve * t * t;
+        let local = cloud_local(c, rel);
+        let d = cloud_density(c, rel, alt, local, max(1.0 - smoothstep(6000.0, 15000.0, t), 1e-3));
+        if d <= 0.0 {
+            continue;
+        }
+        let sigma = d * CLOUD_SIGMA;
+        let hf = (alt - c.base) / (c.top - c.base);
+        let od = cloud_optical_depth(c, rel, alt, local, to_sun, min(CLOUD_SHADOW_SPAN, c.top - c.base + 1000.0));
+        let scattered = r.cloud_sun.rgb * (6.2831853 * cloud_sunlit(od, mu))
+            + r.ambient_color.rgb * mix(0.45, 1.0, hf);
+        let absorbed = 1.0 - exp(-sigma * dt);
+        light += keep * absorbed * scattered;
+        dist += keep * absorbed * t;
+        keep *= 1.0 - absorbed;
+        if keep < 0.005 {
+            break;
+        }
+    }
+    let seen = 1.0 - keep;
+    return CloudLight(keep, light, select(0.0, dist / seen, seen > 0.0));
+}
+
+// The light of the sun that the clouds let through to camera-relative `rel` (1 without
+// clouds): the shadows they cast on everything lit.
+fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    if r.clouds.x <= 0.0 {
+        return 1.0;
+    }
+    let c = cloud_layer(r);
+    let alt = c.eye + rel.y;
+    let s = normalize(vec3<f32>(r.sun_dir.x, max(r.sun_dir.y, 0.05), r.sun_dir.z));
+    let t0 = max((c.base - alt) / s.y, 0.0);
+    let t1 = min((c.top - alt) / s.y, t0 + CLOUD_SHADOW_SPAN);
+    if t1 <= t0 {
+        return 1.0;
+    }
+    var od = 0.0;
+    let dt = (t1 - t0) * 0.25;
+    for (var i = 0; i < 4; i++) {
+        let t = t0 + (f32(i) + 0.5) * dt;
+        let p = rel + s * t;
+        od += cloud_density(c, p, alt + s.y * t, cloud_local(c, p), 0.0) * dt;
+    }
+    return exp(-od * CLOUD_SIGMA);
+}
