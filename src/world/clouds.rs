@@ -34,6 +34,9 @@ pub struct Clouds {
     pub top: f32,
     /// Their type: 0 flat stratus in the layer's lower third, 1 cumulus to its top.
     pub kind: f32,
+    /// Steps a view ray takes through the layer ([`STEPS`]; the reference takes
+    /// [`REFERENCE_STEPS`]). Not a row of the table: what a benchmark or a reference asks.
+    pub steps: u32,
 }
 
 impl Default for Clouds {
@@ -44,6 +47,7 @@ impl Default for Clouds {
             base: 2600.0,
             top: 4600.0,
             kind: 0.7,
+            steps: STEPS,
         }
     }
 }
@@ -201,9 +205,12 @@ mod tests {
 
     #[test]
     fn a_sun_just_set_still_lights_the_layer() {
-        let set = crate::sky::sun_direction(145.0, -2.0);
+        // The default layer's middle, 3600 m up, sees 1.93 degrees past the ground's horizon.
+        let set = crate::sky::sun_direction(145.0, -1.5);
         let seen = Clouds::default().sun_direction(set);
         assert!(seen.y > 0.0, "{seen}");
+        let dip = (seen.y.asin() - set.y.asin()).to_degrees();
+        assert!((dip - 1.93).abs() < 0.01, "{dip}");
         assert!((seen.length() - 1.0).abs() < 1e-5);
         // The same azimuth.
         assert!((seen.x.atan2(-seen.z) - set.x.atan2(-set.z)).abs() < 1e-4);

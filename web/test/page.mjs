@@ -295,7 +295,10 @@ await withBrowser(webgpu, async (browser) => {
   const wrows = await page.evaluate(async () =>
     JSON.parse((await import("./web/pkg/relief.js")).world_params_table()));
   // time_of_day sets the sun's rows (its own check follows): here it stays unset (-1).
+  // The clouds stay off (coverage 0: SwiftShader would march them) and their top above the
+  // base the slider's first step puts at 50 m.
   const walt = (r) => r.key === "method" ? "raymarch" : r.key === "time_of_day" ? "-1"
+    : r.key === "cloud_coverage" ? "0" : r.key === "cloud_top" ? "6000"
     : r.control === "select" ? r.choices[0] === "eroded" ? r.choices[1] : r.choices[0]
     : r.key === "feature_size" ? "2048" : String(r.min + r.step);
   const wurl = `${base}/index.html?world=endless&` + wrows.map((r) => `${r.key}=${walt(r)}`).join("&");

@@ -59,7 +59,10 @@ pub const FLY_CLEARANCE: f64 = 2.0;
 
 /// The endless world's sun, fog and water keys: `[` `]` turn the sun, `-` `=` lower and raise
 /// it, `f` turns the fog off and on again, `l` the water (lakes).
-pub const SKY_KEYS: [&str; 7] = ["[", "]", "-", "=", "f", "l", "g"];
+pub const SKY_KEYS: [&str; 8] = ["[", "]", "-", "=", "f", "l", "g", "c"];
+
+/// The clouds' coverage C turns on (off: 0).
+pub const CLOUD_KEY_COVERAGE: f32 = 0.5;
 
 /// The [`SKY_KEYS`] that move the sun: held, they keep moving it.
 const SUN_KEYS: [&str; 4] = ["[", "]", "-", "="];
@@ -586,6 +589,8 @@ impl App {
             }
             "l" => ("no_water", if world.no_water { 0.0 } else { 1.0 }),
             "g" => ("no_grass", if world.grass.on { 1.0 } else { 0.0 }),
+            "c" if world.clouds.on() => ("cloud_coverage", 0.0),
+            "c" => ("cloud_coverage", CLOUD_KEY_COVERAGE),
             _ if sky.fog > 0.0 => {
                 self.fog_off = sky.fog;
                 ("fog", 0.0)
@@ -623,7 +628,7 @@ impl App {
             .map_or(String::new(), |p| format!(" · baking {p}%"));
         match &o.world {
             Some((w, _)) => format!(
-                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up{} · fog {} /km · water {} · grass {} · history {} (T) · [ ] - = move the sun, N run the day, F fog, L water, G grass",
+                "relief: {method} (M){baking} · seed {} · sun {:.0}° az, {:.0}° up{} · fog {} /km · water {} · grass {} · clouds {} · history {} (T) · [ ] - = move the sun, N run the day, F fog, L water, G grass, C clouds",
                 w.land.seed,
                 self.sky_now().unwrap_or(w.sky).sun_azimuth,
                 self.sky_now().unwrap_or(w.sky).sun_elevation,
@@ -631,6 +636,7 @@ impl App {
                 w.sky.fog,
                 if w.no_water { "off" } else { "on" },
                 if w.grass.on { "on" } else { "off" },
+                if w.clouds.on() { "on" } else { "off" },
                 if o.temporal { "on" } else { "off" }
             ),
             None => format!(

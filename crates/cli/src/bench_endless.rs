@@ -209,6 +209,25 @@ pub(super) fn bench_endless(
         }
         Ok(())
     };
+    let clouds = || -> Result<()> {
+        use relief_eval::bench_clouds as c;
+        use std::io::Write;
+        let path = dir.join("clouds.csv");
+        let mut file = std::fs::File::create(&path).map_err(|e| Error::io(&path, e))?;
+        file.write_all(c::header(&device, size).as_bytes())
+            .map_err(|e| Error::io(&path, e))?;
+        let rows = c::run(&gpu, params, (&options, quick), |row: &c::CloudRow| {
+            progress(&format!("clouds: {}", row.view));
+            file.write_all(c::line(row).as_bytes())
+                .map_err(|e| Error::io(&path, e))
+        })?;
+        done();
+        wrote("clouds.csv", rows.len());
+        for line in c::summary(&rows) {
+            println!("{line}");
+        }
+        Ok(())
+    };
     let result = match only {
         Some("look") => look(),
         Some("landscape") => sweep(),
@@ -217,6 +236,7 @@ pub(super) fn bench_endless(
         Some("reference") => reference(),
         Some("grass") => grass(),
         Some("props") => props(),
+        Some("clouds") => clouds(),
         _ => look().and_then(|()| sweep()).and_then(|()| arrival()),
     };
     if result.is_err() {

@@ -102,8 +102,9 @@ pub fn command() -> Command {
                              (the LOD sweep), arrival, temporal (the temporal service: still \
                              views converging, moving frames, its cost), reference (the \
                              reference's rays a pixel), grass (the grass's cost and blades on \
-                             a meadow's views) or props (the props' cost and FLIP against the \
-                             reference with props, beside the seed's way) [default: look, \
+                             a meadow's views), props (the props' cost and FLIP against the \
+                             reference with props, beside the seed's way) or clouds (their \
+                             cost, and their march against more steps) [default: look, \
                              landscape and arrival] \
                              [allowed: {}]",
                             BENCH_PARTS.allowed()

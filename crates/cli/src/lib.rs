@@ -92,6 +92,7 @@ const BENCH_PARTS: Kind = Kind::Choice(&[
     "reference",
     "grass",
     "props",
+    "clouds",
 ]);
 
 /// `--raster`: where the visibility method rasterises.

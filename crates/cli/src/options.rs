@@ -60,7 +60,8 @@ pub fn options_markdown() -> String {
             "pixel_error" => "render --world endless",
             "sun_azimuth" | "sun_elevation" | "time_of_day" | "day_length" | "fog"
             | "water_level" | "no_water" | "palette" | "no_shadows" | "clock" | "wind_speed"
-            | "wind_azimuth" | "no_grass" | "grass_density" | "grass_height" | "grass_distance" => {
+            | "wind_azimuth" | "no_grass" | "grass_density" | "grass_height" | "grass_distance"
+            | "cloud_coverage" | "cloud_base" | "cloud_top" | "cloud_type" => {
                 "window, render, scene files, URL --world endless"
             }
             _ => "render, height --world endless",

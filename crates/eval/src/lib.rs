@@ -13,6 +13,7 @@
 
 pub mod bench;
 pub mod bench_arrival;
+pub mod bench_clouds;
 pub mod bench_grass;
 pub mod bench_look;
 pub mod bench_props;
