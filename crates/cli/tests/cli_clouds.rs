@@ -1,6 +1,7 @@
 //! The clouds through the `relief` program: coverage 0 draws none, byte for byte, whatever the
 //! layer's other knobs; a sun just set still lights the clouds from below, one set further
-//! does not; the night with clouds stays dark; bad values are refused in one line (exit 2).
+//! does not; the night with clouds stays dark; cloud shadows move by the wind times the clock
+//! and stand still without wind; bad values are refused in one line (exit 2).
 
 #[path = "common/cli.rs"]
 mod cli_common;
@@ -134,6 +135,143 @@ fn a_sun_just_set_lights_the_clouds_from_below_and_the_night_stays_dark() {
     let [r, g, b] = mean(&render(&dir, "night", &args), 0..54);
     let night = 0.2126 * r + 0.7152 * g + 0.0722 * b;
     assert!(night < 20.0, "the night's mean luma is {night:.1}");
+}
+
+/// Each pixel's luma (Rec. 709 weights on the stored sRGB bytes) in `a` over that in `b`.
+fn ratio(a: &image::RgbaImage, b: &image::RgbaImage) -> Vec<f64> {
+    let luma = |p: &image::Rgba<u8>| {
+        0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+    };
+    a.pixels()
+        .zip(b.pixels())
+        .map(|(a, b)| luma(a) / luma(b).max(1.0))
+        .collect()
+}
+
+/// The correlation of `a` at (x, y) with `b` at (x + dx, y + dy) over where both lie in the
+/// `side` x `side` image, every `step`-th pixel.
+fn correlation(a: &[f64], b: &[f64], side: i32, (dx, dy): (i32, i32), step: usize) -> f64 {
+    let (mut n, mut sa, mut sb, mut saa, mut sbb, mut sab) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for y in (0.max(-dy)..side.min(side - dy)).step_by(step) {
+        for x in (0.max(-dx)..side.min(side - dx)).step_by(step) {
+            let u = a[(y * side + x) as usize];
+            let v = b[((y + dy) * side + x + dx) as usize];
+            n += 1.0;
+            (sa, sb) = (sa + u, sb + v);
+            (saa, sbb, sab) = (saa + u * u, sbb + v * v, sab + u * v);
+        }
+    }
+    let cov = sab / n - sa / n * sb / n;
+    let var = (saa / n - (sa / n).powi(2)) * (sbb / n - (sb / n).powi(2));
+    cov / var.max(1e-12).sqrt()
+}
+
+#[test]
+fn cloud_shadows_move_by_the_wind_times_the_clock_and_stand_still_without_it() {
+    // Looking (almost) straight down from 5000 m at flat ground (peak height 1 m), the layer
+    // above the eye (6000 to 8000 m), the sun high: the frame with clouds over the frame
+    // without is the clouds' shadow, whose pattern the wind carries. A west wind of 20 m/s
+    // for 60 s carries it 1200 m east: at 45 degrees across 128 pixels, 5000 m below, that
+    // is 1200 / (2 x 5000 x tan 22.5° / 128) = 37.1 pixels.
+    const SIDE: i32 = 128;
+    let dir = scratch("clouds-wind");
+    let frame = |name: &str, extra: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let side = SIDE.to_string();
+        let mut args = vec![
+            "render",
+            "--world",
+            "endless",
+            "--method",
+            "mesh",
+            "--width",
+            &side,
+            "--height",
+            &side,
+            "--octaves",
+            "6",
+            "--peak-height",
+            "1",
+            "--no-water",
+            "--no-grass",
+            "--fog",
+            "0",
+            "--eye",
+            "0,5000,0",
+            "--look-at",
+            "5,0,0",
+            "--sun-elevation",
+            "60",
+            "--cloud-base",
+            "6000",
+            "--cloud-top",
+            "8000",
+            "--wind-azimuth",
+            "270",
+        ];
+        let out_arg = out.to_str().unwrap().to_owned();
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", &out_arg]);
+        let (code, _, err) = relief(&args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        image::open(&out).unwrap().into_rgba8()
+    };
+    let clear = frame("clear", &["--cloud-coverage", "0"]);
+    let cloudy = |name: &str, speed: &str, clock: &str| {
+        let args = [
+            "--cloud-coverage",
+            "0.5",
+            "--wind-speed",
+            speed,
+            "--clock",
+            clock,
+        ];
+        ratio(&frame(name, &args), &clear)
+    };
+    let before = cloudy("before", "20", "0");
+    let after = cloudy("after", "20", "60");
+    // The view holds shadow and sun both, or no shift could be found.
+    let mean = before.iter().sum::<f64>() / before.len() as f64;
+    let spread =
+        (before.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / before.len() as f64).sqrt();
+    assert!(
+        spread > 0.05,
+        "no shadow's edge in view: shadow {mean:.3} ± {spread:.3}"
+    );
+    // The shift that best lays the later shadows on the earlier: searched over ±48 pixels
+    // every second pixel, then refined around the best.
+    let best = |shifts: Vec<(i32, i32)>, step| {
+        shifts
+            .into_iter()
+            .map(|d| (correlation(&before, &after, SIDE, d, step), d))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .unwrap()
+    };
+    let coarse: Vec<(i32, i32)> = (-24..=24)
+        .flat_map(|j| (-24..=24).map(move |i| (2 * i, 2 * j)))
+        .collect();
+    let (_, (cx, cy)) = best(coarse, 2);
+    let fine: Vec<(i32, i32)> = (-2..=2)
+        .flat_map(|j| (-2..=2).map(move |i| (cx + i, cy + j)))
+        .collect();
+    let (r, (dx, dy)) = best(fine, 1);
+    let moved = f64::from(dx).hypot(f64::from(dy));
+    let expected = 1200.0 / (2.0 * 5000.0 * 22.5f64.to_radians().tan() / f64::from(SIDE));
+    eprintln!(
+        "shadows moved ({dx}, {dy}) pixels, {moved:.1} (expected {expected:.1}), correlation {r:.3}"
+    );
+    assert!(r > 0.8, "the shadows changed shape as they moved: {r:.3}");
+    assert!(
+        (moved - expected).abs() <= 0.1 * expected,
+        "moved {moved:.1} pixels, expected {expected:.1} ± 10%"
+    );
+    // Without wind the clock moves nothing.
+    let still = cloudy("still", "0", "60");
+    assert_eq!(
+        still,
+        cloudy("still-start", "0", "0"),
+        "without wind the shadows moved"
+    );
 }
 
 #[test]
