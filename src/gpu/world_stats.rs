@@ -38,6 +38,10 @@ pub struct WorldStats {
     /// Why the frame has no history (the first frame, a cut, a resize, new parameters, ...),
     /// where the service is on; `None` where it carried one.
     pub history_fresh: Option<&'static str>,
+    /// With clouds ([`crate::world::clouds::Clouds::on`]): the share of the pixels whose ray
+    /// crosses the layer that the frame marched (every one, every frame: 1), and the steps of
+    /// each march; `None` without clouds.
+    pub clouds: Option<(f64, u32)>,
 }
 
 impl WorldStats {
@@ -47,8 +51,9 @@ impl WorldStats {
         self.level_bytes * u64::from(self.levels_total)
     }
 
-    /// `key value` lines, and with the temporal service `history_frames` (and
-    /// `history_fresh` with the reason where the frame has no history).
+    /// `key value` lines; with clouds `cloud_march_fraction` and `cloud_steps`; with the
+    /// temporal service `history_frames` (and `history_fresh` with the reason where the frame
+    /// has no history).
     pub fn lines(&self) -> Vec<String> {
         let mut lines = vec![
             format!("triangles {}", self.triangles),
@@ -65,6 +70,10 @@ impl WorldStats {
             format!("texture_mib_per_level {:.2}", mib(self.level_bytes)),
             format!("texture_mib {:.1}", mib(self.texture_bytes())),
         ];
+        if let Some((marched, steps)) = self.clouds {
+            lines.push(format!("cloud_march_fraction {marched}"));
+            lines.push(format!("cloud_steps {steps}"));
+        }
         if self.history_frames > 0 {
             lines.push(format!("history_frames {}", self.history_frames));
             if let Some(why) = self.history_fresh {

@@ -1,7 +1,8 @@
 //! The clouds through the `relief` program: coverage 0 draws none, byte for byte, whatever the
 //! layer's other knobs; a sun just set still lights the clouds from below, one set further
 //! does not; the night with clouds stays dark; cloud shadows move by the wind times the clock
-//! and stand still without wind; bad values are refused in one line (exit 2).
+//! and stand still without wind; `--stats` says what the march did; bad values are refused in
+//! one line (exit 2).
 
 #[path = "common/cli.rs"]
 mod cli_common;
@@ -217,6 +218,40 @@ fn cloud_shadows_move_by_the_wind_times_the_clock_and_stand_still_without_it() {
         image::open(&out).unwrap().into_rgba8()
     };
     let clear = frame("clear", &["--cloud-coverage", "0"]);
+    // `--stats` says how much of the layer a frame marched, and in how many steps: with
+    // clouds only.
+    let stats = |coverage: &str| {
+        let out = dir.join("stats.png");
+        let (code, text, err) = relief(&[
+            "render",
+            "--world",
+            "endless",
+            "--method",
+            "mesh",
+            "--width",
+            "32",
+            "--height",
+            "18",
+            "--pixel-error",
+            "16",
+            "--octaves",
+            "6",
+            "--no-grass",
+            "--stats",
+            "--cloud-coverage",
+            coverage,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        text
+    };
+    let cloudy_stats = stats("0.5");
+    assert!(
+        cloudy_stats.contains("cloud_march_fraction 1\ncloud_steps 48\n"),
+        "{cloudy_stats}"
+    );
+    assert!(!stats("0").contains("cloud_"), "stats without clouds");
     let cloudy = |name: &str, speed: &str, clock: &str| {
         let args = [
             "--cloud-coverage",

@@ -205,6 +205,9 @@ impl World {
             // The resolve (after the shading) says.
             history_frames: 0,
             history_fresh: None,
+            // Every pixel whose ray crosses the layer, every frame.
+            clouds: (self.tile.is_none() && self.params.clouds.on())
+                .then_some((1.0, self.params.clouds.steps.max(1))),
         };
         self.frame_prepared = true;
     }
