@@ -103,11 +103,11 @@ async function waitFrames(page, n) {
 }
 
 // A screenshot of the canvas alone: the controls that float over it are hidden meanwhile.
-async function shot(page, file) {
+async function shot(page, file, timeout = 120000) {
   const tag = await page.addStyleTag({ content: "#controls { display: none !important; }" });
   // Playwright waits for the canvas to hold still over two animation frames; with grass on
   // SwiftShader a frame takes seconds, so the wait gets as long as the frames' own (120 s).
-  const png = await page.locator("#relief").screenshot({ timeout: 120000 });
+  const png = await page.locator("#relief").screenshot({ timeout });
   await tag.evaluate((t) => t.remove());
   fs.writeFileSync(path.join(out, file), png);
   return png;
@@ -209,8 +209,8 @@ await withBrowser(webgpu, async (browser) => {
     () => (/grass ([0-9.]+) ms/.exec(document.querySelector("#readout").textContent) || [])[1],
     null, { timeout: 120000 }).then((h) => h.jsonValue(), () => "");
   // The shot is a picture, not a check: on SwiftShader a grass frame takes 15-20 s of the GPU
-  // process, and the canvas may not hold still for Playwright within its 120 s.
-  await shot(g, "page-grass.png").catch((e) => console.log(`# no page-grass.png: ${String(e).split("\n")[0]}`));
+  // process, and the canvas rarely holds still for Playwright: it is given 30 s, not 120.
+  await shot(g, "page-grass.png", 30000).catch((e) => console.log(`# no page-grass.png: ${String(e).split("\n")[0]}`));
   const gerror = await g.evaluate(() => document.body.dataset.error || "");
   const gq = await g.evaluate(() => document.body.dataset.query || "");
   fs.appendFileSync(path.join(out, "metrics.txt"),
@@ -294,6 +294,9 @@ await withBrowser(webgpu, async (browser) => {
   // Every row of the endless world's table reaches it through the URL, and has its control.
   const wrows = await page.evaluate(async () =>
     JSON.parse((await import("./web/pkg/relief.js")).world_params_table()));
+  // Each page is closed once checked: a page left open goes on drawing (the wall's running
+  // day redraws every frame) and starves the next of SwiftShader's GPU process.
+  await page.close();
   // time_of_day sets the sun's rows (its own check follows): here it stays unset (-1).
   // The clouds stay off (coverage 0: SwiftShader would march them) and their top above the
   // base the slider's first step puts at 50 m.
@@ -311,6 +314,7 @@ await withBrowser(webgpu, async (browser) => {
     wcontrols.map((r) => r.key));
   check(wmissing.length === 0 && wpresent === wcontrols.length,
     `all ${wrows.length} endless-world rows set through the URL (missing: ${wmissing.join(",") || "none"}), ${wpresent} controls`);
+  await wall.close();
   // The hour puts the sun where the day has it: the URL keeps the hour and the sun it sets.
   const dusk = await openPage(browser, `${base}/index.html?${ENDLESS}&time_of_day=19`, errors);
   await waitFrames(dusk, 1);
@@ -318,6 +322,7 @@ await withBrowser(webgpu, async (browser) => {
   const dslider = await dusk.evaluate(() => document.querySelector('[data-key="time_of_day"]')?.value);
   check(dq.includes("time_of_day=19") && !dq.includes("sun_azimuth=145&") && dslider === "19",
     `time_of_day=19 reaches the URL, moves the sun and its slider shows it (${dslider}; ${dq})`);
+  await dusk.close();
 
   // A ray caster instead of the mesh (`method` in the URL and its control): run.sh compares
   // the canvas with `relief render --method raymarch` of the same view.
@@ -328,6 +333,7 @@ await withBrowser(webgpu, async (browser) => {
   await shot(marched, "page-endless-raymarch.png");
   check(mq.includes("method=raymarch") && mcontrol === "raymarch",
     `the method reaches the URL and its control (${mcontrol})`);
+  await marched.close();
 
   // The hybrid (the endless world's): the raised mesh rasterised, each sample refined to the
   // continuous surface in compute; run.sh compares the canvas with `relief render --method hybrid`.
@@ -339,6 +345,7 @@ await withBrowser(webgpu, async (browser) => {
   await shot(hybrid, "page-endless-hybrid.png");
   check(herror === "" && hq.includes("method=hybrid") && hcontrol === "hybrid",
     `method=hybrid draws the endless world, and the URL and control say so (${hcontrol}, error: ${herror || "none"})`);
+  await hybrid.close();
 
   // On the path, the URL holds the camera mode and the time along it, and the time runs.
   const onPath = await openPage(browser, `${base}/index.html?${ENDLESS}&camera=path&time=5`, errors);

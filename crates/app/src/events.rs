@@ -61,6 +61,13 @@ impl ApplicationHandler<UserEvent> for App {
                 }
             }
             UserEvent::DeviceLost(reason) => self.device_lost(event_loop, reason),
+            UserEvent::FrameDone => {
+                let owed = self.frame_in_flight.1;
+                self.frame_in_flight = (false, false);
+                if let (true, Some(s)) = (owed, &self.state) {
+                    s.window.request_redraw();
+                }
+            }
             UserEvent::GpuError(e) if after_loss(&e) => log::debug!("wgpu: {e}"),
             UserEvent::GpuError(e) => self.report.warn(&format!("wgpu: {e}")),
         }

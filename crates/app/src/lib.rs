@@ -104,6 +104,8 @@ pub enum UserEvent {
     DeviceLost(String),
     /// wgpu reported an error nobody captured.
     GpuError(String),
+    /// The GPU finished the work of the frame last submitted (the web paces frames by it).
+    FrameDone,
 }
 
 /// Whether a wgpu error is only the echo of a lost device (which is reported on its own).
@@ -140,6 +142,10 @@ pub struct App {
     last_frame: Instant,
     last_timed: Option<Instant>,
     timing_in_flight: bool,
+    /// On the web: a frame's work is still on the GPU, and whether a redraw came meanwhile
+    /// (drawn once it is done). A page that asked for frames faster than a software GPU draws
+    /// them had its thread held for seconds by the browser.
+    frame_in_flight: (bool, bool),
     fps_window: (Instant, u64),
     /// CPU milliseconds and frames drawn since the last readout ([`Stats::cpu_ms`]).
     cpu_window: (f64, u64),
@@ -198,6 +204,7 @@ impl App {
             last_frame: now,
             last_timed: None,
             timing_in_flight: false,
+            frame_in_flight: (false, false),
             fps_window: (now, 0),
             cpu_window: (0.0, 0),
             started: now,
@@ -379,6 +386,7 @@ impl App {
         self.frames_on_device = 0;
         self.stats.timestamps = state.timer.is_some();
         self.timing_in_flight = false;
+        self.frame_in_flight = (false, false);
         if self.options.timings && state.timer.is_none() {
             self.report.warn(&format!(
                 "timings: {} has no timestamp queries",

@@ -5,6 +5,11 @@ use super::*;
 
 impl App {
     pub(super) fn redraw(&mut self) {
+        if self.frame_in_flight.0 {
+            // Drawn when the frame before is done (`UserEvent::FrameDone`).
+            self.frame_in_flight.1 = true;
+            return;
+        }
         let now = Instant::now();
         let dt = now.duration_since(self.last_tick).as_secs_f64().min(0.25);
         self.last_tick = now;
@@ -118,6 +123,12 @@ impl App {
                 }
             }
             self.frames_on_device += 1;
+            #[cfg(target_arch = "wasm32")]
+            {
+                self.frame_in_flight = (true, false);
+                s.queue
+                    .on_submitted_work_done(|| crate::web::send(UserEvent::FrameDone));
+            }
             if self
                 .script
                 .lose_device_after
