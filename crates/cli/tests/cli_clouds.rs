@@ -9,7 +9,19 @@ mod cli_common;
 use cli_common::*;
 
 fn render(dir: &std::path::Path, name: &str, extra: &[&str]) -> image::RgbaImage {
+    render_sized(dir, name, (96, 54), extra).0
+}
+
+/// `relief render` of the endless world (6 octaves, a coarse mesh; the mesh method unless
+/// `extra` names one) at `size`: the picture and what the program printed.
+fn render_sized(
+    dir: &std::path::Path,
+    name: &str,
+    (width, height): (u32, u32),
+    extra: &[&str],
+) -> (image::RgbaImage, String) {
     let out = dir.join(format!("{name}.png"));
+    let (width, height) = (width.to_string(), height.to_string());
     let mut args = vec![
         "render",
         "--world",
@@ -19,9 +31,9 @@ fn render(dir: &std::path::Path, name: &str, extra: &[&str]) -> image::RgbaImage
         "--octaves",
         "6",
         "--width",
-        "96",
+        &width,
         "--height",
-        "54",
+        &height,
         "--out",
         out.to_str().unwrap(),
     ];
@@ -29,9 +41,9 @@ fn render(dir: &std::path::Path, name: &str, extra: &[&str]) -> image::RgbaImage
         args.extend_from_slice(&["--method", "mesh"]);
     }
     args.extend_from_slice(extra);
-    let (code, _, err) = relief(&args);
+    let (code, stdout, err) = relief(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
-    image::open(&out).unwrap().into_rgba8()
+    (image::open(&out).unwrap().into_rgba8(), stdout)
 }
 
 /// Mean red, green and blue (the stored sRGB bytes, 0 to 255) of the rows `rows` of `img`.
@@ -177,20 +189,7 @@ fn cloud_shadows_move_by_the_wind_times_the_clock_and_stand_still_without_it() {
     const SIDE: i32 = 128;
     let dir = scratch("clouds-wind");
     let frame = |name: &str, extra: &[&str]| {
-        let out = dir.join(format!("{name}.png"));
-        let side = SIDE.to_string();
-        let mut args = vec![
-            "render",
-            "--world",
-            "endless",
-            "--method",
-            "mesh",
-            "--width",
-            &side,
-            "--height",
-            &side,
-            "--octaves",
-            "6",
+        let view = [
             "--peak-height",
             "1",
             "--no-water",
@@ -210,41 +209,15 @@ fn cloud_shadows_move_by_the_wind_times_the_clock_and_stand_still_without_it() {
             "--wind-azimuth",
             "270",
         ];
-        let out_arg = out.to_str().unwrap().to_owned();
-        args.extend_from_slice(extra);
-        args.extend_from_slice(&["--out", &out_arg]);
-        let (code, _, err) = relief(&args);
-        assert_eq!(code, 0, "{args:?}: {err}");
-        image::open(&out).unwrap().into_rgba8()
+        let side = SIDE as u32;
+        render_sized(&dir, name, (side, side), &[&view[..], extra].concat()).0
     };
     let clear = frame("clear", &["--cloud-coverage", "0"]);
     // `--stats` says how much of the layer a frame marched, and in how many steps: with
     // clouds only.
     let stats = |coverage: &str| {
-        let out = dir.join("stats.png");
-        let (code, text, err) = relief(&[
-            "render",
-            "--world",
-            "endless",
-            "--method",
-            "mesh",
-            "--width",
-            "32",
-            "--height",
-            "18",
-            "--pixel-error",
-            "16",
-            "--octaves",
-            "6",
-            "--no-grass",
-            "--stats",
-            "--cloud-coverage",
-            coverage,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(code, 0, "{err}");
-        text
+        let args = ["--no-grass", "--stats", "--cloud-coverage", coverage];
+        render_sized(&dir, "stats", (32, 18), &args).1
     };
     let cloudy_stats = stats("0.5");
     assert!(
