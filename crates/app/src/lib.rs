@@ -418,6 +418,17 @@ impl App {
         self.keep_camera_above();
         self.report.options(&self.options);
         self.changed();
+        // On the page, the first frame waits until the GPU process has built the pipelines
+        // just made: a frame submitted behind them is not shown before they are (seconds on a
+        // software GPU), and the browser may hold the page's thread meanwhile.
+        #[cfg(target_arch = "wasm32")]
+        if let Some(s) = &mut self.state {
+            s.configure(self.options.method, self.fly.is_some());
+            self.frame_in_flight = (true, true);
+            self.report.preparing();
+            s.queue
+                .on_submitted_work_done(|| crate::web::send(UserEvent::FrameDone));
+        }
     }
 
     /// Chooses the method as `relief render --method auto` does

@@ -46,6 +46,9 @@ pub trait Report {
     fn options(&mut self, _options: &AppOptions) {}
     /// The method was chosen (`relief --method auto`): `choice`, and `line`, which says why.
     fn chosen(&mut self, _choice: &relief::choice::Choice, _line: &str) {}
+    /// The first frame waits for the GPU to build the pipelines (the page, whose GPU builds
+    /// them after the calls that ask for them return).
+    fn preparing(&mut self) {}
     /// A frame was presented.
     fn frame(&mut self, _stats: &Stats) {}
     /// A bake that took several frames is done: `ms` and `frames` since it began, and the

@@ -342,16 +342,11 @@ impl State {
         self.config.width as f32 / self.config.height.max(1) as f32
     }
 
-    /// Draws one frame seen through `view` (or, showing the endless world, through `fly`) with
-    /// `method`; with `timed`, writes GPU timestamps and resolves them for
-    /// [`GpuTimer::read_async`].
-    pub fn draw(
-        &mut self,
-        view: &View,
-        fly: Option<&FlyCamera>,
-        timed: bool,
-        method: Method,
-    ) -> Drawn {
+    /// Makes ready what a frame of `method` draws with (its targets, its pipelines, the
+    /// temporal service), `flying` through the endless world or not: what [`State::draw`] does
+    /// first, and the page before its first frame (whose GPU builds the pipelines after the
+    /// calls return).
+    pub fn configure(&mut self, method: Method, flying: bool) {
         // The mesh-based methods draw into targets of their own samples a pixel (ray casters
         // show their image without them). The endless world's forward mesh accumulating
         // jittered frames anti-aliases through its history, as the visibility method at one
@@ -360,7 +355,7 @@ impl State {
         // without).
         if method.ray_path().is_none() {
             let mesh = Self::mesh_method(method);
-            let samples = if fly.is_some() && self.temporal && mesh == Method::Mesh {
+            let samples = if flying && self.temporal && mesh == Method::Mesh {
                 1
             } else {
                 relief::gpu::render_samples(mesh)
@@ -371,7 +366,7 @@ impl State {
                 }
             }
         }
-        if method == Method::Blog && fly.is_none() && self.blog.is_none() && !self.blog_failed {
+        if method == Method::Blog && !flying && self.blog.is_none() && !self.blog_failed {
             // Built on first use, for the window's targets; tried once.
             match relief::gpu::blog::Blog::new(&self.device, *self.terrain.targets()) {
                 Ok(blog) => self.blog = Some(blog),
@@ -381,6 +376,44 @@ impl State {
                 }
             }
         }
+        if method.ray_path().is_some() {
+            return;
+        }
+        let config = self.method_config(method);
+        match (&mut self.world, flying) {
+            (Some(world), true) => {
+                if let Err(e) = world.set_method(&self.device, config) {
+                    log::warn!("{e}");
+                }
+                let temporal = if self.temporal {
+                    relief::Temporal::INTERACTIVE
+                } else {
+                    relief::Temporal::OFF
+                };
+                if let Err(e) = world.set_temporal(&self.device, temporal) {
+                    log::warn!("{e}");
+                }
+            }
+            _ if method == Method::Blog => {}
+            _ => {
+                if let Err(e) = self.terrain.set_method(&self.device, config) {
+                    log::warn!("{e}");
+                }
+            }
+        }
+    }
+
+    /// Draws one frame seen through `view` (or, showing the endless world, through `fly`) with
+    /// `method`; with `timed`, writes GPU timestamps and resolves them for
+    /// [`GpuTimer::read_async`].
+    pub fn draw(
+        &mut self,
+        view: &View,
+        fly: Option<&FlyCamera>,
+        timed: bool,
+        method: Method,
+    ) -> Drawn {
+        self.configure(method, fly.is_some());
         let Some(depth) = &self.depth else {
             return Drawn::Skipped; // minimised
         };
@@ -444,21 +477,9 @@ impl State {
             }
             return self.finish(encoder, frame, timed);
         }
-        let config = self.method_config(method);
         let world = match (&mut self.world, fly) {
             (Some(world), Some(fly)) => {
                 let view = fly.view(size);
-                if let Err(e) = world.set_method(&self.device, config) {
-                    log::warn!("{e}");
-                }
-                let temporal = if self.temporal {
-                    relief::Temporal::INTERACTIVE
-                } else {
-                    relief::Temporal::OFF
-                };
-                if let Err(e) = world.set_temporal(&self.device, temporal) {
-                    log::warn!("{e}");
-                }
                 if let Err(e) =
                     world.prepare_timed(&self.device, &self.queue, &mut encoder, &view, timer)
                 {
@@ -472,9 +493,6 @@ impl State {
             }
             _ => {
                 self.terrain.set_viewport(size);
-                if let Err(e) = self.terrain.set_method(&self.device, config) {
-                    log::warn!("{e}");
-                }
                 if let Err(e) =
                     self.terrain
                         .prepare_timed(&self.device, &self.queue, &mut encoder, view, timer)

@@ -70,7 +70,12 @@ pub fn start(canvas_id: &str, query: &str) -> Result<(), JsValue> {
         .map_err(|e| JsValue::from_str(&e.to_string()))?;
     let proxy = event_loop.create_proxy();
     PROXY.with(|p| *p.borrow_mut() = Some(proxy.clone()));
-    event_loop.spawn_app(App::new(options, Script::default(), Box::new(Page), proxy));
+    event_loop.spawn_app(App::new(
+        options,
+        Script::default(),
+        Box::new(Page::default()),
+        proxy,
+    ));
     Ok(())
 }
 
@@ -199,7 +204,11 @@ fn set_body_data(key: &str, value: &str) {
 }
 
 /// The page's [`Report`]: the readout, notices and errors in the DOM.
-struct Page;
+#[derive(Default)]
+struct Page {
+    /// The GPU is building the pipelines: the readout says so until the first frame.
+    preparing: bool,
+}
 
 impl Report for Page {
     fn stats(&mut self, _describe: &str, stats: &Stats, _fresh: bool) {
@@ -216,12 +225,15 @@ impl Report for Page {
         let cpu = stats
             .cpu_ms
             .map_or(String::new(), |ms| format!(" · CPU {ms:.2} ms/frame"));
-        if let Some(ms) = stats.cpu_ms {
-            set_body_data("cpu_ms", &format!("{ms:.3}"));
-        }
         let baking = stats
             .baking
             .map_or(String::new(), |p| format!("baking… {p}% · "));
+        if self.preparing && stats.frames == 0 {
+            return;
+        }
+        if let Some(ms) = stats.cpu_ms {
+            set_body_data("cpu_ms", &format!("{ms:.3}"));
+        }
         let text = if stats.idle {
             format!("{method}idle: drawn only on change · last frame {gpu}{cpu}")
         } else {
@@ -261,7 +273,17 @@ impl Report for Page {
         }
     }
 
+    fn preparing(&mut self) {
+        self.preparing = true;
+        set_body_data("preparing", "1");
+        set_text("readout", "building the GPU's pipelines…");
+    }
+
     fn frame(&mut self, stats: &Stats) {
+        if self.preparing {
+            self.preparing = false;
+            set_body_data("preparing", "");
+        }
         set_body_data("frames", &stats.frames.to_string());
         let baking = stats.baking.map_or(String::new(), |p| p.to_string());
         if document()
@@ -278,7 +300,7 @@ impl Report for Page {
         }
         if stats.frames == 1 {
             // From the page's navigation to its first frame submitted: download, compile,
-            // adapter and device, pipelines, the first bake and draw.
+            // adapter and device, the pipelines built by the GPU, the first bake and draw.
             if let Some(p) = web_sys::window().and_then(|w| w.performance()) {
                 set_body_data("first_frame_ms", &format!("{:.0}", p.now()));
             }
