@@ -494,3 +494,54 @@ fn the_clock_moves_the_ripples_the_wind_carries_them_and_the_clock_folds_without
     assert_ne!(ripples_at(&gpu, 2.0, windy), later);
     assert_eq!(ripples_at(&gpu, 0.0, windy), start);
 }
+
+/// The visibility method's shading is built without the clouds' march while the frame has no
+/// clouds (the march is most of its build): turning the clouds on builds it in, and the frame
+/// is then a fresh world's with clouds byte for byte; turning them off again gives back the
+/// cloudless frame byte for byte.
+#[test]
+fn turning_the_clouds_on_and_off_draws_what_a_fresh_world_draws() {
+    let gpu = common::gpu();
+    let clear = params(0.3);
+    let mut cloudy = clear;
+    cloudy.clouds = relief::world::clouds::Clouds {
+        coverage: 0.6,
+        base: clear.land.peak_height as f32 + 150.0,
+        top: clear.land.peak_height as f32 + 900.0,
+        ..Default::default()
+    };
+    let eye = DVec3::new(300.0, clear.land.peak_height + 40.0, -200.0);
+    let view = WorldView::look_at(eye, eye + DVec3::new(1.0, 0.25, 0.4), 0.9, SIZE);
+    let config = relief::MethodConfig {
+        method: Method::Visibility,
+        samples: 1,
+        raster: relief::Raster::Compute,
+    };
+    let target = Offscreen::new(&gpu.device, SIZE.0, SIZE.1, 1).unwrap();
+    let frame = |world: &mut World| target.render_world(&gpu, world, &view, None).unwrap().0;
+    let fresh = |p: WorldParams| {
+        let mut world = World::new(&gpu.device, &gpu.queue, Offscreen::targets(1), p).unwrap();
+        world.set_method(&gpu.device, config).unwrap();
+        world
+    };
+    let mut world = fresh(clear);
+    let without = frame(&mut world);
+    world.set_params(&gpu.device, cloudy).unwrap();
+    let turned_on = frame(&mut world);
+    let with = frame(&mut fresh(cloudy));
+    let changed = without
+        .chunks(4)
+        .zip(with.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > (SIZE.0 * SIZE.1 / 10) as usize,
+        "the clouds changed {changed} pixels"
+    );
+    assert!(turned_on == with, "turned on: not a fresh world's frame");
+    world.set_params(&gpu.device, clear).unwrap();
+    assert!(
+        frame(&mut world) == without,
+        "turned off: not the cloudless frame"
+    );
+}

@@ -68,12 +68,36 @@ fn every_file_on_disk_is_built_in_and_every_module_validates() {
     let modules = shader::modules();
     let parts = on_disk
         .iter()
-        .filter(|n| !shader::part_of(n).is_empty())
+        .filter(|n| !shader::part_of(n).is_empty() || !shader::instead_of(n).is_empty())
         .count();
     assert_eq!(modules.len() + parts, on_disk.len());
     for (name, source) in modules {
         parse(name, &source);
     }
+}
+
+#[test]
+fn a_stand_in_validates_in_every_module_its_file_is_in_and_changes_only_that() {
+    // `shader::source_for`: the modules composed with the clouds are `source`'s; without
+    // them, every module that has the march has the stand-in instead, and validates.
+    let mut replaced = 0;
+    for (name, whole) in shader::modules() {
+        assert_eq!(shader::source_for(name, true), whole, "{name}");
+        let without = shader::source_for(name, false);
+        if whole.contains(shader::file("clouds").unwrap()) {
+            assert!(without.len() < whole.len(), "{name}");
+            assert!(
+                without.contains(shader::file("clouds_none").unwrap()),
+                "{name}"
+            );
+            parse(name, &without);
+            replaced += 1;
+        } else {
+            assert_eq!(without, whole, "{name}");
+        }
+    }
+    assert!(replaced > 0);
+    assert_eq!(shader::instead_of("clouds_none"), ["clouds"]);
 }
 
 #[test]

@@ -163,6 +163,8 @@ pub struct Visibility {
     samples: u32,
     /// The hybrid method: the compute pass refines each sample to the continuous surface.
     hybrid: bool,
+    /// Built with the clouds' march (`shader::source_for`): the frame has clouds.
+    clouds: bool,
     /// The raster pass in compute ([`Raster::Compute`]), or `None` for the GPU's rasteriser.
     compute_raster: Option<ComputeRaster>,
     /// The hybrid's ray uniforms (the continuous surface, the eye, the drawn region).
@@ -206,12 +208,13 @@ impl Visibility {
     /// bind group `layout`, compositing into the host's `targets`. `world`: the endless world's
     /// attributes; otherwise the tile, shaded from its textures. `samples`: 1 or [`SAMPLES`] a
     /// pixel. `hybrid`: the hybrid method's refinement (the endless world's). `raster`: where
-    /// the raster pass runs (the caller has checked [`Raster::refusal`]).
+    /// the raster pass runs (the caller has checked [`Raster::refusal`]). `clouds`: with the
+    /// clouds' march (without it, what no clouds look like, built in a fraction of the time).
     pub(crate) fn new(
         device: &wgpu::Device,
         (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
         targets: &Targets,
-        (world, samples, hybrid, raster): (bool, u32, bool, Raster),
+        (world, samples, hybrid, raster, clouds): (bool, u32, bool, Raster, bool),
     ) -> Self {
         let compute_raster =
             (raster == Raster::Compute).then(|| ComputeRaster::new(device, layout, world));
@@ -261,10 +264,11 @@ impl Visibility {
         });
 
         use super::shader as s;
-        let vis_module = s::module(device, "relief:visibility:shader", &s::source("visibility"));
+        let source = |name| s::source_for(name, clouds);
+        let vis_module = s::module(device, "relief:visibility:shader", &source("visibility"));
         // The hybrid's compute pass: a module of its own, with only what it needs.
         let hybrid_module =
-            hybrid.then(|| s::module(device, "relief:hybrid:shader", &s::source("hybrid")));
+            hybrid.then(|| s::module(device, "relief:hybrid:shader", &source("hybrid")));
         let c = wgpu::ShaderStages::COMPUTE;
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let ms = samples > 1;
@@ -362,6 +366,7 @@ impl Visibility {
             world,
             samples,
             hybrid,
+            clouds,
             compute_raster,
             ray_uniforms: hybrid.then(|| {
                 super::uniform_buffer::<WorldRayUniforms>(device, "relief:hybrid:ray-uniforms")
@@ -448,23 +453,14 @@ impl Visibility {
         self.images = None;
     }
 
-    /// Samples a pixel.
-    pub fn samples(&self) -> u32 {
-        self.samples
-    }
-
-    /// Whether this is the hybrid method's.
-    pub fn hybrid(&self) -> bool {
-        self.hybrid
-    }
-
-    /// Where its raster pass runs.
-    pub fn raster(&self) -> Raster {
-        if self.compute_raster.is_some() {
-            Raster::Compute
-        } else {
-            Raster::Hardware
-        }
+    /// What it was built for: samples a pixel, the hybrid method's or not, where its raster
+    /// pass runs, and with the clouds or not.
+    pub(crate) fn built_for(&self) -> (u32, bool, Raster, bool) {
+        let raster = match self.compute_raster {
+            Some(_) => Raster::Compute,
+            None => Raster::Hardware,
+        };
+        (self.samples, self.hybrid, raster, self.clouds)
     }
 
     /// Whether it draws the grass's blades itself, in its compute raster with ids and its

@@ -455,26 +455,8 @@ impl World {
                 ))
             }
             Method::Visibility | Method::Hybrid => {
-                let (samples, raster) = (config.samples, config.raster);
                 let hybrid = method == Method::Hybrid;
-                let built = self
-                    .visibility
-                    .as_ref()
-                    .map(|v| (v.samples(), v.hybrid(), v.raster()));
-                if built != Some((samples, hybrid, raster)) {
-                    let vis = scoped(device, || {
-                        Visibility::new(
-                            device,
-                            (&self.module, &self.layout),
-                            &self.targets,
-                            (self.tile.is_none(), samples, hybrid, raster),
-                        )
-                    })?;
-                    self.visibility = Some(vis);
-                }
-                if let Some(vis) = &mut self.visibility {
-                    vis.set_temporal(device, self.temporal.on());
-                }
+                self.build_visibility(device, (config.samples, hybrid, config.raster))?;
                 if hybrid && self.raises.is_empty() {
                     self.raises = level_raises(&self.params.land);
                 }
@@ -492,6 +474,28 @@ impl World {
         self.vis_samples = config.samples;
         self.vis_raster = config.raster;
         self.update_mesh_history(device)
+    }
+
+    /// Builds the visibility method's pipelines for `samples`, the hybrid or not and `raster`,
+    /// with the clouds' march where the frame has clouds, unless those are built already.
+    fn build_visibility(
+        &mut self,
+        device: &wgpu::Device,
+        (samples, hybrid, raster): (u32, bool, Raster),
+    ) -> Result<()> {
+        let clouds = self.params.clouds.on();
+        let wanted = (samples, hybrid, raster, clouds);
+        if self.visibility.as_ref().map(Visibility::built_for) != Some(wanted) {
+            let vis = scoped(device, || {
+                let key = (self.tile.is_none(), samples, hybrid, raster, clouds);
+                Visibility::new(device, (&self.module, &self.layout), &self.targets, key)
+            })?;
+            self.visibility = Some(vis);
+        }
+        if let Some(vis) = &mut self.visibility {
+            vis.set_temporal(device, self.temporal.on());
+        }
+        Ok(())
     }
 
     /// How frames are drawn: the method with its samples and raster ([`World::set_method`]).
@@ -689,9 +693,14 @@ impl World {
                 Vec::new()
             };
         }
+        let clouds_turned = params.clouds.on() != self.params.clouds.on();
         self.params = params;
         if relayout {
             self.relayout(device, self.map_k)?;
+        }
+        if let (true, Some(v)) = (clouds_turned, &self.visibility) {
+            let (samples, hybrid, raster, _) = v.built_for();
+            self.build_visibility(device, (samples, hybrid, raster))?;
         }
         self.update_grass(device)?;
         self.update_props(device)

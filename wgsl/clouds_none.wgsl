@@ -1,0 +1,23 @@
+// instead of: clouds (shader::source_for, where the frame has no clouds)
+// What clouds.wgsl gives at no coverage, without its march: no cloud along any ray and no
+// shadow. The march is most of the time a shading pipeline takes to build, so the pipelines
+// built while the frame has no clouds are built from this, and again from clouds.wgsl when
+// they are turned on (src/gpu/world/mod.rs, `build_visibility`).
+
+struct CloudLight {
+    keep: f32,
+    light: vec3<f32>,
+    dist: f32,
+}
+
+fn cloud_none() -> CloudLight {
+    return CloudLight(1.0, vec3<f32>(0.0), 0.0);
+}
+
+fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
+    return cloud_none();
+}
+
+fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    return 1.0;
+}
