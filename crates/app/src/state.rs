@@ -628,10 +628,10 @@ impl State {
             (Some(world), Some(fly)) => Some((world, fly.view(size))),
             _ => None,
         };
-        let scene = if world.is_some() {
-            RayScene::World
-        } else {
-            RayScene::Tile
+        let scene = match &world {
+            Some((w, _)) if w.params().clouds.on() => RayScene::World,
+            Some(_) => RayScene::WorldWithoutClouds,
+            None => RayScene::Tile,
         };
         let max = self.device.limits().max_texture_dimension_2d;
         let ss = method.supersample();

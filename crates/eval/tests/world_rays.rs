@@ -48,8 +48,20 @@ fn cast(
     method: RayMethod,
     tweak: impl FnOnce(&mut WorldRayUniforms),
 ) -> (Vec<u8>, Vec<f32>) {
+    cast_in(gpu, RayScene::World, p, v, method, tweak).unwrap()
+}
+
+/// [`cast`] by a caster built for `scene`: what it refuses, or the colour and the distances.
+fn cast_in(
+    gpu: &Gpu,
+    scene: RayScene,
+    p: &WorldParams,
+    v: &WorldView,
+    method: RayMethod,
+    tweak: impl FnOnce(&mut WorldRayUniforms),
+) -> relief::error::Result<(Vec<u8>, Vec<f32>)> {
     let shading = Shading::default();
-    let caster = RayMarcher::for_scene(&gpu.device, SIZE.0, SIZE.1, RayScene::World).unwrap();
+    let caster = RayMarcher::for_scene(&gpu.device, SIZE.0, SIZE.1, scene).unwrap();
     let region = drawn_region(p, v);
     let mut ray = WorldRayUniforms::new(p, v, method, SIZE, region).unwrap();
     tweak(&mut ray);
@@ -59,13 +71,49 @@ fn cast(
         (relief::gpu::world_rays::ray_matrix(v), region, v.eye),
         true,
     );
-    caster.prepare_world(&gpu.queue, &render, &ray).unwrap();
+    caster.prepare_world(&gpu.queue, &render, &ray)?;
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     caster.encode(&mut encoder, relief::method::RayPath::Compute, None);
     gpu.queue.submit([encoder.finish()]);
     let color = headless::read_texture(&gpu.device, &gpu.queue, &caster.color).unwrap();
     let distance = headless::read_texture(&gpu.device, &gpu.queue, &caster.distance).unwrap();
-    (color, bytemuck::pod_collect_to_vec(&distance))
+    Ok((color, bytemuck::pod_collect_to_vec(&distance)))
+}
+
+/// The caster built without the clouds' march (`RayScene::WorldWithoutClouds`, what a world
+/// without clouds is cast with) casts the same bytes as the one with it, and refuses a frame
+/// with clouds rather than draw it without them.
+#[test]
+fn the_caster_without_the_clouds_casts_the_same_bytes_and_refuses_clouds() {
+    let gpu = common::gpu();
+    let p = params(TerrainFn::Eroded);
+    let v = &views(&p.land, 0.0)[0];
+    let with = cast_in(&gpu, RayScene::World, &p, v, RayMethod::Reference, |_| {}).unwrap();
+    let without = cast_in(
+        &gpu,
+        RayScene::WorldWithoutClouds,
+        &p,
+        v,
+        RayMethod::Reference,
+        |_| {},
+    )
+    .unwrap();
+    assert!(with.0 == without.0, "the colours differ");
+    assert!(with.1 == without.1, "the distances differ");
+    let mut cloudy = p;
+    cloudy.clouds.coverage = 0.5;
+    let refused = cast_in(
+        &gpu,
+        RayScene::WorldWithoutClouds,
+        &cloudy,
+        v,
+        RayMethod::Reference,
+        |_| {},
+    );
+    let e = refused
+        .expect_err("a frame with clouds was cast without them")
+        .to_string();
+    assert!(e.contains("WorldWithoutClouds"), "{e}");
 }
 
 /// The world point a pixel's ray reaches at distance `t`.

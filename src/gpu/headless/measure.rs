@@ -394,7 +394,12 @@ fn world_rays(
             gpu,
             view.size,
             (method, supersample),
-            RayScene::World,
+            // Without clouds, the caster without their march (built in an eighth of the time).
+            if params.clouds.on() {
+                RayScene::World
+            } else {
+                RayScene::WorldWithoutClouds
+            },
             timer,
             |caster, size| {
                 let ray = world_rays::WorldRayUniforms::new(params, &v, rays, size, region)?;

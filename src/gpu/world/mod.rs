@@ -244,7 +244,9 @@ impl World {
             let light_bake = LightBake::new(device);
             let (texture, bake_target) = level_texture(device, &bake, &map);
             let light = LevelLight::new(device, &light_bake, &texture, &map);
-            let module = shader::module(device, "relief:world:shader", &shader::source("world"));
+            // The tile has no clouds: its module is built without their march.
+            let source = shader::source_for("world", tile.is_none());
+            let module = shader::module(device, "relief:world:shader", &source);
             // Compute too: the visibility method's compute raster places the same vertices.
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
             let map_entries =
