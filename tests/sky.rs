@@ -545,3 +545,90 @@ fn turning_the_clouds_on_and_off_draws_what_a_fresh_world_draws() {
         "turned off: not the cloudless frame"
     );
 }
+
+/// A pixel's view ray from `eye_y` along unit `dir` (camera-relative) to `far`: whether it
+/// stays above altitude `top` all the way (`Some(true)`), dips below it (`Some(false)`), or
+/// comes within `margin` metres of it (`None`). The layer curves with the planet as the shader's
+/// does: the ray's altitude at t is eye_y + dir.y t + (1 - dir.y^2) t^2 / 2R.
+fn stays_above(eye_y: f64, dir: Vec3, far: f64, top: f64, margin: f64) -> Option<bool> {
+    let dy = f64::from(dir.y);
+    let k = (1.0 - dy * dy) / (2.0 * relief::world::clouds::EARTH_RADIUS);
+    let lowest_at = if dy < 0.0 {
+        (-dy / (2.0 * k)).min(far)
+    } else {
+        0.0
+    };
+    let lowest = eye_y + dy * lowest_at + k * lowest_at * lowest_at;
+    if lowest > top + margin {
+        Some(true)
+    } else if lowest < top - margin {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+/// Seen from above a low cloud layer, a pixel changes only where its ray goes down into the
+/// layer: the sky and the ridges standing out of it are the frame of a layer that no ray meets
+/// (the same coverage under the ground: the overcast's grey is in both), byte for byte, and
+/// that includes every ridge with clouds behind it (the march stops at the surface). Where rays
+/// do enter the layer, pixels change.
+#[test]
+fn clouds_change_only_the_pixels_whose_ray_enters_them_and_a_ridge_hides_those_behind_it() {
+    let gpu = common::gpu();
+    let mut p = params(0.3);
+    let layer = |base: f32, top: f32| relief::world::clouds::Clouds {
+        coverage: 0.9,
+        base,
+        top,
+        ..Default::default()
+    };
+    p.clouds = layer(40.0, 90.0);
+    let mut buried = p;
+    buried.clouds = layer(-1000.0, -900.0);
+    let eye = DVec3::new(0.0, 260.0, 0.0);
+    let view = WorldView::look_at(eye, eye + DVec3::new(1.0, -0.3, 0.35), 0.9, SIZE);
+    let (clouded, depth, matrix) = draw(&gpu, p, Shading::default(), &view);
+    let (control, _, _) = draw(&gpu, buried, Shading::default(), &view);
+    let far = distances(&depth, matrix);
+    let (mut clear, mut hidden, mut entering, mut changed, mut wrong) = (0, 0, 0, 0, 0);
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let i = (y * SIZE.0 + x) as usize;
+            let dir = direction(matrix, x, y);
+            let d = far[i].map_or(f64::INFINITY, f64::from);
+            let same = clouded[4 * i..4 * i + 3] == control[4 * i..4 * i + 3];
+            match stays_above(eye.y, dir, d, 90.0, 1.0) {
+                Some(true) => {
+                    clear += 1;
+                    wrong += usize::from(!same);
+                    // A ridge with the layer behind it: the ray, continued, would go down into it.
+                    hidden += usize::from(
+                        far[i].is_some()
+                            && stays_above(eye.y, dir, f64::INFINITY, 90.0, 1.0) == Some(false),
+                    );
+                }
+                Some(false) => {
+                    entering += 1;
+                    changed += usize::from(!same);
+                }
+                None => {}
+            }
+        }
+    }
+    eprintln!(
+        "{clear} pixels whose ray stays above the layer ({hidden} ridges with clouds behind), \
+         {wrong} of them changed; {changed} of {entering} entering it changed"
+    );
+    assert!(
+        clear > 1000 && hidden > 200,
+        "{clear} clear, {hidden} hiding"
+    );
+    assert_eq!(wrong, 0, "pixels changed whose ray never meets the layer");
+    // A thin layer (50 m) over ground that rises into it: many rays cross little of it (on
+    // lavapipe 29% of them changed).
+    assert!(
+        entering > 1000 && changed * 5 > entering,
+        "{changed} of {entering}"
+    );
+}
