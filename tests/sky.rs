@@ -544,6 +544,15 @@ fn turning_the_clouds_on_and_off_draws_what_a_fresh_world_draws() {
         frame(&mut world) == without,
         "turned off: not the cloudless frame"
     );
+    // Turned on while another method draws: the shading kept for this one is built anew when
+    // it draws again.
+    world.set_method(&gpu.device, Method::Mesh).unwrap();
+    world.set_params(&gpu.device, cloudy).unwrap();
+    world.set_method(&gpu.device, config).unwrap();
+    assert!(
+        frame(&mut world) == with,
+        "turned on under the mesh: not a fresh world's frame"
+    );
 }
 
 /// A pixel's view ray from `eye_y` along unit `dir` (camera-relative) to `far`: whether it

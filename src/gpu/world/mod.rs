@@ -700,9 +700,16 @@ impl World {
         if relayout {
             self.relayout(device, self.map_k)?;
         }
-        if let (true, Some(v)) = (clouds_turned, &self.visibility) {
-            let (samples, hybrid, raster, _) = v.built_for();
-            self.build_visibility(device, (samples, hybrid, raster))?;
+        if clouds_turned {
+            // The shading drawn with is built again with the clouds (or without); one kept
+            // for another method is dropped, built when that method is next set.
+            match (self.method, &self.visibility) {
+                (Method::Visibility | Method::Hybrid, Some(v)) => {
+                    let (samples, hybrid, raster, _) = v.built_for();
+                    self.build_visibility(device, (samples, hybrid, raster))?;
+                }
+                _ => self.visibility = None,
+            }
         }
         self.update_grass(device)?;
         self.update_props(device)
