@@ -509,6 +509,42 @@ fn the_t_key_and_no_temporal_turn_the_history_off_and_the_title_says_so() {
     assert!(stdout.contains("history off (T)"), "{stdout}");
 }
 
+/// C turns the clouds on and off in the window, and the title says so: each time the
+/// visibility method's shading is built again (with the clouds' march, then without), without
+/// a word on stderr.
+#[test]
+#[ignore = "slow: real windows under Xvfb, one at a time (.ci/test runs it)"]
+fn the_c_key_turns_the_clouds_on_and_off_and_the_title_says_so() {
+    let args = [
+        "--world",
+        "endless",
+        "--method",
+        "visibility",
+        "--pixel-error",
+        "16",
+        "--exit-after",
+        "60",
+    ];
+    let keys = "title; xdotool key c; shows 'clouds on'; settles; title; \
+                xdotool key c; shows 'clouds off'; settles; title";
+    let (code, stdout, err) = window_with_keys(&args, keys, "true");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "a clean run prints nothing on stderr");
+    let clouds: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("relief: "))
+        .map(|l| {
+            l.split(" clouds ")
+                .nth(1)
+                .unwrap_or("")
+                .split(' ')
+                .next()
+                .unwrap_or("")
+        })
+        .collect();
+    assert_eq!(clouds, ["off", "on", "off"], "{stdout}");
+}
+
 /// `relief --method M --samples N --raster R` draws the window with that method, its samples a
 /// pixel and its raster, and the timings name all three.
 #[test]
