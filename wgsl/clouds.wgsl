@@ -247,19 +247,7 @@ fn cloud_optical_depth(c: CloudLayer, rel: vec3<f32>, alt: f32, local: f32, to_s
     return od * CLOUD_SIGMA;
 }
 
-// What the clouds between the eye and `far` along unit `dir` do: x is the light kept
-// (transmittance), yzw the light they scatter towards the eye (linear), and `dist` their
-// transmittance-weighted distance (for the air in front of them).
-struct CloudLight {
-    keep: f32,
-    light: vec3<f32>,
-    dist: f32,
-}
-
-fn cloud_none() -> CloudLight {
-    return CloudLight(1.0, vec3<f32>(0.0), 0.0);
-}
-
+// What the clouds between the eye and `far` along unit `dir` do (`CloudLight`, shade.wgsl).
 fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
     if r.clouds.x <= 0.0 {
         return cloud_none();

@@ -4,16 +4,6 @@
 // built while the frame has no clouds are built from this, and again from clouds.wgsl when
 // they are turned on (src/gpu/world/mod.rs, `build_visibility`).
 
-struct CloudLight {
-    keep: f32,
-    light: vec3<f32>,
-    dist: f32,
-}
-
-fn cloud_none() -> CloudLight {
-    return CloudLight(1.0, vec3<f32>(0.0), 0.0);
-}
-
 fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
     return cloud_none();
 }

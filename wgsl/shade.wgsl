@@ -171,6 +171,20 @@ fn sky_clouded(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
     return sky * a.keep + a.light;
 }
 
+// What the clouds between the eye and `far` along unit `dir` do (`clouds_along`: clouds.wgsl,
+// or clouds_none.wgsl where the frame has none): `keep` the light kept (transmittance), `light`
+// the light they scatter towards the eye (linear), and `dist` their transmittance-weighted
+// distance (for the air in front of them).
+struct CloudLight {
+    keep: f32,
+    light: vec3<f32>,
+    dist: f32,
+}
+
+fn cloud_none() -> CloudLight {
+    return CloudLight(1.0, vec3<f32>(0.0), 0.0);
+}
+
 // `a`, the air along unit `dir` to `far`, with the clouds on that stretch: they hide what is
 // behind them, and the air in front of them takes their light as it takes the terrain's.
 fn through_clouds(r: RenderUniforms, a: Air, dir: vec3<f32>, far: f32) -> Air {
