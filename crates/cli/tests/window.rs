@@ -489,19 +489,11 @@ fn the_t_key_and_no_temporal_turn_the_history_off_and_the_title_says_so() {
                 title";
     let (code, stdout, err) = window_with_keys(&args, keys, "true");
     assert_eq!(code, 0, "{err}");
-    let history: Vec<&str> = stdout
-        .lines()
-        .filter(|l| l.starts_with("relief: "))
-        .map(|l| {
-            l.split("history ")
-                .nth(1)
-                .unwrap_or("")
-                .split(' ')
-                .next()
-                .unwrap_or("")
-        })
-        .collect();
-    assert_eq!(history, ["on", "off", "on"], "{stdout}");
+    assert_eq!(
+        title_words(&stdout, "history "),
+        ["on", "off", "on"],
+        "{stdout}"
+    );
     let mut off = args.to_vec();
     off.push("--no-temporal");
     let (code, stdout, err) = window_with_keys(&off, "title", "true");
@@ -530,19 +522,23 @@ fn the_c_key_turns_the_clouds_on_and_off_and_the_title_says_so() {
     let (code, stdout, err) = window_with_keys(&args, keys, "true");
     assert_eq!(code, 0, "{err}");
     assert_eq!(err, "", "a clean run prints nothing on stderr");
-    let clouds: Vec<&str> = stdout
+    assert_eq!(
+        title_words(&stdout, " clouds "),
+        ["off", "on", "off"],
+        "{stdout}"
+    );
+}
+
+/// The word after `after` in each title printed (`history ` -> "on"), in order.
+fn title_words<'a>(stdout: &'a str, after: &str) -> Vec<&'a str> {
+    stdout
         .lines()
         .filter(|l| l.starts_with("relief: "))
         .map(|l| {
-            l.split(" clouds ")
-                .nth(1)
-                .unwrap_or("")
-                .split(' ')
-                .next()
-                .unwrap_or("")
+            let rest = l.split(after).nth(1).unwrap_or("");
+            rest.split(' ').next().unwrap_or("")
         })
-        .collect();
-    assert_eq!(clouds, ["off", "on", "off"], "{stdout}");
+        .collect()
 }
 
 /// `relief --method M --samples N --raster R` draws the window with that method, its samples a
