@@ -102,6 +102,15 @@ pub enum RayScene {
 }
 
 impl RayScene {
+    /// The endless world's scene for `params`: without the clouds' march where it has none.
+    pub fn for_world(params: &crate::world::WorldParams) -> Self {
+        if params.clouds.on() {
+            RayScene::World
+        } else {
+            RayScene::WorldWithoutClouds
+        }
+    }
+
     fn source(self) -> String {
         match self {
             // The tile has no clouds.

@@ -629,8 +629,7 @@ impl State {
             _ => None,
         };
         let scene = match &world {
-            Some((w, _)) if w.params().clouds.on() => RayScene::World,
-            Some(_) => RayScene::WorldWithoutClouds,
+            Some((w, _)) => RayScene::for_world(w.params()),
             None => RayScene::Tile,
         };
         let max = self.device.limits().max_texture_dimension_2d;

@@ -394,12 +394,7 @@ fn world_rays(
             gpu,
             view.size,
             (method, supersample),
-            // Without clouds, the caster without their march (built in an eighth of the time).
-            if params.clouds.on() {
-                RayScene::World
-            } else {
-                RayScene::WorldWithoutClouds
-            },
+            RayScene::for_world(params),
             timer,
             |caster, size| {
                 let ray = world_rays::WorldRayUniforms::new(params, &v, rays, size, region)?;
