@@ -244,13 +244,14 @@ impl Choice {
 
 /// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
 /// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
-/// hybrid's) raster, shading and temporal resolve passes, the grass's scatter before it and its
-/// blades' raster. `None` where neither was timed.
+/// hybrid's) raster, clouds' image, shading and temporal resolve passes, the grass's scatter
+/// before it and its blades' raster. `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, shade, resolve, grass, blades, props, shadows, march] = [
+    let [render, present, raster, clouds, shade, resolve, grass, blades, props, shadows, march] = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
+        Slot::Clouds,
         Slot::Shade,
         Slot::Resolve,
         Slot::Grass,
@@ -263,7 +264,7 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
     render.or(present)?;
     Some(
         [
-            render, present, raster, shade, resolve, grass, blades, props, shadows, march,
+            render, present, raster, clouds, shade, resolve, grass, blades, props, shadows, march,
         ]
         .iter()
         .flatten()

@@ -1,4 +1,5 @@
 // part of: shade
+// import: clouds_seen
 // Clouds (src/world/clouds.rs): a layer of 3-D density between a base and a top altitude,
 // marched along each view ray in `air_at` and `sky_pixel` (shade.wgsl), so every method that
 // shades through the air draws them, and towards the sun for their shadows on everything lit.
@@ -247,19 +248,31 @@ fn cloud_optical_depth(c: CloudLayer, rel: vec3<f32>, alt: f32, local: f32, to_s
     return od * CLOUD_SIGMA;
 }
 
-// What the clouds between the eye and `far` along unit `dir` do (`CloudLight`, shade.wgsl).
-fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
+// What a march along a view ray found: what the clouds do to the light (`CloudLight`,
+// shade.wgsl) and where along the ray they took it: from `first` (where the first cloud
+// met begins), through `half` (where half the light was gone, or halfway to `last` where
+// less was taken) to `last` (where the last cloud met ends, or almost no light was left);
+// all 1e30 where the ray met none. What the clouds' image keeps (clouds_image.wgsl).
+struct CloudMarch {
+    seen: CloudLight,
+    first: f32,
+    half: f32,
+    last: f32,
+}
+
+// The clouds between the eye and `far` along unit `dir`, marched in `steps` steps.
+fn cloud_march(r: RenderUniforms, dir: vec3<f32>, far: f32, steps: u32) -> CloudMarch {
+    var out = CloudMarch(cloud_none(), 1e30, 1e30, 1e30);
     if r.clouds.x <= 0.0 {
-        return cloud_none();
+        return out;
     }
     let c = cloud_layer(r);
     let span = cloud_span(c, dir, far);
     if span.y <= span.x {
-        return cloud_none();
+        return out;
     }
-    let steps = max(u32(r.cloud_march.y), 1u);
     let length = span.y - span.x;
-    let inv = 1.0 / f32(steps);
+    let inv = 1.0 / f32(max(steps, 1u));
     // A step offset a pixel's own (its direction's bits and the frame's seed): banding becomes
     // noise, which the temporal service averages away.
     let bits = bitcast<vec3<u32>>(dir);
@@ -270,7 +283,7 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
     var keep = 1.0;
     var light = vec3<f32>(0.0);
     var dist = 0.0;
-    for (var i = 0u; i < steps; i++) {
+    for (var i = 0u; i < max(steps, 1u); i++) {
         // Steps spaced as the square of their index: short where the ray enters the layer,
         // whose first optical depths make most of what is seen.
         let u = (f32(i) + jitter) * inv;
@@ -292,12 +305,21 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
         light += keep * absorbed * scattered;
         dist += keep * absorbed * t;
         keep *= 1.0 - absorbed;
+        out.first = min(out.first, max(t - 0.5 * dt, span.x));
+        out.last = t + 0.5 * dt;
+        if keep <= 0.5 && out.half >= 1e30 {
+            out.half = t;
+        }
         if keep < 0.005 {
             break;
         }
     }
     let seen = 1.0 - keep;
-    return CloudLight(keep, light, select(0.0, dist / seen, seen > 0.0));
+    if out.half >= 1e30 {
+        out.half = 0.5 * (out.first + out.last);
+    }
+    out.seen = CloudLight(keep, light, select(0.0, dist / seen, seen > 0.0));
+    return out;
 }
 
 // The light of the sun that the clouds let through to camera-relative `rel` (1 without

@@ -1,4 +1,4 @@
-// instead of: clouds (shader::source_for, where the frame has no clouds)
+// instead of: clouds, clouds_seen (shader::source_for, where the frame has no clouds)
 // What clouds.wgsl gives at no coverage, without its march: no cloud along any ray and no
 // shadow. The march is most of the time a shading pipeline takes to build, so the pipelines
 // built while the frame has no clouds are built from this, and again from clouds.wgsl when

@@ -114,9 +114,11 @@ impl RayScene {
     fn source(self) -> String {
         match self {
             // The tile has no clouds.
-            RayScene::Tile => shader::source_for("raymarch", false),
+            RayScene::Tile => shader::source_for("raymarch", shader::CloudCode::Without),
             RayScene::World => shader::source("world_rays_io"),
-            RayScene::WorldWithoutClouds => shader::source_for("world_rays_io", false),
+            RayScene::WorldWithoutClouds => {
+                shader::source_for("world_rays_io", shader::CloudCode::Without)
+            }
         }
     }
 

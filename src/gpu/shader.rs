@@ -21,7 +21,9 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     blit,
     blog,
     clouds,
+    clouds_image,
     clouds_none,
+    clouds_seen,
     composite,
     fullscreen,
     grass,
@@ -130,16 +132,37 @@ pub fn source(name: &str) -> String {
     out.join("\n")
 }
 
-/// [`source`], with the clouds' march (`clouds.wgsl`) only where `clouds`; without it, its
-/// stand-in (`clouds_none.wgsl`) gives what the march gives at no coverage. The march is most
-/// of a shading pipeline's build (3.4 s of the visibility method's 3.6 s on lavapipe), and the
-/// clouds are off by default.
-pub fn source_for(name: &str, clouds: bool) -> String {
-    let whole = source(name);
-    match (clouds, file("clouds"), file("clouds_none")) {
-        (false, Some(march), Some(none)) => whole.replacen(march, none, 1),
-        _ => whole,
+/// Which clouds a module is built with ([`source_for`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CloudCode {
+    /// None: `clouds_none.wgsl` gives what the march gives at no coverage, without it.
+    Without,
+    /// The march, along every pixel's ray (`clouds.wgsl` and `clouds_seen.wgsl`).
+    March,
+    /// The march and the visibility method's image of it (`clouds_image.wgsl` for
+    /// `clouds_seen.wgsl`).
+    Image,
+}
+
+/// [`source`], with the clouds `code` asks for: the march is most of a shading pipeline's
+/// build (3.4 s of the visibility method's 3.6 s on lavapipe), and the clouds are off by
+/// default. A stand-in's first `// instead of:` file is replaced by it, the others dropped.
+pub fn source_for(name: &str, code: CloudCode) -> String {
+    let mut whole = source(name);
+    let stand_in = match code {
+        CloudCode::March => return whole,
+        CloudCode::Without => "clouds_none",
+        CloudCode::Image => "clouds_image",
+    };
+    let Some(text) = file(stand_in) else {
+        return whole;
+    };
+    for (i, replaced) in header(text, "instead of").into_iter().enumerate() {
+        if let Some(old) = file(replaced) {
+            whole = whole.replacen(old, if i == 0 { text } else { "" }, 1);
+        }
     }
+    whole
 }
 
 /// The file that `name` stands in for (its `// instead of:` line: [`source_for`]); empty for

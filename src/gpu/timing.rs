@@ -38,11 +38,14 @@ pub enum Slot {
     /// The props' shadow and occlusion on the raster's surface, a 2x2 block of pixels at a
     /// time, before the march.
     PropShadows = 13,
+    /// The clouds' image (the visibility method's, where the temporal service runs): a
+    /// fraction of its pixels marched, the others carried over from the last frame.
+    Clouds = 14,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 14] = [
+    pub const ALL: [Slot; 15] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -57,6 +60,7 @@ impl Slot {
         Slot::Props,
         Slot::PropShadows,
         Slot::March,
+        Slot::Clouds,
     ];
 
     /// The slot's name as printed.
@@ -76,6 +80,7 @@ impl Slot {
             Slot::Props => "props",
             Slot::March => "march",
             Slot::PropShadows => "props-shadows",
+            Slot::Clouds => "clouds",
         }
     }
 }

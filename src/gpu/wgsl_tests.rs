@@ -78,16 +78,19 @@ fn every_file_on_disk_is_built_in_and_every_module_validates() {
 
 #[test]
 fn a_stand_in_validates_in_every_module_its_file_is_in_and_changes_only_that() {
-    // `shader::source_for`: the modules composed with the clouds are `source`'s; without
-    // them, every module that has the march has the stand-in instead, and validates.
+    // `shader::source_for`: the modules composed with the march are `source`'s; without the
+    // clouds, every module that has the march has the stand-in instead, and validates; with
+    // the clouds' image, so do the visibility method's modules (the only ones that read it).
+    use shader::CloudCode;
     let mut replaced = 0;
     for (name, whole) in shader::modules() {
-        assert_eq!(shader::source_for(name, true), whole, "{name}");
-        let without = shader::source_for(name, false);
+        assert_eq!(shader::source_for(name, CloudCode::March), whole, "{name}");
+        let without = shader::source_for(name, CloudCode::Without);
         if whole.contains(shader::file("clouds").unwrap()) {
             assert!(without.len() < whole.len(), "{name}");
             assert!(
-                without.contains(shader::file("clouds_none").unwrap()),
+                without.contains(shader::file("clouds_none").unwrap())
+                    && !without.contains(shader::file("clouds_seen").unwrap()),
                 "{name}"
             );
             parse(name, &without);
@@ -97,7 +100,14 @@ fn a_stand_in_validates_in_every_module_its_file_is_in_and_changes_only_that() {
         }
     }
     assert!(replaced > 0);
-    assert_eq!(shader::instead_of("clouds_none"), ["clouds"]);
+    for name in ["visibility", "hybrid"] {
+        let image = shader::source_for(name, CloudCode::Image);
+        assert!(image.contains(shader::file("clouds_image").unwrap()));
+        assert!(!image.contains(shader::file("clouds_seen").unwrap()));
+        parse(name, &image);
+    }
+    assert_eq!(shader::instead_of("clouds_none"), ["clouds", "clouds_seen"]);
+    assert_eq!(shader::instead_of("clouds_image"), ["clouds_seen"]);
 }
 
 #[test]

@@ -37,6 +37,11 @@ pub struct Clouds {
     /// Steps a view ray takes through the layer ([`STEPS`]; the reference takes
     /// [`REFERENCE_STEPS`]). Not a row of the table: what a benchmark or a reference asks.
     pub steps: u32,
+    /// Where the temporal service runs and the visibility or hybrid method draws: march one
+    /// pixel in 16 a frame and carry the others over from the last frame (the default), or
+    /// (`false`) every pixel every frame, as the reference and the other methods do. Not a
+    /// row of the table either.
+    pub reproject: bool,
 }
 
 impl Default for Clouds {
@@ -48,6 +53,7 @@ impl Default for Clouds {
             top: 4600.0,
             kind: 0.7,
             steps: STEPS,
+            reproject: true,
         }
     }
 }

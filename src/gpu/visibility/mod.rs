@@ -21,13 +21,16 @@
 //! [`crate::World::render`] draws the composite into the host's pass, writing depth so host
 //! geometry and terrain occlude each other.
 
+mod clouds;
 mod present;
 mod props;
 mod targets;
 
+pub(crate) use self::clouds::CloudFrame;
+
 pub(crate) use self::props::hit_entry as props_hit_entry;
 use self::targets::*;
-pub(crate) use self::targets::{composite_group, composite_pipeline};
+pub(crate) use self::targets::{clip_w_from_depth, composite_group, composite_pipeline};
 use super::raster::{self, ComputeRaster, Patches, Raster};
 use super::render::RenderUniforms;
 use super::temporal::{Resolve, TemporalUniforms};
@@ -100,25 +103,6 @@ impl VisUniforms {
     }
 }
 
-/// How a camera-relative perspective `matrix` (the eye at the origin) turns depth d into clip
-/// w: `b / (d + a)`, as `[a, b]` (`VisUniforms::depth`, what the temporal resolve reads).
-pub(crate) fn clip_w_from_depth(matrix: glam::Mat4) -> [f32; 2] {
-    let m = matrix.as_dmat4();
-    let (row2, row3) = (m.row(2), m.row(3));
-    // A perspective projection after an affine view: row 2 = -a row 3 + b e4, and clip w
-    // from depth d is b / (d + a). Read `a` where row 3 is largest.
-    let k = (0..3)
-        .max_by(|&i, &j| row3[i].abs().total_cmp(&row3[j].abs()))
-        .unwrap_or(2);
-    let a = if row3[k] != 0.0 {
-        -row2[k] / row3[k]
-    } else {
-        0.0
-    };
-    let b = row2.w + a * row3.w;
-    [a as f32, b as f32]
-}
-
 /// What the compute pass reads of the world beside its own images.
 pub(crate) struct WorldBindings<'a> {
     pub render: &'a wgpu::Buffer,
@@ -163,8 +147,8 @@ pub struct Visibility {
     samples: u32,
     /// The hybrid method: the compute pass refines each sample to the continuous surface.
     hybrid: bool,
-    /// Built with the clouds' march (`shader::source_for`): the frame has clouds.
-    clouds: bool,
+    /// Built with the clouds (`shader::source_for`), and their image's passes.
+    clouds: Option<clouds::Clouds>,
     /// The raster pass in compute ([`Raster::Compute`]), or `None` for the GPU's rasteriser.
     compute_raster: Option<ComputeRaster>,
     /// The hybrid's ray uniforms (the continuous surface, the eye, the drawn region).
@@ -264,8 +248,10 @@ impl Visibility {
         });
 
         use super::shader as s;
-        let source = |name| s::source_for(name, clouds);
+        let code = [s::CloudCode::Without, s::CloudCode::Image][usize::from(clouds)];
+        let source = |name| s::source_for(name, code);
         let vis_module = s::module(device, "relief:visibility:shader", &source("visibility"));
+        let clouds = clouds.then(|| clouds::Clouds::new(device, &vis_module));
         // The hybrid's compute pass: a module of its own, with only what it needs.
         let hybrid_module =
             hybrid.then(|| s::module(device, "relief:hybrid:shader", &source("hybrid")));
@@ -296,6 +282,7 @@ impl Visibility {
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
+        entries.extend(clouds.iter().flat_map(|_| clouds::Clouds::entries()));
         if compute_raster.is_some() {
             entries.push(super::storage_buffer_entry(19, true));
         }
@@ -460,7 +447,7 @@ impl Visibility {
             Some(_) => Raster::Compute,
             None => Raster::Hardware,
         };
-        (self.samples, self.hybrid, raster, self.clouds)
+        (self.samples, self.hybrid, raster, self.clouds.is_some())
     }
 
     /// Whether it draws the grass's blades itself, in its compute raster with ids and its
@@ -523,7 +510,8 @@ impl Visibility {
         } else {
             0
         };
-        pixels * per_pixel + raster_bytes + history
+        let clouds = self.clouds.as_ref().map_or(0, |c| c.bytes(size));
+        pixels * per_pixel + raster_bytes + history + clouds
     }
 
     fn images(&mut self, device: &wgpu::Device, size: (u32, u32), world: &WorldBindings<'_>) {
@@ -627,6 +615,9 @@ impl Visibility {
             entries.push(entry(19, raster.depth(device, size).as_entire_binding()));
         }
         entries.extend(world.props_map.bindings(false));
+        if let Some(clouds) = &mut self.clouds {
+            entries.extend(clouds.bind(device, size, (world.render, &self.uniforms)));
+        }
         let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:visibility:compute-group"),
             layout: &self.compute_layout,
@@ -739,6 +730,9 @@ impl Visibility {
                     timer,
                 );
             }
+        }
+        if let Some(clouds) = &mut self.clouds {
+            clouds.encode(queue, encoder, size, timer);
         }
         let Some(images) = &self.images else {
             return;

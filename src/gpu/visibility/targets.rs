@@ -129,3 +129,22 @@ pub(super) fn ms_texture(
 pub(super) fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry { binding, resource }
 }
+
+/// How a camera-relative perspective `matrix` (the eye at the origin) turns depth d into clip
+/// w: `b / (d + a)`, as `[a, b]` (`VisUniforms::depth`, what the temporal resolve reads).
+pub(crate) fn clip_w_from_depth(matrix: glam::Mat4) -> [f32; 2] {
+    let m = matrix.as_dmat4();
+    let (row2, row3) = (m.row(2), m.row(3));
+    // A perspective projection after an affine view: row 2 = -a row 3 + b e4, and clip w
+    // from depth d is b / (d + a). Read `a` where row 3 is largest.
+    let k = (0..3)
+        .max_by(|&i, &j| row3[i].abs().total_cmp(&row3[j].abs()))
+        .unwrap_or(2);
+    let a = if row3[k] != 0.0 {
+        -row2[k] / row3[k]
+    } else {
+        0.0
+    };
+    let b = row2.w + a * row3.w;
+    [a as f32, b as f32]
+}

@@ -245,7 +245,11 @@ impl World {
             let (texture, bake_target) = level_texture(device, &bake, &map);
             let light = LevelLight::new(device, &light_bake, &texture, &map);
             // The tile has no clouds: its module is built without their march.
-            let source = shader::source_for("world", tile.is_none());
+            let clouds = match tile {
+                Some(_) => shader::CloudCode::Without,
+                None => shader::CloudCode::March,
+            };
+            let source = shader::source_for("world", clouds);
             let module = shader::module(device, "relief:world:shader", &source);
             // Compute too: the visibility method's compute raster places the same vertices.
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
@@ -752,7 +756,7 @@ impl World {
         self.encode_grass(device, queue, encoder, view, timer);
         self.encode_props((device, queue, encoder), (view, &unjittered), timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {
-            self.encode_visibility(device, queue, encoder, view, timer)?;
+            self.encode_visibility(device, queue, encoder, (view, &unjittered), timer)?;
             self.encode_resolve(queue, encoder, &unjittered, timer);
         } else if self.mesh_history.is_some() {
             self.encode_mesh_history((device, queue, encoder), view, timer);

@@ -39,9 +39,13 @@ impl World {
         self.temporal
     }
 
-    /// A camera cut: the next frame starts a new history (the scene it showed is gone).
+    /// A camera cut: the next frame starts a new history (the scene it showed is gone), and
+    /// marches every pixel's clouds.
     pub fn cut(&mut self) {
         self.history.reset("cut");
+        if let Some(vis) = &mut self.visibility {
+            vis.cut_clouds();
+        }
     }
 
     /// The sub-pixel offset, in pixels (x right, y down), the last [`World::prepare`] drew
@@ -64,7 +68,7 @@ impl World {
     }
 
     /// Whether frames are accumulated: the service on and the method's passes built.
-    fn temporal_active(&self) -> bool {
+    pub(super) fn temporal_active(&self) -> bool {
         self.temporal.on()
             && match self.method {
                 Method::Visibility | Method::Hybrid => self.visibility.is_some(),

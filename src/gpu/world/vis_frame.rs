@@ -2,16 +2,18 @@
 //! the compute shading recorded after the frame's uniforms.
 
 use super::*;
+use crate::gpu::visibility::CloudFrame;
 
 impl World {
     /// Records the visibility method's raster pass and compute shading of the last prepared
-    /// frame.
+    /// frame, drawn through `view` (jittered where the temporal service runs; `unjittered`
+    /// the view itself).
     pub(super) fn encode_visibility(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        view: &WorldView,
+        (view, unjittered): (&WorldView, &WorldView),
         timer: Option<&GpuTimer>,
     ) -> Result<()> {
         let size = self.target_size.unwrap_or(view.size);
@@ -56,9 +58,11 @@ impl World {
             .grass_in_compute()
             .then_some(self.grass.as_ref())
             .flatten();
+        let clouds = self.cloud_frame(unjittered);
         let Some(vis) = self.visibility.as_mut() else {
             return Ok(());
         };
+        vis.set_cloud_frame(clouds);
         let bindings = WorldBindings {
             render: &self.render_uniforms,
             world: &self.world_uniforms,
@@ -93,6 +97,27 @@ impl World {
             (draw, &patches, rays.as_ref()),
             timer,
         );
+        if let Some((marched, _)) = &mut self.stats.clouds {
+            *marched = vis.clouds_marched();
+        }
         Ok(())
+    }
+
+    /// What the visibility method's clouds' image needs of the next frame, where it keeps one:
+    /// the frame has clouds, marched a fraction a frame ([`Clouds::reproject`]), and the
+    /// temporal service runs.
+    ///
+    /// [`Clouds::reproject`]: crate::world::clouds::Clouds::reproject
+    fn cloud_frame(&self, view: &WorldView) -> Option<CloudFrame> {
+        let c = &self.params.clouds;
+        let on = self.tile.is_none() && c.on() && c.reproject && self.temporal_active();
+        let (near, far) = self.near_far;
+        on.then(|| CloudFrame {
+            matrix: view.relative_matrix(near, far),
+            eye: view.eye,
+            drift: self.params.wind.velocity() * self.clock(),
+            layer: [c.coverage, c.base, c.top, c.kind, c.steps as f32],
+            sun: self.sky().sun_direction(),
+        })
     }
 }

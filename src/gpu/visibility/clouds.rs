@@ -1,0 +1,385 @@
+//! The visibility method's clouds' image (`wgsl/clouds_image.wgsl`): where the temporal
+//! service runs and the frame has clouds, one pixel of each [`BLOCK`] x [`BLOCK`] block is
+//! marched a frame (every pixel in turn over [`BLOCK`]² frames, in the order of a Bayer
+//! matrix, so each frame's are spread evenly) and the others are carried over from the last
+//! frame's image, moved with the eye and the wind; the shading reads each ray's clouds from
+//! it. Every pixel is marched where there is no last image, the image's size or the layer
+//! changed, the sun turned by more than [`SUN_CUT_DEGREES`] or the eye moved more than
+//! [`EYE_CUT_M`] since the last frame.
+
+use glam::{DVec2, DVec3, Mat4, Vec3};
+
+use crate::gpu::timing::{GpuTimer, Slot};
+
+/// One pixel of each block of `BLOCK` x `BLOCK` is marched a frame.
+pub const BLOCK: u32 = 4;
+/// A sun turned further than this between two frames (degrees) marches every pixel: a slider
+/// moved, not the day running (a day in a minute turns it 0.1 degrees a frame at 60 Hz).
+pub const SUN_CUT_DEGREES: f32 = 1.0;
+/// An eye moved further than this between two frames (metres) marches every pixel: a jump.
+pub const EYE_CUT_M: f64 = 500.0;
+/// Per pixel: the light scattered towards the eye (linear) and the light kept.
+const LIGHT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Per pixel: where along the ray the light was taken (first, half, last) and the clouds' mean
+/// distance, metres.
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The pixel of a block each frame marches, by frame: a 4x4 Bayer matrix's order.
+const ORDER: [[u32; 2]; 16] = [
+    [0, 0],
+    [2, 2],
+    [2, 0],
+    [0, 2],
+    [1, 1],
+    [3, 3],
+    [3, 1],
+    [1, 3],
+    [1, 0],
+    [3, 2],
+    [3, 0],
+    [1, 2],
+    [0, 1],
+    [2, 3],
+    [2, 1],
+    [0, 3],
+];
+
+/// What the world says of a frame drawn with the image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CloudFrame {
+    /// The camera-relative projection times view, unjittered: the image's pixels are the
+    /// same rays in every frame of a still view.
+    pub matrix: Mat4,
+    /// The eye, world space.
+    pub eye: DVec3,
+    /// How far the wind has carried the clouds' shapes (x, z), metres.
+    pub drift: DVec2,
+    /// The layer and its march (coverage, base, top, type, steps): any change marches every
+    /// pixel.
+    pub layer: [f32; 5],
+    /// Towards the sun.
+    pub sun: Vec3,
+}
+
+/// Mirrors `CloudFrame` in `wgsl/clouds_image.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+struct CloudUniforms {
+    now: [[f32; 4]; 4],
+    inv: [[f32; 4]; 4],
+    last: [[f32; 4]; 4],
+    shift: [f32; 4],
+    phase: [u32; 4],
+}
+
+/// The image's textures at one size: this frame's (which the shading reads) and the last's.
+struct Images {
+    size: (u32, u32),
+    now: [wgpu::Texture; 2],
+    now_views: [wgpu::TextureView; 2],
+    last: [wgpu::Texture; 2],
+    /// The passes' bind group: the uniforms, the last image read, this one written.
+    group: Option<wgpu::BindGroup>,
+}
+
+/// The clouds' passes of a visibility method built with them.
+pub(crate) struct Clouds {
+    module: wgpu::ShaderModule,
+    uniforms: wgpu::Buffer,
+    /// The passes, built the first time a frame draws with the image.
+    passes: Option<(wgpu::BindGroupLayout, [wgpu::ComputePipeline; 2])>,
+    images: Option<Images>,
+    /// This frame, where it draws with the image.
+    frame: Option<CloudFrame>,
+    /// The last frame drawn with the image: its matrix and what the world said of it.
+    last: Option<(Mat4, CloudFrame)>,
+    /// Frames since every pixel was marched.
+    since: usize,
+    /// The share of the pixels the last frame marched (1 without the image).
+    pub marched: f64,
+}
+
+impl Clouds {
+    /// For the visibility method's `module`, built with the image (`CloudCode::Image`).
+    pub(crate) fn new(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Self {
+        Self {
+            module: module.clone(),
+            uniforms: crate::gpu::uniform_buffer::<CloudUniforms>(
+                device,
+                "relief:visibility:cloud-uniforms",
+            ),
+            passes: None,
+            images: None,
+            frame: None,
+            last: None,
+            since: 0,
+            marched: 1.0,
+        }
+    }
+
+    /// The shading's bindings of the image: its uniforms and this frame's image.
+    pub(crate) fn entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+        let c = wgpu::ShaderStages::COMPUTE;
+        [
+            crate::gpu::uniform_entry::<CloudUniforms>(30, c),
+            crate::gpu::texture_entry(31, c, false),
+            crate::gpu::texture_entry(32, c, false),
+        ]
+    }
+
+    /// Sets what the next frame draws with: the image (`Some`) or the march along every ray.
+    /// Returns whether the image's size changes (its bindings must be made again).
+    pub(crate) fn set_frame(&mut self, frame: Option<CloudFrame>) -> bool {
+        let was = self.frame.is_some();
+        self.frame = frame;
+        if frame.is_none() {
+            self.last = None;
+        }
+        was != frame.is_some()
+    }
+
+    /// Makes the image for frames of `size` (1x1 where the frame marches every ray) and
+    /// returns the shading's bindings of it.
+    pub(crate) fn bind(
+        &mut self,
+        device: &wgpu::Device,
+        size: (u32, u32),
+        (render, vis): (&wgpu::Buffer, &wgpu::Buffer),
+    ) -> [wgpu::BindGroupEntry<'_>; 3] {
+        let size = if self.frame.is_some() { size } else { (1, 1) };
+        if self.images.as_ref().is_none_or(|i| i.size != size) {
+            self.last = None;
+            let usage = wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST;
+            let make = |label| {
+                [LIGHT_FORMAT, DEPTH_FORMAT]
+                    .map(|format| crate::gpu::texture_2d(device, label, size, format, usage))
+            };
+            let now = make("relief:visibility:clouds");
+            let now_views = [&now[0], &now[1]].map(|t| t.create_view(&Default::default()));
+            let last = make("relief:visibility:clouds-last");
+            self.images = Some(Images {
+                size,
+                now,
+                now_views,
+                last,
+                group: None,
+            });
+        }
+        if self.frame.is_some() {
+            let (layout, _) = self
+                .passes
+                .get_or_insert_with(|| passes(device, &self.module));
+            if let Some(images) = self.images.as_mut().filter(|i| i.group.is_none()) {
+                images.group = Some(pass_group(
+                    device,
+                    layout,
+                    images,
+                    (render, vis, &self.uniforms),
+                ));
+            }
+        }
+        let images = self.images.as_ref().expect("made above");
+        use wgpu::BindingResource::TextureView;
+        let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        [
+            entry(30, self.uniforms.as_entire_binding()),
+            entry(31, TextureView(&images.now_views[0])),
+            entry(32, TextureView(&images.now_views[1])),
+        ]
+    }
+
+    /// GPU memory of the image at `size`, bytes (this frame's and the last's), where it is kept.
+    pub(crate) fn bytes(&self, size: (u32, u32)) -> u64 {
+        if self.frame.is_none() {
+            return 0;
+        }
+        let texel = crate::gpu::texel_bytes(LIGHT_FORMAT) + crate::gpu::texel_bytes(DEPTH_FORMAT);
+        2 * texel * u64::from(size.0) * u64::from(size.1)
+    }
+
+    /// Records the frame's clouds for an image of `size`: its uniforms and, where it draws
+    /// with the image, the march of one pixel of each block (or every pixel), the others
+    /// carried over, and this image kept as the last.
+    pub(crate) fn encode(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        size: (u32, u32),
+        timer: Option<&GpuTimer>,
+    ) {
+        let Some(frame) = self.frame else {
+            self.marched = 1.0;
+            queue.write_buffer(
+                &self.uniforms,
+                0,
+                bytemuck::bytes_of(&CloudUniforms::zeroed()),
+            );
+            return;
+        };
+        let matrix = frame.matrix;
+        let history = self.last.filter(|(_, last)| {
+            last.layer == frame.layer
+                && last.sun.angle_between(frame.sun).to_degrees() <= SUN_CUT_DEGREES
+                && last.eye.distance(frame.eye) <= EYE_CUT_M
+        });
+        let (last_matrix, shift) = match history {
+            Some((m, last)) => {
+                let wind = frame.drift - last.drift;
+                let shift = frame.eye - last.eye - DVec3::new(wind.x, 0.0, wind.y);
+                self.since += 1;
+                (m, shift.as_vec3())
+            }
+            None => {
+                self.since = 0;
+                (matrix, Vec3::ZERO)
+            }
+        };
+        let all = history.is_none();
+        let [px, py] = ORDER[self.since % ORDER.len()];
+        let u = CloudUniforms {
+            now: matrix.to_cols_array_2d(),
+            inv: matrix.as_dmat4().inverse().as_mat4().to_cols_array_2d(),
+            last: last_matrix.to_cols_array_2d(),
+            shift: shift.extend(0.0).to_array(),
+            phase: [px, py, u32::from(all), 1],
+        };
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
+        self.last = Some((matrix, frame));
+        let (Some((_, [march, reproject])), Some(images)) = (&self.passes, &self.images) else {
+            return;
+        };
+        let Some(group) = &images.group else {
+            return;
+        };
+        let marched = if all {
+            size
+        } else {
+            (size.0.div_ceil(BLOCK), size.1.div_ceil(BLOCK))
+        };
+        self.marched = if all {
+            1.0
+        } else {
+            1.0 / f64::from(BLOCK * BLOCK)
+        };
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief:visibility:clouds-pass"),
+                timestamp_writes: timer.map(|t| t.compute_writes(Slot::Clouds)),
+            });
+            pass.set_bind_group(0, group, &[]);
+            pass.set_pipeline(march);
+            let w = crate::gpu::WORKGROUP;
+            pass.dispatch_workgroups(marched.0.div_ceil(w), marched.1.div_ceil(w), 1);
+            if !all {
+                pass.set_pipeline(reproject);
+                pass.dispatch_workgroups(size.0.div_ceil(w), size.1.div_ceil(w), 1);
+            }
+        }
+        for (now, last) in images.now.iter().zip(&images.last) {
+            encoder.copy_texture_to_texture(now.as_image_copy(), last.as_image_copy(), now.size());
+        }
+    }
+}
+
+use bytemuck::Zeroable;
+
+impl super::Visibility {
+    /// What the next frame says of its clouds where it draws them with the image (`None`:
+    /// marched along every ray); nothing where the method was built without clouds.
+    pub(crate) fn set_cloud_frame(&mut self, frame: Option<CloudFrame>) {
+        if let Some(clouds) = &mut self.clouds {
+            if clouds.set_frame(frame) {
+                self.images = None;
+            }
+        }
+    }
+
+    /// The next frame marches every pixel's clouds (a camera cut).
+    pub(crate) fn cut_clouds(&mut self) {
+        if let Some(clouds) = &mut self.clouds {
+            clouds.last = None;
+        }
+    }
+
+    /// The share of the pixels whose clouds the last frame marched (1: every one).
+    pub(crate) fn clouds_marched(&self) -> f64 {
+        self.clouds.as_ref().map_or(1.0, |c| c.marched)
+    }
+}
+
+/// The passes' layout and their two pipelines (`march_clouds`, `reproject_clouds`).
+fn passes(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+) -> (wgpu::BindGroupLayout, [wgpu::ComputePipeline; 2]) {
+    use crate::gpu::render::RenderUniforms;
+    let c = wgpu::ShaderStages::COMPUTE;
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("relief:visibility:clouds-layout"),
+        entries: &[
+            crate::gpu::uniform_entry::<RenderUniforms>(0, c),
+            crate::gpu::uniform_entry::<super::VisUniforms>(12, c),
+            crate::gpu::uniform_entry::<CloudUniforms>(30, c),
+            crate::gpu::texture_entry(33, c, false),
+            crate::gpu::texture_entry(34, c, false),
+            crate::gpu::storage_entry(35, LIGHT_FORMAT),
+            crate::gpu::storage_entry(36, DEPTH_FORMAT),
+        ],
+    });
+    let pipelines = ["march_clouds", "reproject_clouds"].map(|entry| {
+        crate::gpu::compute_pipeline(device, "relief:visibility:clouds", &layout, module, entry)
+    });
+    (layout, pipelines)
+}
+
+/// The passes' bind group for `images`.
+fn pass_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    images: &Images,
+    (render, vis, uniforms): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
+) -> wgpu::BindGroup {
+    use wgpu::BindingResource::TextureView;
+    let last = [&images.last[0], &images.last[1]].map(|t| t.create_view(&Default::default()));
+    let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("relief:visibility:clouds-group"),
+        layout,
+        entries: &[
+            entry(0, render.as_entire_binding()),
+            entry(12, vis.as_entire_binding()),
+            entry(30, uniforms.as_entire_binding()),
+            entry(33, TextureView(&last[0])),
+            entry(34, TextureView(&last[1])),
+            entry(35, TextureView(&images.now_views[0])),
+            entry(36, TextureView(&images.now_views[1])),
+        ],
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_block_marches_every_pixel_once_in_its_cycle() {
+        let mut seen = [[false; 4]; 4];
+        for [x, y] in ORDER {
+            assert!(!seen[y as usize][x as usize]);
+            seen[y as usize][x as usize] = true;
+        }
+        assert_eq!(ORDER.len() as u32, BLOCK * BLOCK);
+        // Each four frames in a row cover each 2x2 quarter of the block once.
+        for k in (0..16).step_by(4) {
+            let mut quarters: Vec<_> = ORDER[k..k + 4]
+                .iter()
+                .map(|[x, y]| (x / 2, y / 2))
+                .collect();
+            quarters.sort();
+            quarters.dedup();
+            assert_eq!(quarters.len(), 4, "{k}");
+        }
+    }
+}
