@@ -1,13 +1,13 @@
 // instead of: clouds_seen (shader::source_for, where the visibility method keeps the clouds' image)
-// The clouds' image (src/gpu/visibility/clouds.rs): where the temporal service runs, the
-// visibility and hybrid methods march the clouds along one pixel of each 4x4 block a frame
-// (`march_clouds`) and carry the other fifteen over from the last frame's image
-// (`reproject_clouds`); the shading then reads each ray's clouds from the image and cuts
-// them at its surface. A pixel keeps its ray's whole march, to where the ray leaves the
+// The clouds' image (src/gpu/visibility/clouds.rs), half the frame's size each way: where the
+// temporal service runs, the visibility and hybrid methods march the clouds along one pixel of
+// each 4x4 block a frame (`march_clouds`) and carry the other fifteen over from the last
+// frame's image (`reproject_clouds`); the shading then reads each ray's clouds from the image
+// and cuts them at its surface. A pixel keeps its ray's whole march, to where the ray leaves the
 // layer, and where along the ray the light was taken (`CloudMarch`: first, half, last): a
 // surface in front of `first` has no cloud before it, one past `last` all of them, and one
 // between takes the light taken up to it, as if it were taken evenly between those points.
-// Composed into the visibility and hybrid modules after vis_common.wgsl (`vis`).
+// Composed into the visibility and hybrid modules (the uniforms `r` they declare).
 
 struct CloudFrame {
     // The camera-relative projection times view of this frame (unjittered: the image's pixels
@@ -21,6 +21,8 @@ struct CloudFrame {
     // x, y: the pixel of each 4x4 block marched this frame; z: 1 where every pixel is (no
     // history); w: 1 where the shading reads the image.
     phase: vec4<u32>,
+    // x, y: the image's size, half the frame's (rounded up).
+    size: vec4<u32>,
 }
 
 @group(0) @binding(30) var<uniform> cloud_frame: CloudFrame;
@@ -34,24 +36,50 @@ struct CloudFrame {
 @group(0) @binding(35) var cloud_light_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(36) var cloud_depth_out: texture_storage_2d<rgba32float, write>;
 
-// The pixel (from the top left) that homogeneous camera-relative `p` falls in through `m`,
-// or (-1, -1) where it lies behind the eye or outside the image.
-fn cloud_pixel(m: mat4x4<f32>, p: vec4<f32>) -> vec2<i32> {
+// Where homogeneous camera-relative `p` falls in the image through `m`, in its pixels from the
+// top left (pixel centres at +0.5), or (-1e9, -1e9) where it lies behind the eye.
+fn cloud_at(m: mat4x4<f32>, p: vec4<f32>) -> vec2<f32> {
     let clip = m * p;
     if clip.w <= 0.0 {
-        return vec2<i32>(-1);
+        return vec2<f32>(-1e9);
     }
     let ndc = clip.xy / clip.w;
-    let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2<f32>(vis.size);
-    if any(at < vec2<f32>(0.0)) || any(at >= vec2<f32>(vis.size)) {
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2<f32>(cloud_frame.size.xy);
+}
+
+// The image's pixel that homogeneous camera-relative `p` falls in through `m`, or (-1, -1)
+// where it lies behind the eye or outside the image.
+fn cloud_pixel(m: mat4x4<f32>, p: vec4<f32>) -> vec2<i32> {
+    let at = cloud_at(m, p);
+    if any(at < vec2<f32>(0.0)) || any(at >= vec2<f32>(cloud_frame.size.xy)) {
         return vec2<i32>(-1);
     }
     return vec2<i32>(at);
 }
 
+// The image's four pixels nearest `at` (`cloud_at`), clamped into it, and their weights.
+struct CloudTexels {
+    px: array<vec2<i32>, 4>,
+    w: vec4<f32>,
+}
+
+fn cloud_texels(at: vec2<f32>) -> CloudTexels {
+    let p = at - 0.5;
+    let base = vec2<i32>(floor(p));
+    let f = p - floor(p);
+    let last = vec2<i32>(cloud_frame.size.xy) - 1;
+    var out: CloudTexels;
+    for (var k = 0; k < 4; k++) {
+        let o = vec2<i32>(k & 1, k >> 1);
+        out.px[k] = clamp(base + o, vec2<i32>(0), last);
+        out.w[k] = mix(1.0 - f.x, f.x, f32(o.x)) * mix(1.0 - f.y, f.y, f32(o.y));
+    }
+    return out;
+}
+
 // The ray through the centre of the image's pixel `px`.
 fn cloud_ray(px: vec2<u32>) -> vec3<f32> {
-    let at = (vec2<f32>(px) + 0.5) / vec2<f32>(vis.size);
+    let at = (vec2<f32>(px) + 0.5) / vec2<f32>(cloud_frame.size.xy);
     let near = cloud_frame.inv * vec4<f32>(at.x * 2.0 - 1.0, 1.0 - at.y * 2.0, 0.0, 1.0);
     return normalize(near.xyz / near.w);
 }
@@ -77,18 +105,27 @@ fn cloud_cut(light: vec4<f32>, depth: vec4<f32>, far: f32) -> CloudLight {
 }
 
 // What the clouds between the eye and `far` along unit `dir` do (`CloudLight`, shade.wgsl):
-// read from the image where the frame keeps one and `dir` is in it; else marched (a ray that
-// leaves the image is the water's reflection: a quarter of the steps).
+// read from the image where the frame keeps one and `dir` is in it (between its four nearest
+// pixels, each cut at `far`); else marched (a ray that leaves the image is the water's
+// reflection: a quarter of the steps).
 fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
     let steps = u32(r.cloud_march.y);
     if cloud_frame.phase.w == 0u {
         return cloud_march(r, dir, far, steps).seen;
     }
-    let px = cloud_pixel(cloud_frame.now, vec4<f32>(dir, 0.0));
-    if px.x < 0 {
+    let at = cloud_at(cloud_frame.now, vec4<f32>(dir, 0.0));
+    if any(at < vec2<f32>(0.0)) || any(at > vec2<f32>(cloud_frame.size.xy)) {
         return cloud_march(r, dir, far, max(steps / 4u, 8u)).seen;
     }
-    return cloud_cut(textureLoad(cloud_light_now, px, 0), textureLoad(cloud_depth_now, px, 0), far);
+    let t = cloud_texels(at);
+    var out = CloudLight(0.0, vec3<f32>(0.0), 0.0);
+    for (var k = 0; k < 4; k++) {
+        let c = cloud_cut(textureLoad(cloud_light_now, t.px[k], 0), textureLoad(cloud_depth_now, t.px[k], 0), far);
+        out.keep += t.w[k] * c.keep;
+        out.light += t.w[k] * c.light;
+        out.dist += t.w[k] * c.dist;
+    }
+    return out;
 }
 
 // The last frame's clouds along `dir` where they were then (their mean distance read
@@ -104,38 +141,32 @@ struct CloudCarried {
 
 fn cloud_carried(dir: vec3<f32>) -> CloudCarried {
     var out = CloudCarried(vec4<f32>(0.0), vec4<f32>(0.0), false);
-    var clip = cloud_frame.last * vec4<f32>(dir, 0.0);
-    var q = cloud_pixel(cloud_frame.last, vec4<f32>(dir, 0.0));
+    var at = cloud_at(cloud_frame.last, vec4<f32>(dir, 0.0));
+    let q = cloud_pixel(cloud_frame.last, vec4<f32>(dir, 0.0));
     var nearer = 0.0;
     if q.x >= 0 && textureLoad(cloud_light_last, q, 0).w < 1.0 {
         let d = textureLoad(cloud_depth_last, q, 0).w;
         let then = dir * d + cloud_frame.shift.xyz;
-        clip = cloud_frame.last * vec4<f32>(then, 1.0);
+        at = cloud_at(cloud_frame.last, vec4<f32>(then, 1.0));
         nearer = length(then) - d;
     }
-    if clip.w <= 0.0 {
+    if any(at < vec2<f32>(0.0)) || any(at > vec2<f32>(cloud_frame.size.xy)) {
         return out;
     }
-    let ndc = clip.xy / clip.w;
-    let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * vec2<f32>(vis.size) - 0.5;
-    let size = vec2<i32>(vis.size);
-    if any(at < vec2<f32>(-0.5)) || any(at > vec2<f32>(size) - 0.5) {
-        return out;
-    }
-    let base = vec2<i32>(floor(at));
-    let f = at - floor(at);
+    let t = cloud_texels(at);
     var cloudy = 0.0;
+    var low = vec4<f32>(1e30);
+    var high = vec4<f32>(-1e30);
     for (var k = 0; k < 4; k++) {
-        let o = vec2<i32>(k & 1, k >> 1);
-        let w = mix(1.0 - f.x, f.x, f32(o.x)) * mix(1.0 - f.y, f.y, f32(o.y));
-        let p = clamp(base + o, vec2<i32>(0), size - 1);
-        let light = textureLoad(cloud_light_last, p, 0);
-        out.light += w * light;
+        let light = textureLoad(cloud_light_last, t.px[k], 0);
+        low = min(low, light);
+        high = max(high, light);
         if light.w < 1.0 {
-            out.depth += w * textureLoad(cloud_depth_last, p, 0);
-            cloudy += w;
+            out.depth += t.w[k] * textureLoad(cloud_depth_last, t.px[k], 0);
+            cloudy += t.w[k];
         }
     }
+    out.light = clamp(cloud_bicubic(at), low, high);
     if cloudy > 0.0 && out.light.w < 1.0 {
         out.depth = max(out.depth / cloudy - vec4<f32>(nearer), vec4<f32>(0.0));
     } else {
@@ -146,10 +177,45 @@ fn cloud_carried(dir: vec3<f32>) -> CloudCarried {
     return out;
 }
 
+// The last image's light at `at` (`cloud_at`) through a Catmull-Rom filter over its 4x4
+// nearest pixels: a bilinear read carried over frame after frame would blur the clouds.
+fn cloud_bicubic(at: vec2<f32>) -> vec4<f32> {
+    let p = at - 0.5;
+    let base = vec2<i32>(floor(p)) - 1;
+    let f = p - floor(p);
+    let f2 = f * f;
+    let f3 = f2 * f;
+    let wx = array<f32, 4>(
+        0.5 * (-f3.x + 2.0 * f2.x - f.x),
+        0.5 * (3.0 * f3.x - 5.0 * f2.x + 2.0),
+        0.5 * (-3.0 * f3.x + 4.0 * f2.x + f.x),
+        0.5 * (f3.x - f2.x),
+    );
+    let wy = array<f32, 4>(
+        0.5 * (-f3.y + 2.0 * f2.y - f.y),
+        0.5 * (3.0 * f3.y - 5.0 * f2.y + 2.0),
+        0.5 * (-3.0 * f3.y + 4.0 * f2.y + f.y),
+        0.5 * (f3.y - f2.y),
+    );
+    let last = vec2<i32>(cloud_frame.size.xy) - 1;
+    var sum = vec4<f32>(0.0);
+    for (var j = 0; j < 4; j++) {
+        for (var i = 0; i < 4; i++) {
+            let q = clamp(base + vec2<i32>(i, j), vec2<i32>(0), last);
+            sum += wx[i] * wy[j] * textureLoad(cloud_light_last, q, 0);
+        }
+    }
+    return sum;
+}
+
 // Marches the ray through the centre of pixel `px` to where it leaves the layer and stores
 // what it found in this frame's image.
 fn store_cloud_march(px: vec2<u32>) {
-    let m = cloud_march(r, cloud_ray(px), 1e30, u32(r.cloud_march.y));
+    let dir = cloud_ray(px);
+    // A ray going down meets the ground (at or above 0 m) before its far end: the march stops
+    // there, not where the planet's curve would bring the layer down to it.
+    let ground = select(1e30, max(r.cloud_march.x, 0.0) / -dir.y, dir.y < 0.0);
+    let m = cloud_march(r, dir, ground, u32(r.cloud_march.y));
     textureStore(cloud_light_out, px, vec4<f32>(m.seen.light, m.seen.keep));
     textureStore(cloud_depth_out, px, vec4<f32>(m.first, m.half, m.last, m.seen.dist));
 }
@@ -161,7 +227,7 @@ fn march_clouds(@builtin(global_invocation_id) id: vec3<u32>) {
     if cloud_frame.phase.z == 0u {
         px = id.xy * 4u + cloud_frame.phase.xy;
     }
-    if any(px >= vis.size) {
+    if any(px >= cloud_frame.size.xy) {
         return;
     }
     store_cloud_march(px);
@@ -170,7 +236,7 @@ fn march_clouds(@builtin(global_invocation_id) id: vec3<u32>) {
 // Every other pixel: what it carried over, or marched where it carried nothing.
 @compute @workgroup_size(8, 8)
 fn reproject_clouds(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= vis.size) || all(id.xy % 4u == cloud_frame.phase.xy) {
+    if any(id.xy >= cloud_frame.size.xy) || all(id.xy % 4u == cloud_frame.phase.xy) {
         return;
     }
     let c = cloud_carried(cloud_ray(id.xy));

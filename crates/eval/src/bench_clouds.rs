@@ -3,13 +3,17 @@
 //! (from a valley looking up, inside the layer, above it looking down, each at noon and at
 //! dusk), the benchmark's named views and the random view set ([`crate::views::random_views`],
 //! fixed by a seed), the default frame (the visibility method rasterised in compute, one
-//! sample a pixel, the temporal service on) is drawn without clouds and with them (the
-//! scene's layer, or coverage 0.5 where it has none): its median GPU time and the shading's.
+//! sample a pixel, the temporal service on) is drawn without clouds, with them (the scene's
+//! layer, or coverage 0.5 where it has none) marched one pixel in 16 a frame through the
+//! clouds' image, and with them marched along every pixel every frame
+//! ([`Clouds::reproject`] off): the frame's median GPU time, the shading's and the image's;
+//! and the image's on a frame after a camera cut, which marches every pixel.
 //! Then, on the clouds' views and the named ones (a row each after the costs' rows; not with
-//! `--quick`), the still frame accumulated over
-//! [`CONVERGED`] frames at [`relief::world::clouds::STEPS`] steps and at four and eight times
-//! as many is compared by FLIP with the one at eight times ([`DOUBLED`]): the march's error
-//! against its own limit, and what doubling the reference's steps changes.
+//! `--quick`), the still frame accumulated over [`CONVERGED`] frames, every pixel marched
+//! every frame at [`relief::world::clouds::STEPS`] steps and at four and eight times as many,
+//! and through the image at [`relief::world::clouds::STEPS`], is compared by FLIP with the
+//! full march at eight times ([`DOUBLED`], the reference): the march's error against its own
+//! limit, what doubling the reference's steps changes, and the image's error.
 
 use crate::bench::{measure, Options};
 use crate::bench_temporal::method;
@@ -35,13 +39,17 @@ pub const HOURS: [(&str, f32); 2] = [("noon", 12.0), ("dusk", 18.8)];
 pub struct CloudRow {
     /// The view.
     pub view: String,
-    /// The frame's median GPU time without clouds and with them, milliseconds.
-    pub frame_ms: [Option<f64>; 2],
-    /// The shading's median GPU time (where the clouds are marched) without and with.
-    pub shade_ms: [Option<f64>; 2],
-    /// FLIP of the converged frame at [`STEPS`] and at [`REFERENCE_STEPS`] steps against the
-    /// one at [`DOUBLED`] (None: not measured on this view).
-    pub flip: [Option<f64>; 2],
+    /// The frame's median GPU time without clouds, with them through the image, and marched
+    /// along every pixel, milliseconds.
+    pub frame_ms: [Option<f64>; 3],
+    /// The shading's median GPU time in the same three frames.
+    pub shade_ms: [Option<f64>; 3],
+    /// The clouds' image's median GPU time (its march and carry), and on a frame after a cut.
+    pub image_ms: [Option<f64>; 2],
+    /// FLIP against the full march at [`DOUBLED`] steps of the converged frame marched fully
+    /// at [`STEPS`] and at [`REFERENCE_STEPS`] steps, and through the image at [`STEPS`] (None:
+    /// not measured on this view).
+    pub flip: [Option<f64>; 3],
 }
 
 /// The clouds' own views of `params`' world at `size` and the hours they are seen at: the
@@ -101,22 +109,28 @@ fn world(gpu: &Gpu, params: &WorldParams) -> Result<World> {
     Ok(world)
 }
 
-/// The frame's and the shading's median GPU time of `view`.
+/// The frame's, the shading's and the clouds' image's median GPU time of `view`, each frame
+/// after a camera cut where `cut`.
 fn cost(
     gpu: &Gpu,
     (options, target, timer): (&Options, &Offscreen, Option<&GpuTimer>),
-    params: &WorldParams,
+    (params, cut): (&WorldParams, bool),
     view: &WorldView,
-) -> Result<[Option<f64>; 2]> {
+) -> Result<[Option<f64>; 3]> {
     let mut w = world(gpu, params)?;
     target.accumulate_world(gpu, &mut w, view, 0)?;
     let (times, _) = measure(gpu, options, timer, |encoder, timer| {
+        if cut {
+            w.cut();
+        }
         let _ = w.prepare_timed(&gpu.device, &gpu.queue, encoder, view, timer);
         target.draw(encoder, &w, wgpu::Color::BLACK, timer);
     })?;
+    let slot = |s: Slot| median(times.iter().filter_map(|t| t[s as usize]));
     Ok([
         median(times.iter().filter_map(relief::choice::draw_ms)),
-        median(times.iter().filter_map(|t| t[Slot::Shade as usize])),
+        slot(Slot::Shade),
+        slot(Slot::Clouds),
     ])
 }
 
@@ -157,6 +171,13 @@ pub fn run(
         clouds: layer(params),
         ..*params
     };
+    let full = WorldParams {
+        clouds: Clouds {
+            reproject: false,
+            ..cloudy.clouds
+        },
+        ..cloudy
+    };
     let mut list: Vec<Measured> = cloud_views(params, size)
         .into_iter()
         .map(|(n, v, h)| (n, v, Some(h), None, true))
@@ -187,13 +208,16 @@ pub fn run(
     // Every view's cost first, then the slower comparisons (a run cut short keeps the costs).
     for (name, view, hour, seed, _) in &list {
         let how = (options, &target, timer.as_ref());
-        let off = cost(gpu, how, &at(&bare, *hour, *seed), view)?;
-        let on = cost(gpu, how, &at(&cloudy, *hour, *seed), view)?;
+        let off = cost(gpu, how, (&at(&bare, *hour, *seed), false), view)?;
+        let on = cost(gpu, how, (&at(&cloudy, *hour, *seed), false), view)?;
+        let every = cost(gpu, how, (&at(&full, *hour, *seed), false), view)?;
+        let cut = cost(gpu, how, (&at(&cloudy, *hour, *seed), true), view)?;
         let r = CloudRow {
             view: name.clone(),
-            frame_ms: [off[0], on[0]],
-            shade_ms: [off[1], on[1]],
-            flip: [None; 2],
+            frame_ms: [off[0], on[0], every[0]],
+            shade_ms: [off[1], on[1], every[1]],
+            image_ms: [on[2], cut[2]],
+            flip: [None; 3],
         };
         row(&r)?;
         rows.push(r);
@@ -202,19 +226,21 @@ pub fn run(
         if !compare || quick {
             continue;
         }
-        let steps = |n: u32| {
-            let mut p = at(&cloudy, *hour, *seed);
+        let steps = |n: u32, p: &WorldParams| {
+            let mut p = at(p, *hour, *seed);
             p.clouds.steps = n;
             converged(gpu, &target, &p, view)
         };
-        let limit = steps(DOUBLED)?;
+        let limit = steps(DOUBLED, &full)?;
         let r = CloudRow {
             view: name.clone(),
-            frame_ms: [None; 2],
-            shade_ms: [None; 2],
+            frame_ms: [None; 3],
+            shade_ms: [None; 3],
+            image_ms: [None; 2],
             flip: [
-                Some(flip(&limit, &steps(STEPS)?)),
-                Some(flip(&limit, &steps(REFERENCE_STEPS)?)),
+                Some(flip(&limit, &steps(STEPS, &full)?)),
+                Some(flip(&limit, &steps(REFERENCE_STEPS, &full)?)),
+                Some(flip(&limit, &steps(STEPS, &cloudy)?)),
             ],
         };
         row(&r)?;
@@ -227,10 +253,13 @@ pub fn run(
 pub fn header(device: &str, size: (u32, u32)) -> String {
     format!(
         "# relief bench --world endless --only clouds on {device} at {}x{}: the default frame \
-         (visibility, 1 sample, compute raster, temporal on) without clouds and with them; \
-         FLIP of the still frame ({CONVERGED} frames) at {STEPS} and {REFERENCE_STEPS} steps \
-         against {DOUBLED}\nview,frame_off_ms,frame_on_ms,shade_off_ms,shade_on_ms,\
-         clouds_ms,flip_{STEPS},flip_{REFERENCE_STEPS}\n",
+         (visibility, 1 sample, compute raster, temporal on) without clouds, with them through \
+         the image (one pixel in 16 marched a frame) and marched along every pixel (full); the \
+         image's pass, and on a frame after a cut; FLIP of the still frame ({CONVERGED} frames) \
+         marched fully at {STEPS} and {REFERENCE_STEPS} steps and through the image at {STEPS} \
+         against the full march at {DOUBLED}\nview,frame_off_ms,frame_on_ms,frame_full_ms,\
+         shade_off_ms,shade_on_ms,shade_full_ms,image_ms,image_cut_ms,clouds_ms,\
+         clouds_full_ms,flip_{STEPS},flip_{REFERENCE_STEPS},flip_image\n",
         size.0, size.1
     )
 }
@@ -239,24 +268,31 @@ fn cell(x: Option<f64>, digits: usize) -> String {
     x.map_or_else(String::new, |v| format!("{v:.digits$}"))
 }
 
-/// What the clouds add to the frame, where both were measured.
-fn added(r: &CloudRow) -> Option<f64> {
-    Some(r.frame_ms[1]? - r.frame_ms[0]?)
+/// What the clouds add to the frame, where both were measured: through the image (`i` 1) or
+/// marched fully (2).
+fn added(r: &CloudRow, i: usize) -> Option<f64> {
+    Some(r.frame_ms[i]? - r.frame_ms[0]?)
 }
 
 /// One row of the CSV.
 pub fn line(r: &CloudRow) -> String {
-    format!(
-        "{},{},{},{},{},{},{},{}\n",
-        r.view,
-        cell(r.frame_ms[0], 4),
-        cell(r.frame_ms[1], 4),
-        cell(r.shade_ms[0], 4),
-        cell(r.shade_ms[1], 4),
-        cell(added(r), 4),
-        cell(r.flip[0], 4),
-        cell(r.flip[1], 4),
-    )
+    let cells = [
+        r.frame_ms[0],
+        r.frame_ms[1],
+        r.frame_ms[2],
+        r.shade_ms[0],
+        r.shade_ms[1],
+        r.shade_ms[2],
+        r.image_ms[0],
+        r.image_ms[1],
+        added(r, 1),
+        added(r, 2),
+        r.flip[0],
+        r.flip[1],
+        r.flip[2],
+    ];
+    let cells: Vec<String> = cells.iter().map(|c| cell(*c, 4)).collect();
+    format!("{},{}\n", r.view, cells.join(","))
 }
 
 /// The summary: the clouds' cost and the frame with them, median and worst, over the clouds'
@@ -266,7 +302,9 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
         let worst = v.iter().copied().fold(f64::NAN, f64::max);
         (median(v), worst)
     };
-    let (cost, cost_worst) = stats(rows.iter().filter_map(added).collect());
+    let (cost, cost_worst) = stats(rows.iter().filter_map(|r| added(r, 1)).collect());
+    let (full, full_worst) = stats(rows.iter().filter_map(|r| added(r, 2)).collect());
+    let (cut, cut_worst) = stats(rows.iter().filter_map(|r| r.image_ms[1]).collect());
     let (frame, frame_worst) = stats(rows.iter().filter_map(|r| r.frame_ms[1]).collect());
     let worst_flip = |i: usize| {
         rows.iter()
@@ -275,15 +313,22 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
     };
     vec![
         format!(
-            "clouds: {} views; they add {} ms median, {cost_worst:.3} worst; the frame with them {} ms median, {frame_worst:.3} worst",
-            rows.len(),
+            "clouds: {} views; through the image they add {} ms median, {cost_worst:.3} worst \
+             (marched fully: {} median, {full_worst:.3} worst); the frame with them {} ms \
+             median, {frame_worst:.3} worst; the image after a cut {} ms median, \
+             {cut_worst:.3} worst",
+            rows.iter().filter(|r| r.frame_ms[0].is_some()).count(),
             cell(cost, 3),
+            cell(full, 3),
             cell(frame, 3),
+            cell(cut, 3),
         ),
         format!(
-            "clouds: FLIP against {DOUBLED} steps, worst: {:.4} at {STEPS} steps, {:.4} at {REFERENCE_STEPS}",
+            "clouds: FLIP against the full march at {DOUBLED} steps, worst: {:.4} marched fully \
+             at {STEPS} steps, {:.4} at {REFERENCE_STEPS}, {:.4} through the image at {STEPS}",
             worst_flip(0),
-            worst_flip(1)
+            worst_flip(1),
+            worst_flip(2)
         ),
     ]
 }

@@ -1,6 +1,6 @@
-//! The visibility method's clouds' image (`wgsl/clouds_image.wgsl`): where the temporal
-//! service runs and the frame has clouds, one pixel of each [`BLOCK`] x [`BLOCK`] block is
-//! marched a frame (every pixel in turn over [`BLOCK`]² frames, in the order of a Bayer
+//! The visibility method's clouds' image (`wgsl/clouds_image.wgsl`), half the frame's size
+//! each way: where the temporal service runs and the frame has clouds, one pixel of each
+//! [`BLOCK`] x [`BLOCK`] block is marched a frame (every pixel in turn over [`BLOCK`]² frames, in the order of a Bayer
 //! matrix, so each frame's are spread evenly) and the others are carried over from the last
 //! frame's image, moved with the eye and the wind; the shading reads each ray's clouds from
 //! it. Every pixel is marched where there is no last image, the image's size or the layer
@@ -69,6 +69,7 @@ struct CloudUniforms {
     last: [[f32; 4]; 4],
     shift: [f32; 4],
     phase: [u32; 4],
+    size: [u32; 4],
 }
 
 /// The image's textures at one size: this frame's (which the shading reads) and the last's.
@@ -143,9 +144,13 @@ impl Clouds {
         &mut self,
         device: &wgpu::Device,
         size: (u32, u32),
-        (render, vis): (&wgpu::Buffer, &wgpu::Buffer),
+        render: &wgpu::Buffer,
     ) -> [wgpu::BindGroupEntry<'_>; 3] {
-        let size = if self.frame.is_some() { size } else { (1, 1) };
+        let size = if self.frame.is_some() {
+            image_size(size)
+        } else {
+            (1, 1)
+        };
         if self.images.as_ref().is_none_or(|i| i.size != size) {
             self.last = None;
             let usage = wgpu::TextureUsages::STORAGE_BINDING
@@ -172,12 +177,7 @@ impl Clouds {
                 .passes
                 .get_or_insert_with(|| passes(device, &self.module));
             if let Some(images) = self.images.as_mut().filter(|i| i.group.is_none()) {
-                images.group = Some(pass_group(
-                    device,
-                    layout,
-                    images,
-                    (render, vis, &self.uniforms),
-                ));
+                images.group = Some(pass_group(device, layout, images, (render, &self.uniforms)));
             }
         }
         let images = self.images.as_ref().expect("made above");
@@ -190,13 +190,15 @@ impl Clouds {
         ]
     }
 
-    /// GPU memory of the image at `size`, bytes (this frame's and the last's), where it is kept.
+    /// GPU memory of the image for frames of `size`, bytes (this frame's and the last's),
+    /// where it is kept.
     pub(crate) fn bytes(&self, size: (u32, u32)) -> u64 {
         if self.frame.is_none() {
             return 0;
         }
         let texel = crate::gpu::texel_bytes(LIGHT_FORMAT) + crate::gpu::texel_bytes(DEPTH_FORMAT);
-        2 * texel * u64::from(size.0) * u64::from(size.1)
+        let (w, h) = image_size(size);
+        2 * texel * u64::from(w) * u64::from(h)
     }
 
     /// Records the frame's clouds for an image of `size`: its uniforms and, where it draws
@@ -209,6 +211,7 @@ impl Clouds {
         size: (u32, u32),
         timer: Option<&GpuTimer>,
     ) {
+        let size = image_size(size);
         let Some(frame) = self.frame else {
             self.marched = 1.0;
             queue.write_buffer(
@@ -244,6 +247,7 @@ impl Clouds {
             last: last_matrix.to_cols_array_2d(),
             shift: shift.extend(0.0).to_array(),
             phase: [px, py, u32::from(all), 1],
+            size: [size.0, size.1, 0, 0],
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         self.last = Some((matrix, frame));
@@ -285,6 +289,11 @@ impl Clouds {
 
 use bytemuck::Zeroable;
 
+/// The image's size for frames of `size`: half of it each way, rounded up.
+fn image_size(size: (u32, u32)) -> (u32, u32) {
+    (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1))
+}
+
 impl super::Visibility {
     /// What the next frame says of its clouds where it draws them with the image (`None`:
     /// marched along every ray); nothing where the method was built without clouds.
@@ -320,7 +329,6 @@ fn passes(
         label: Some("relief:visibility:clouds-layout"),
         entries: &[
             crate::gpu::uniform_entry::<RenderUniforms>(0, c),
-            crate::gpu::uniform_entry::<super::VisUniforms>(12, c),
             crate::gpu::uniform_entry::<CloudUniforms>(30, c),
             crate::gpu::texture_entry(33, c, false),
             crate::gpu::texture_entry(34, c, false),
@@ -339,7 +347,7 @@ fn pass_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     images: &Images,
-    (render, vis, uniforms): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
+    (render, uniforms): (&wgpu::Buffer, &wgpu::Buffer),
 ) -> wgpu::BindGroup {
     use wgpu::BindingResource::TextureView;
     let last = [&images.last[0], &images.last[1]].map(|t| t.create_view(&Default::default()));
@@ -349,7 +357,6 @@ fn pass_group(
         layout,
         entries: &[
             entry(0, render.as_entire_binding()),
-            entry(12, vis.as_entire_binding()),
             entry(30, uniforms.as_entire_binding()),
             entry(33, TextureView(&last[0])),
             entry(34, TextureView(&last[1])),

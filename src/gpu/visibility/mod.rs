@@ -616,7 +616,7 @@ impl Visibility {
         }
         entries.extend(world.props_map.bindings(false));
         if let Some(clouds) = &mut self.clouds {
-            entries.extend(clouds.bind(device, size, (world.render, &self.uniforms)));
+            entries.extend(clouds.bind(device, size, world.render));
         }
         let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:visibility:compute-group"),
