@@ -323,14 +323,15 @@ fn cloud_march(r: RenderUniforms, dir: vec3<f32>, far: f32, steps: u32) -> Cloud
 }
 
 // The light of the sun that the clouds let through to camera-relative `rel` (1 without
-// clouds): the shadows they cast on everything lit.
-fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+// clouds): the shadows they cast on everything lit, marched there (`cloud_shadow` calls it,
+// clouds_seen.wgsl or clouds_image.wgsl).
+fn cloud_shadow_march(r: RenderUniforms, rel: vec3<f32>) -> f32 {
     if r.clouds.x <= 0.0 {
         return 1.0;
     }
     let c = cloud_layer(r);
     let alt = c.eye + rel.y;
-    let s = normalize(vec3<f32>(r.sun_dir.x, max(r.sun_dir.y, 0.05), r.sun_dir.z));
+    let s = cloud_sun(r);
     let t0 = max((c.base - alt) / s.y, 0.0);
     let t1 = min((c.top - alt) / s.y, t0 + CLOUD_SHADOW_SPAN);
     if t1 <= t0 {
@@ -344,4 +345,10 @@ fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
         od += cloud_density(c, p, alt + s.y * t, cloud_local(c, p), 0.0) * dt;
     }
     return exp(-od * CLOUD_SIGMA);
+}
+
+// Towards the sun for the clouds' shadows: never lower than 0.05 (about 3 degrees), where the
+// shadow would stretch without end.
+fn cloud_sun(r: RenderUniforms) -> vec3<f32> {
+    return normalize(vec3<f32>(r.sun_dir.x, max(r.sun_dir.y, 0.05), r.sun_dir.z));
 }

@@ -23,6 +23,10 @@ struct CloudFrame {
     phase: vec4<u32>,
     // x, y: the image's size, half the frame's (rounded up).
     size: vec4<u32>,
+    // The shadows' map: x, y the camera-relative x and z of its grid's origin (a texel corner
+    // fixed in the clouds' space, so the wind carries the grid with the clouds), z its texel
+    // (metres), w its texels a side.
+    shadow: vec4<f32>,
 }
 
 @group(0) @binding(30) var<uniform> cloud_frame: CloudFrame;
@@ -35,6 +39,11 @@ struct CloudFrame {
 @group(0) @binding(34) var cloud_depth_last: texture_2d<f32>;
 @group(0) @binding(35) var cloud_light_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(36) var cloud_depth_out: texture_storage_2d<rgba32float, write>;
+// The clouds' shadows on the plane of their base around the eye (`shadow_clouds`): the light
+// that reaches the base from the sun, which is what reaches any point below it along the same
+// sun ray; the shading reads it, the pass writes it.
+@group(0) @binding(37) var cloud_shadow_map: texture_2d<f32>;
+@group(0) @binding(38) var cloud_shadow_out: texture_storage_2d<r32float, write>;
 
 // Where homogeneous camera-relative `p` falls in the image through `m`, in its pixels from the
 // top left (pixel centres at +0.5), or (-1e9, -1e9) where it lies behind the eye.
@@ -126,6 +135,46 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
         out.dist += t.w[k] * c.dist;
     }
     return out;
+}
+
+// The light of the sun that the clouds let through to camera-relative `rel` (1 without
+// clouds): below the base, read from the shadows' map between its four nearest texels where
+// the sun ray meets the base within it; elsewhere marched.
+fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    if cloud_frame.phase.w == 0u || r.clouds.x <= 0.0 {
+        return cloud_shadow_march(r, rel);
+    }
+    let below = r.clouds.y - (r.cloud_march.x + rel.y);
+    if below <= 0.0 {
+        return cloud_shadow_march(r, rel);
+    }
+    let s = cloud_sun(r);
+    let base = rel.xz + s.xz * (below / s.y);
+    let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
+    let n = cloud_frame.shadow.w;
+    if any(p < vec2<f32>(0.0)) || any(p > vec2<f32>(n - 1.0)) {
+        return cloud_shadow_march(r, rel);
+    }
+    let i = vec2<i32>(floor(p));
+    let f = p - floor(p);
+    let last = i32(n) - 1;
+    let a = textureLoad(cloud_shadow_map, i, 0).x;
+    let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), vec2<i32>(last)), 0).x;
+    let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), vec2<i32>(last)), 0).x;
+    let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), vec2<i32>(last)), 0).x;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// The shadows' map: each texel the light that reaches the base from the sun at its centre.
+@compute @workgroup_size(8, 8)
+fn shadow_clouds(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = u32(cloud_frame.shadow.w);
+    if any(id.xy >= vec2<u32>(n)) {
+        return;
+    }
+    let xz = cloud_frame.shadow.xy + (vec2<f32>(id.xy) + 0.5) * cloud_frame.shadow.z;
+    let rel = vec3<f32>(xz.x, r.clouds.y - r.cloud_march.x, xz.y);
+    textureStore(cloud_shadow_out, id.xy, vec4<f32>(cloud_shadow_march(r, rel), 0.0, 0.0, 1.0));
 }
 
 // The last frame's clouds along `dir` where they were then (their mean distance read

@@ -1,10 +1,16 @@
 // part of: shade (through clouds.wgsl, which imports it)
-// The clouds along a view ray as the shading sees them: here the march itself, for every pixel
-// every frame (the reference's way, and wherever a frame keeps no clouds' image); where the
-// visibility method keeps the image, clouds_image.wgsl stands in for this file
+// The clouds along a view ray and their shadows as the shading sees them: here marched, for
+// every pixel every frame (the reference's way, and wherever a frame keeps no clouds' image);
+// where the visibility method keeps the image, clouds_image.wgsl stands in for this file
 // (shader::source_for).
 
 // What the clouds between the eye and `far` along unit `dir` do (`CloudLight`, shade.wgsl).
 fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
     return cloud_march(r, dir, far, u32(r.cloud_march.y)).seen;
+}
+
+// The light of the sun that the clouds let through to camera-relative `rel` (1 without
+// clouds): the shadows they cast on everything lit.
+fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    return cloud_shadow_march(r, rel);
 }

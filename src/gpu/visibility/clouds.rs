@@ -23,6 +23,13 @@ const LIGHT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Per pixel: where along the ray the light was taken (first, half, last) and the clouds' mean
 /// distance, metres.
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The clouds' shadows' map: texels a side, and metres a texel (it reaches 16 km from the eye
+/// each way; beyond, and above the base, the shadows are marched).
+pub const SHADOW_TEXELS: u32 = 512;
+/// Metres a texel of the shadows' map.
+pub const SHADOW_TEXEL_M: f64 = 64.0;
+/// The shadows' map: the light that reaches the clouds' base from the sun.
+const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// The pixel of a block each frame marches, by frame: a 4x4 Bayer matrix's order.
 const ORDER: [[u32; 2]; 16] = [
     [0, 0],
@@ -70,6 +77,7 @@ struct CloudUniforms {
     shift: [f32; 4],
     phase: [u32; 4],
     size: [u32; 4],
+    shadow: [f32; 4],
 }
 
 /// The image's textures at one size: this frame's (which the shading reads) and the last's.
@@ -78,6 +86,8 @@ struct Images {
     now: [wgpu::Texture; 2],
     now_views: [wgpu::TextureView; 2],
     last: [wgpu::Texture; 2],
+    /// The shadows' map, as the shading reads it and the pass writes it.
+    shadow: wgpu::TextureView,
     /// The passes' bind group: the uniforms, the last image read, this one written.
     group: Option<wgpu::BindGroup>,
 }
@@ -87,7 +97,7 @@ pub(crate) struct Clouds {
     module: wgpu::ShaderModule,
     uniforms: wgpu::Buffer,
     /// The passes, built the first time a frame draws with the image.
-    passes: Option<(wgpu::BindGroupLayout, [wgpu::ComputePipeline; 2])>,
+    passes: Option<(wgpu::BindGroupLayout, [wgpu::ComputePipeline; 3])>,
     images: Option<Images>,
     /// This frame, where it draws with the image.
     frame: Option<CloudFrame>,
@@ -118,12 +128,13 @@ impl Clouds {
     }
 
     /// The shading's bindings of the image: its uniforms and this frame's image.
-    pub(crate) fn entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+    pub(crate) fn entries() -> [wgpu::BindGroupLayoutEntry; 4] {
         let c = wgpu::ShaderStages::COMPUTE;
         [
             crate::gpu::uniform_entry::<CloudUniforms>(30, c),
             crate::gpu::texture_entry(31, c, false),
             crate::gpu::texture_entry(32, c, false),
+            crate::gpu::texture_entry(37, c, false),
         ]
     }
 
@@ -145,11 +156,11 @@ impl Clouds {
         device: &wgpu::Device,
         size: (u32, u32),
         render: &wgpu::Buffer,
-    ) -> [wgpu::BindGroupEntry<'_>; 3] {
-        let size = if self.frame.is_some() {
-            image_size(size)
+    ) -> [wgpu::BindGroupEntry<'_>; 4] {
+        let (size, shadow) = if self.frame.is_some() {
+            (image_size(size), SHADOW_TEXELS)
         } else {
-            (1, 1)
+            ((1, 1), 1)
         };
         if self.images.as_ref().is_none_or(|i| i.size != size) {
             self.last = None;
@@ -164,11 +175,20 @@ impl Clouds {
             let now = make("relief:visibility:clouds");
             let now_views = [&now[0], &now[1]].map(|t| t.create_view(&Default::default()));
             let last = make("relief:visibility:clouds-last");
+            let shadow = crate::gpu::texture_2d(
+                device,
+                "relief:visibility:cloud-shadows",
+                (shadow, shadow),
+                SHADOW_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default());
             self.images = Some(Images {
                 size,
                 now,
                 now_views,
                 last,
+                shadow,
                 group: None,
             });
         }
@@ -187,6 +207,7 @@ impl Clouds {
             entry(30, self.uniforms.as_entire_binding()),
             entry(31, TextureView(&images.now_views[0])),
             entry(32, TextureView(&images.now_views[1])),
+            entry(37, TextureView(&images.shadow)),
         ]
     }
 
@@ -198,7 +219,8 @@ impl Clouds {
         }
         let texel = crate::gpu::texel_bytes(LIGHT_FORMAT) + crate::gpu::texel_bytes(DEPTH_FORMAT);
         let (w, h) = image_size(size);
-        2 * texel * u64::from(w) * u64::from(h)
+        let shadow = crate::gpu::texel_bytes(SHADOW_FORMAT) * u64::from(SHADOW_TEXELS).pow(2);
+        2 * texel * u64::from(w) * u64::from(h) + shadow
     }
 
     /// Records the frame's clouds for an image of `size`: its uniforms and, where it draws
@@ -248,10 +270,12 @@ impl Clouds {
             shift: shift.extend(0.0).to_array(),
             phase: [px, py, u32::from(all), 1],
             size: [size.0, size.1, 0, 0],
+            shadow: shadow_grid(&frame),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         self.last = Some((matrix, frame));
-        let (Some((_, [march, reproject])), Some(images)) = (&self.passes, &self.images) else {
+        let (Some((_, [march, reproject, shadows])), Some(images)) = (&self.passes, &self.images)
+        else {
             return;
         };
         let Some(group) = &images.group else {
@@ -280,6 +304,9 @@ impl Clouds {
                 pass.set_pipeline(reproject);
                 pass.dispatch_workgroups(size.0.div_ceil(w), size.1.div_ceil(w), 1);
             }
+            pass.set_pipeline(shadows);
+            let n = SHADOW_TEXELS.div_ceil(w);
+            pass.dispatch_workgroups(n, n, 1);
         }
         for (now, last) in images.now.iter().zip(&images.last) {
             encoder.copy_texture_to_texture(now.as_image_copy(), last.as_image_copy(), now.size());
@@ -288,6 +315,25 @@ impl Clouds {
 }
 
 use bytemuck::Zeroable;
+
+/// The shadows' map's grid (`CloudFrame::shadow` in `wgsl/clouds_image.wgsl`): its corner a
+/// texel corner in the clouds' space (the eye less the wind's drift, reduced in f64), half the
+/// map from the eye's texel, camera-relative.
+fn shadow_grid(frame: &CloudFrame) -> [f32; 4] {
+    let period = crate::world::clouds::CLOUD_PERIOD;
+    let s = SHADOW_TEXEL_M;
+    let half = f64::from(SHADOW_TEXELS / 2) * s;
+    let at = |eye: f64, drift: f64| {
+        let o = (eye - drift).rem_euclid(period);
+        ((o / s).floor() * s - half - o) as f32
+    };
+    [
+        at(frame.eye.x, frame.drift.x),
+        at(frame.eye.z, frame.drift.y),
+        s as f32,
+        SHADOW_TEXELS as f32,
+    ]
+}
 
 /// The image's size for frames of `size`: half of it each way, rounded up.
 fn image_size(size: (u32, u32)) -> (u32, u32) {
@@ -318,11 +364,12 @@ impl super::Visibility {
     }
 }
 
-/// The passes' layout and their two pipelines (`march_clouds`, `reproject_clouds`).
+/// The passes' layout and their pipelines (`march_clouds`, `reproject_clouds`,
+/// `shadow_clouds`).
 fn passes(
     device: &wgpu::Device,
     module: &wgpu::ShaderModule,
-) -> (wgpu::BindGroupLayout, [wgpu::ComputePipeline; 2]) {
+) -> (wgpu::BindGroupLayout, [wgpu::ComputePipeline; 3]) {
     use crate::gpu::render::RenderUniforms;
     let c = wgpu::ShaderStages::COMPUTE;
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -334,9 +381,10 @@ fn passes(
             crate::gpu::texture_entry(34, c, false),
             crate::gpu::storage_entry(35, LIGHT_FORMAT),
             crate::gpu::storage_entry(36, DEPTH_FORMAT),
+            crate::gpu::storage_entry(38, SHADOW_FORMAT),
         ],
     });
-    let pipelines = ["march_clouds", "reproject_clouds"].map(|entry| {
+    let pipelines = ["march_clouds", "reproject_clouds", "shadow_clouds"].map(|entry| {
         crate::gpu::compute_pipeline(device, "relief:visibility:clouds", &layout, module, entry)
     });
     (layout, pipelines)
@@ -362,6 +410,7 @@ fn pass_group(
             entry(34, TextureView(&last[1])),
             entry(35, TextureView(&images.now_views[0])),
             entry(36, TextureView(&images.now_views[1])),
+            entry(38, TextureView(&images.shadow)),
         ],
     })
 }
