@@ -118,51 +118,49 @@ fn cloud_cut(light: vec4<f32>, depth: vec4<f32>, far: f32) -> CloudLight {
 // pixels, each cut at `far`); else marched (a ray that leaves the image is the water's
 // reflection: a quarter of the steps).
 fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
-    let steps = u32(r.cloud_march.y);
-    if cloud_frame.phase.w == 0u {
-        return cloud_march(r, dir, far, steps).seen;
+    var steps = u32(r.cloud_march.y);
+    if cloud_frame.phase.w != 0u {
+        let at = cloud_at(cloud_frame.now, vec4<f32>(dir, 0.0));
+        if all(at >= vec2<f32>(0.0)) && all(at <= vec2<f32>(cloud_frame.size.xy)) {
+            let t = cloud_texels(at);
+            var out = CloudLight(0.0, vec3<f32>(0.0), 0.0);
+            for (var k = 0; k < 4; k++) {
+                let c = cloud_cut(textureLoad(cloud_light_now, t.px[k], 0), textureLoad(cloud_depth_now, t.px[k], 0), far);
+                out.keep += t.w[k] * c.keep;
+                out.light += t.w[k] * c.light;
+                out.dist += t.w[k] * c.dist;
+            }
+            return out;
+        }
+        steps = max(steps / 4u, 8u);
     }
-    let at = cloud_at(cloud_frame.now, vec4<f32>(dir, 0.0));
-    if any(at < vec2<f32>(0.0)) || any(at > vec2<f32>(cloud_frame.size.xy)) {
-        return cloud_march(r, dir, far, max(steps / 4u, 8u)).seen;
-    }
-    let t = cloud_texels(at);
-    var out = CloudLight(0.0, vec3<f32>(0.0), 0.0);
-    for (var k = 0; k < 4; k++) {
-        let c = cloud_cut(textureLoad(cloud_light_now, t.px[k], 0), textureLoad(cloud_depth_now, t.px[k], 0), far);
-        out.keep += t.w[k] * c.keep;
-        out.light += t.w[k] * c.light;
-        out.dist += t.w[k] * c.dist;
-    }
-    return out;
+    // One call of the march in the module: each call is compiled, and the march is most of a
+    // shading pipeline's build.
+    return cloud_march(r, dir, far, steps).seen;
 }
 
 // The light of the sun that the clouds let through to camera-relative `rel` (1 without
 // clouds): below the base, read from the shadows' map between its four nearest texels where
 // the sun ray meets the base within it; elsewhere marched.
 fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
-    if cloud_frame.phase.w == 0u || r.clouds.x <= 0.0 {
-        return cloud_shadow_march(r, rel);
-    }
     let below = r.clouds.y - (r.cloud_march.x + rel.y);
-    if below <= 0.0 {
-        return cloud_shadow_march(r, rel);
+    if cloud_frame.phase.w != 0u && r.clouds.x > 0.0 && below > 0.0 {
+        let s = cloud_sun(r);
+        let base = rel.xz + s.xz * (below / s.y);
+        let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
+        let n = cloud_frame.shadow.w;
+        if all(p >= vec2<f32>(0.0)) && all(p <= vec2<f32>(n - 1.0)) {
+            let i = vec2<i32>(floor(p));
+            let f = p - floor(p);
+            let last = vec2<i32>(i32(n) - 1);
+            let a = textureLoad(cloud_shadow_map, i, 0).x;
+            let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), last), 0).x;
+            let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), last), 0).x;
+            let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), last), 0).x;
+            return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+        }
     }
-    let s = cloud_sun(r);
-    let base = rel.xz + s.xz * (below / s.y);
-    let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
-    let n = cloud_frame.shadow.w;
-    if any(p < vec2<f32>(0.0)) || any(p > vec2<f32>(n - 1.0)) {
-        return cloud_shadow_march(r, rel);
-    }
-    let i = vec2<i32>(floor(p));
-    let f = p - floor(p);
-    let last = i32(n) - 1;
-    let a = textureLoad(cloud_shadow_map, i, 0).x;
-    let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), vec2<i32>(last)), 0).x;
-    let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), vec2<i32>(last)), 0).x;
-    let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), vec2<i32>(last)), 0).x;
-    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+    return cloud_shadow_march(r, rel);
 }
 
 // The shadows' map: each texel the light that reaches the base from the sun at its centre.
