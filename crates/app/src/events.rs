@@ -46,7 +46,7 @@ impl ApplicationHandler<UserEvent> for App {
             }
             UserEvent::Timings(frame, result) => {
                 self.timing_in_flight = false;
-                match result {
+                match *result {
                     Ok(t) => {
                         self.stats.gpu = Some((frame, t));
                         let describe = self

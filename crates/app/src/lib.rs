@@ -98,8 +98,9 @@ pub enum UserEvent {
     Ready(Result<Box<State>>),
     /// The page changed a parameter.
     Set(String, String),
-    /// GPU timestamps of a timed frame came back.
-    Timings(u64, Result<Timings>),
+    /// GPU timestamps of a timed frame came back (boxed: a slot a pass, they are the
+    /// largest event).
+    Timings(u64, Box<Result<Timings>>),
     /// The GPU device was lost (the reason, in words).
     DeviceLost(String),
     /// wgpu reported an error nobody captured.

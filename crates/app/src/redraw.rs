@@ -118,7 +118,7 @@ impl App {
                 let frame = self.stats.frames;
                 if let Some(t) = &s.timer {
                     t.read_async(move |r| {
-                        let _ = proxy.send_event(UserEvent::Timings(frame, r));
+                        let _ = proxy.send_event(UserEvent::Timings(frame, Box::new(r)));
                     });
                 }
             }

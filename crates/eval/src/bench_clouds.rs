@@ -307,9 +307,8 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
     let (cut, cut_worst) = stats(rows.iter().filter_map(|r| r.image_ms[1]).collect());
     let (frame, frame_worst) = stats(rows.iter().filter_map(|r| r.frame_ms[1]).collect());
     let worst_flip = |i: usize| {
-        rows.iter()
-            .filter_map(|r| r.flip[i])
-            .fold(f64::NAN, f64::max)
+        let worst = rows.iter().filter_map(|r| r.flip[i]).reduce(f64::max);
+        worst.map_or_else(|| "not measured".to_owned(), |w| format!("{w:.4}"))
     };
     vec![
         format!(
@@ -324,8 +323,8 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
             cell(cut, 3),
         ),
         format!(
-            "clouds: FLIP against the full march at {DOUBLED} steps, worst: {:.4} marched fully \
-             at {STEPS} steps, {:.4} at {REFERENCE_STEPS}, {:.4} through the image at {STEPS}",
+            "clouds: FLIP against the full march at {DOUBLED} steps, worst: {} marched fully \
+             at {STEPS} steps, {} at {REFERENCE_STEPS}, {} through the image at {STEPS}",
             worst_flip(0),
             worst_flip(1),
             worst_flip(2)

@@ -420,6 +420,37 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_shadows_grid_is_fixed_in_the_clouds_space_and_centred_on_the_eye() {
+        let frame = |eye: DVec3, drift: DVec2| CloudFrame {
+            matrix: Mat4::IDENTITY,
+            eye,
+            drift,
+            layer: [0.5, 2600.0, 4600.0, 0.7, 48.0],
+            sun: Vec3::Y,
+        };
+        let half = f64::from(SHADOW_TEXELS / 2) * SHADOW_TEXEL_M;
+        for (eye, drift) in [
+            (DVec3::new(1.0e7 + 5.0, 900.0, -3.0), DVec2::new(100.0, 0.0)),
+            (DVec3::new(-42.5, 10.0, 77_777.0), DVec2::new(-3.25, 1.0e6)),
+        ] {
+            let g = shadow_grid(&frame(eye, drift));
+            for (corner, e, d) in [(g[0], eye.x, drift.x), (g[1], eye.z, drift.y)] {
+                // The eye lies in the middle texel, half the map from the corner.
+                let corner = f64::from(corner);
+                assert!(
+                    corner <= -half && corner > -half - SHADOW_TEXEL_M,
+                    "{corner}"
+                );
+                // The corner, in the clouds' space, is a whole number of texels.
+                let o = (e - d).rem_euclid(crate::world::clouds::CLOUD_PERIOD);
+                let texels = (corner + o) / SHADOW_TEXEL_M;
+                assert!((texels - texels.round()).abs() < 1e-3, "{texels}");
+            }
+            assert_eq!(g[2], SHADOW_TEXEL_M as f32);
+        }
+    }
+
+    #[test]
     fn each_block_marches_every_pixel_once_in_its_cycle() {
         let mut seen = [[false; 4]; 4];
         for [x, y] in ORDER {
