@@ -124,12 +124,18 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
         if all(at >= vec2<f32>(0.0)) && all(at <= vec2<f32>(cloud_frame.size.xy)) {
             let t = cloud_texels(at);
             var out = CloudLight(0.0, vec3<f32>(0.0), 0.0);
+            // The clouds' distance weighted by the light each texel's clouds take, as the
+            // march weights it (a clear texel's distance is none).
+            var taken = 0.0;
             for (var k = 0; k < 4; k++) {
                 let c = cloud_cut(textureLoad(cloud_light_now, t.px[k], 0), textureLoad(cloud_depth_now, t.px[k], 0), far);
                 out.keep += t.w[k] * c.keep;
                 out.light += t.w[k] * c.light;
-                out.dist += t.w[k] * c.dist;
+                let w = t.w[k] * (1.0 - c.keep);
+                out.dist += w * c.dist;
+                taken += w;
             }
+            out.dist = select(0.0, out.dist / taken, taken > 0.0);
             return out;
         }
         steps = max(steps / 4u, 8u);
@@ -141,26 +147,31 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
 
 // The light of the sun that the clouds let through to camera-relative `rel` (1 without
 // clouds): below the base, read from the shadows' map between its four nearest texels where
-// the sun ray meets the base within it; elsewhere marched.
+// the sun ray meets the base within it; elsewhere marched. (Its march is called in three
+// places: with one call after the map's branch, lavapipe's compiler crashed on the shading.)
 fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
-    let below = r.clouds.y - (r.cloud_march.x + rel.y);
-    if cloud_frame.phase.w != 0u && r.clouds.x > 0.0 && below > 0.0 {
-        let s = cloud_sun(r);
-        let base = rel.xz + s.xz * (below / s.y);
-        let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
-        let n = cloud_frame.shadow.w;
-        if all(p >= vec2<f32>(0.0)) && all(p <= vec2<f32>(n - 1.0)) {
-            let i = vec2<i32>(floor(p));
-            let f = p - floor(p);
-            let last = vec2<i32>(i32(n) - 1);
-            let a = textureLoad(cloud_shadow_map, i, 0).x;
-            let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), last), 0).x;
-            let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), last), 0).x;
-            let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), last), 0).x;
-            return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
-        }
+    if cloud_frame.phase.w == 0u || r.clouds.x <= 0.0 {
+        return cloud_shadow_march(r, rel);
     }
-    return cloud_shadow_march(r, rel);
+    let below = r.clouds.y - (r.cloud_march.x + rel.y);
+    if below <= 0.0 {
+        return cloud_shadow_march(r, rel);
+    }
+    let s = cloud_sun(r);
+    let base = rel.xz + s.xz * (below / s.y);
+    let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
+    let n = cloud_frame.shadow.w;
+    if any(p < vec2<f32>(0.0)) || any(p > vec2<f32>(n - 1.0)) {
+        return cloud_shadow_march(r, rel);
+    }
+    let i = vec2<i32>(floor(p));
+    let f = p - floor(p);
+    let last = i32(n) - 1;
+    let a = textureLoad(cloud_shadow_map, i, 0).x;
+    let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), vec2<i32>(last)), 0).x;
+    let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), vec2<i32>(last)), 0).x;
+    let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), vec2<i32>(last)), 0).x;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
 }
 
 // The shadows' map: each texel the light that reaches the base from the sun at its centre.
@@ -259,9 +270,11 @@ fn cloud_bicubic(at: vec2<f32>) -> vec4<f32> {
 // what it found in this frame's image.
 fn store_cloud_march(px: vec2<u32>) {
     let dir = cloud_ray(px);
-    // A ray going down meets the ground (at or above 0 m) before its far end: the march stops
-    // there, not where the planet's curve would bring the layer down to it.
-    let ground = select(1e30, max(r.cloud_march.x, 0.0) / -dir.y, dir.y < 0.0);
+    // A ray going down meets the ground (at or above 0 m) before it can meet the layer, if it
+    // comes down to 0 m along the planet's curve as the layer does (`cloud_cross`): the march
+    // stops there. A ray that never does may meet the layer beyond the drawn land, in the sky.
+    let g = cloud_cross(r.cloud_march.x, dir.y, 0.0);
+    let ground = select(1e30, g.x, dir.y < 0.0 && g.x > 0.0);
     let m = cloud_march(r, dir, ground, u32(r.cloud_march.y));
     textureStore(cloud_light_out, px, vec4<f32>(m.seen.light, m.seen.keep));
     textureStore(cloud_depth_out, px, vec4<f32>(m.first, m.half, m.last, m.seen.dist));

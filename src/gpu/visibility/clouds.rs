@@ -1,11 +1,12 @@
 //! The visibility method's clouds' image (`wgsl/clouds_image.wgsl`), half the frame's size
 //! each way: where the temporal service runs and the frame has clouds, one pixel of each
-//! [`BLOCK`] x [`BLOCK`] block is marched a frame (every pixel in turn over [`BLOCK`]² frames, in the order of a Bayer
-//! matrix, so each frame's are spread evenly) and the others are carried over from the last
-//! frame's image, moved with the eye and the wind; the shading reads each ray's clouds from
-//! it. Every pixel is marched where there is no last image, the image's size or the layer
-//! changed, the sun turned by more than [`SUN_CUT_DEGREES`] or the eye moved more than
-//! [`EYE_CUT_M`] since the last frame.
+//! [`BLOCK`] x [`BLOCK`] block is marched a frame (every pixel in turn over [`BLOCK`]² frames,
+//! in the order of a Bayer matrix, so each frame's are spread evenly) and the others are
+//! carried over from the last frame's image, moved with the eye and the wind; the shading
+//! reads each ray's clouds from it. Every pixel is marched where there is no last image, the
+//! image's size or the layer changed, the sun turned by more than [`SUN_CUT_DEGREES`], the
+//! clouds moved more than [`EYE_CUT_M`] as the eye sees them since the last frame, or the
+//! world's history was reset (a cut, new parameters, shading or method: `cut_clouds`).
 
 use glam::{DVec2, DVec3, Mat4, Vec3};
 
@@ -16,7 +17,8 @@ pub const BLOCK: u32 = 4;
 /// A sun turned further than this between two frames (degrees) marches every pixel: a slider
 /// moved, not the day running (a day in a minute turns it 0.1 degrees a frame at 60 Hz).
 pub const SUN_CUT_DEGREES: f32 = 1.0;
-/// An eye moved further than this between two frames (metres) marches every pixel: a jump.
+/// Clouds moved further than this between two frames, as the eye sees them (metres: the eye's
+/// move less the wind's drift), march every pixel: a jump, or a new wind or clock.
 pub const EYE_CUT_M: f64 = 500.0;
 /// Per pixel: the light scattered towards the eye (linear) and the light kept.
 const LIGHT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -244,17 +246,20 @@ impl Clouds {
             return;
         };
         let matrix = frame.matrix;
+        // The clouds' move since the last frame, camera-relative: the eye's less the wind's.
+        let moved = |last: &CloudFrame| {
+            let wind = frame.drift - last.drift;
+            (frame.eye - last.eye - DVec3::new(wind.x, 0.0, wind.y)).as_vec3()
+        };
         let history = self.last.filter(|(_, last)| {
             last.layer == frame.layer
                 && last.sun.angle_between(frame.sun).to_degrees() <= SUN_CUT_DEGREES
-                && last.eye.distance(frame.eye) <= EYE_CUT_M
+                && f64::from(moved(last).length()) <= EYE_CUT_M
         });
         let (last_matrix, shift) = match history {
             Some((m, last)) => {
-                let wind = frame.drift - last.drift;
-                let shift = frame.eye - last.eye - DVec3::new(wind.x, 0.0, wind.y);
                 self.since += 1;
-                (m, shift.as_vec3())
+                (m, moved(&last))
             }
             None => {
                 self.since = 0;

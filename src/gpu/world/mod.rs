@@ -429,7 +429,7 @@ impl World {
     /// Replaces the shading; nothing is re-baked.
     pub fn set_shading(&mut self, shading: Shading) {
         if shading != self.shading {
-            self.history.reset("shading");
+            self.reset_history("shading");
         }
         self.shading = shading;
     }
@@ -474,7 +474,7 @@ impl World {
             )),
         }
         if config != self.method_config() {
-            self.history.reset("method");
+            self.reset_history("method");
         }
         self.method = method;
         self.vis_samples = config.samples;
@@ -639,7 +639,7 @@ impl World {
         let floor_moved = self.tile.map(|t| t.finest_log2) != Some(tile.finest_log2);
         if self.tile != Some(tile) {
             // The tile scrolled under the camera: what the history holds moved.
-            self.history.reset("tile");
+            self.reset_history("tile");
         }
         self.tile = Some(tile);
         if floor_moved && params.land == self.params.land {
@@ -682,7 +682,7 @@ impl World {
 
     fn apply(&mut self, device: &wgpu::Device, params: WorldParams) -> Result<()> {
         if params != self.params {
-            self.history.reset("parameters");
+            self.reset_history("parameters");
             self.props_map.forget();
         }
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.

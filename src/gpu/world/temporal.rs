@@ -42,7 +42,13 @@ impl World {
     /// A camera cut: the next frame starts a new history (the scene it showed is gone), and
     /// marches every pixel's clouds.
     pub fn cut(&mut self) {
-        self.history.reset("cut");
+        self.reset_history("cut");
+    }
+
+    /// The next frame starts a new history for `why`, and marches every pixel's clouds (what
+    /// their image holds was lit, or moved, for what is gone).
+    pub(super) fn reset_history(&mut self, why: &'static str) {
+        self.history.reset(why);
         if let Some(vis) = &mut self.visibility {
             vis.cut_clouds();
         }
