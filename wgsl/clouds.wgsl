@@ -326,6 +326,11 @@ fn cloud_march(r: RenderUniforms, dir: vec3<f32>, far: f32, steps: u32) -> Cloud
 // clouds): the shadows they cast on everything lit, marched there (`cloud_shadow` calls it,
 // clouds_seen.wgsl or clouds_image.wgsl).
 fn cloud_shadow_march(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    return cloud_shadow_steps(r, rel, 4u);
+}
+
+// The same in `steps` samples.
+fn cloud_shadow_steps(r: RenderUniforms, rel: vec3<f32>, steps: u32) -> f32 {
     if r.clouds.x <= 0.0 {
         return 1.0;
     }
@@ -338,8 +343,8 @@ fn cloud_shadow_march(r: RenderUniforms, rel: vec3<f32>) -> f32 {
         return 1.0;
     }
     var od = 0.0;
-    let dt = (t1 - t0) * 0.25;
-    for (var i = 0; i < 4; i++) {
+    let dt = (t1 - t0) / f32(steps);
+    for (var i = 0u; i < steps; i++) {
         let t = t0 + (f32(i) + 0.5) * dt;
         let p = rel + s * t;
         od += cloud_density(c, p, alt + s.y * t, cloud_local(c, p), 0.0) * dt;
@@ -351,4 +356,68 @@ fn cloud_shadow_march(r: RenderUniforms, rel: vec3<f32>) -> f32 {
 // shadow would stretch without end.
 fn cloud_sun(r: RenderUniforms) -> vec3<f32> {
     return normalize(vec3<f32>(r.sun_dir.x, max(r.sun_dir.y, 0.05), r.sun_dir.z));
+}
+
+// Light shafts: how much of the air's light along unit `dir` out to `far` (1e30: the sky)
+// is left where the clouds' shadows lie in the air below their base (1: none; shadowed air
+// scatters no sunlight). `cloud_shaft_steps` points of the stretch below the base out to
+// SHAFT_FAR (12 reads of the shadows' map where the clouds' image keeps one, else 6 marches of
+// one sample), each weighted by the air's light from there (fog.g exp(-fog.g t) dt over all of
+// it out to `far`), read the light the clouds let through (`cloud_shadow_air`) where their sun
+// ray meets the base within SHAFT_REACH; the sun's share of the
+// air's light grows from SHAFT_SIDE across the sun's direction to SHAFT_SIDE + SHAFT_TOWARDS
+// towards it, so the shafts show brightest towards the sun, and away from it as darker beams.
+// Off (1) without clouds, without fog, or where `cloud_march.w` is 0 (`Clouds::shafts`).
+const SHAFT_FAR: f32 = 8000.0;
+// How far from the eye (horizontally) a point's sun ray may meet the base for its shadow to
+// count: within the clouds' image's shadows' map (16 km each way) with a margin, so the image
+// and the full march draw the same shafts, and a low sun's long rays cost no march.
+const SHAFT_REACH: f32 = 15000.0;
+const SHAFT_SIDE: f32 = 0.4;
+const SHAFT_TOWARDS: f32 = 0.5;
+
+fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
+    let sigma = r.fog.g;
+    if r.clouds.x <= 0.0 || r.cloud_march.w == 0.0 || sigma <= 0.0 {
+        return 1.0;
+    }
+    let c = cloud_layer(r);
+    let b = cloud_cross(c.eye, dir.y, c.base);
+    var t0 = 0.0;
+    var t1 = min(far, SHAFT_FAR);
+    if c.eye < c.base {
+        if b.y > 0.0 {
+            t1 = min(t1, b.y);
+        }
+    } else {
+        if b.x <= 0.0 {
+            return 1.0;
+        }
+        t0 = b.x;
+        t1 = min(t1, b.y);
+    }
+    if t1 <= t0 {
+        return 1.0;
+    }
+    let steps = cloud_shaft_steps();
+    let dt = (t1 - t0) / f32(steps);
+    // A pixel's own offset, decorrelated from the clouds' march's, moved by the frame's seed.
+    let bits = bitcast<vec3<u32>>(dir);
+    let jitter = fract(f32(cloud_hash(bits.y, bits.z, bits.x ^ 0x5bd1e995u) >> 8u) / 16777216.0 + r.cloud_march.z);
+    var lost = 0.0;
+    let s = cloud_sun(r);
+    for (var i = 0u; i < steps; i++) {
+        let t = t0 + (f32(i) + jitter) * dt;
+        let rel = dir * t;
+        // Where the point's sun ray meets the base, from the eye: past SHAFT_REACH, no shadow.
+        let base = rel.xz + s.xz * (max(c.base - (c.eye + rel.y), 0.0) / s.y);
+        if dot(base, base) < SHAFT_REACH * SHAFT_REACH {
+            lost += (1.0 - cloud_shadow_air(r, rel)) * exp(-sigma * t);
+        }
+    }
+    // Of the air's light out to `far`, 1 - exp(-sigma far), the part lost.
+    lost *= sigma * dt / max(1.0 - exp(-sigma * far), 1e-6);
+    let mu = max(dot(dir, r.sun_dir.xyz), 0.0);
+    let share = SHAFT_SIDE + SHAFT_TOWARDS * (mu * mu) * (mu * mu);
+    return 1.0 - share * min(lost, 1.0);
 }

@@ -41,9 +41,11 @@ struct CloudFrame {
 @group(0) @binding(36) var cloud_depth_out: texture_storage_2d<rgba32float, write>;
 // The clouds' shadows on the plane of their base around the eye (`shadow_clouds`): the light
 // that reaches the base from the sun, which is what reaches any point below it along the same
-// sun ray; the shading reads it, the pass writes it.
+// sun ray (x: marched in four samples, the ground's shadows; y: in one, the air's, as
+// `cloud_shadow_air` marches it where there is no map); the shading reads it, the pass writes
+// it.
 @group(0) @binding(37) var cloud_shadow_map: texture_2d<f32>;
-@group(0) @binding(38) var cloud_shadow_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(38) var cloud_shadow_out: texture_storage_2d<rg32float, write>;
 
 // Where homogeneous camera-relative `p` falls in the image through `m`, in its pixels from the
 // top left (pixel centres at +0.5), or (-1e9, -1e9) where it lies behind the eye.
@@ -159,19 +161,54 @@ fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
     }
     let s = cloud_sun(r);
     let base = rel.xz + s.xz * (below / s.y);
-    let p = (base - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
+    let p = cloud_map_texel(base);
     let n = cloud_frame.shadow.w;
     if any(p < vec2<f32>(0.0)) || any(p > vec2<f32>(n - 1.0)) {
         return cloud_shadow_march(r, rel);
     }
+    return cloud_map_read(p).x;
+}
+
+// Where the shadows' map holds camera-relative `xz` on the base, in its texels (centres at
+// whole numbers).
+fn cloud_map_texel(xz: vec2<f32>) -> vec2<f32> {
+    return (xz - cloud_frame.shadow.xy) / cloud_frame.shadow.z - 0.5;
+}
+
+// The shadows' map at texel `p` (within it), bilinearly: the ground's and the air's.
+fn cloud_map_read(p: vec2<f32>) -> vec2<f32> {
+    let n = cloud_frame.shadow.w;
     let i = vec2<i32>(floor(p));
     let f = p - floor(p);
     let last = i32(n) - 1;
-    let a = textureLoad(cloud_shadow_map, i, 0).x;
-    let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), vec2<i32>(last)), 0).x;
-    let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), vec2<i32>(last)), 0).x;
-    let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), vec2<i32>(last)), 0).x;
+    let a = textureLoad(cloud_shadow_map, i, 0).xy;
+    let b = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 0), vec2<i32>(last)), 0).xy;
+    let c = textureLoad(cloud_shadow_map, min(i + vec2<i32>(0, 1), vec2<i32>(last)), 0).xy;
+    let d = textureLoad(cloud_shadow_map, min(i + vec2<i32>(1, 1), vec2<i32>(last)), 0).xy;
     return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// The sun's light the clouds let through to camera-relative `rel` in the air below their base,
+// for the light shafts (`cloud_shafts`): the shadows' map's, as `clouds_seen.wgsl` marches it
+// (one sample halfway through the layer), which beyond the map and where the frame keeps no
+// image is marched here too.
+fn cloud_shadow_air(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    if cloud_frame.phase.w == 0u {
+        return cloud_shadow_steps(r, rel, 1u);
+    }
+    let below = max(r.clouds.y - (r.cloud_march.x + rel.y), 0.0);
+    let s = cloud_sun(r);
+    let p = cloud_map_texel(rel.xz + s.xz * (below / s.y));
+    if any(p < vec2<f32>(0.0)) || any(p > vec2<f32>(cloud_frame.shadow.w - 1.0)) {
+        return cloud_shadow_steps(r, rel, 1u);
+    }
+    return cloud_map_read(p).y;
+}
+
+// The light shafts' points along a view ray (`cloud_shafts`): 12 reads of the shadows' map, or
+// 6 marches where the frame keeps no image.
+fn cloud_shaft_steps() -> u32 {
+    return select(6u, 12u, cloud_frame.phase.w != 0u);
 }
 
 // The shadows' map: each texel the light that reaches the base from the sun at its centre.
@@ -183,7 +220,9 @@ fn shadow_clouds(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let xz = cloud_frame.shadow.xy + (vec2<f32>(id.xy) + 0.5) * cloud_frame.shadow.z;
     let rel = vec3<f32>(xz.x, r.clouds.y - r.cloud_march.x, xz.y);
-    textureStore(cloud_shadow_out, id.xy, vec4<f32>(cloud_shadow_march(r, rel), 0.0, 0.0, 1.0));
+    let ground = cloud_shadow_march(r, rel);
+    let air = cloud_shadow_steps(r, rel, 1u);
+    textureStore(cloud_shadow_out, id.xy, vec4<f32>(ground, air, 0.0, 1.0));
 }
 
 // The last frame's clouds along `dir` where they were then (their mean distance read

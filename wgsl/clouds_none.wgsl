@@ -11,3 +11,7 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
 fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
     return 1.0;
 }
+
+fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
+    return 1.0;
+}

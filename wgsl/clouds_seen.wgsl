@@ -14,3 +14,14 @@ fn clouds_along(r: RenderUniforms, dir: vec3<f32>, far: f32) -> CloudLight {
 fn cloud_shadow(r: RenderUniforms, rel: vec3<f32>) -> f32 {
     return cloud_shadow_march(r, rel);
 }
+
+// The sun's light the clouds let through to camera-relative `rel` in the air, for the light
+// shafts (`cloud_shafts`): their shadow's march in one sample, halfway through the layer.
+fn cloud_shadow_air(r: RenderUniforms, rel: vec3<f32>) -> f32 {
+    return cloud_shadow_steps(r, rel, 1u);
+}
+
+// The light shafts' points along a view ray (`cloud_shafts`), each a march towards the sun.
+fn cloud_shaft_steps() -> u32 {
+    return 6u;
+}

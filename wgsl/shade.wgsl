@@ -78,8 +78,8 @@ struct RenderUniforms {
     props_map: array<vec4<f32>, 3>,
     // The clouds (clouds.wgsl, src/world/clouds.rs): coverage (0: none), base and top
     // altitudes (metres), type; cloud-space xz of the eye for the shapes and for the detail
-    // (the wind's drift reduced modulo CLOUD_PERIOD); the eye's altitude, the view ray's steps
-    // and the frame's step offset; the sun's light at the layer (rgb).
+    // (the wind's drift reduced modulo CLOUD_PERIOD); the eye's altitude, the view ray's steps,
+    // the frame's step offset and 1 for light shafts; the sun's light at the layer (rgb).
     clouds: vec4<f32>,
     cloud_origin: vec4<f32>,
     cloud_march: vec4<f32>,
@@ -158,7 +158,14 @@ fn to_target(r: RenderUniforms, linear: vec3<f32>) -> vec3<f32> {
 
 // The sky's colour along unit `dir`, ready to store: what the sky pass and a missed ray show.
 fn sky_pixel(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
-    return to_target(r, sky_clouded(r, dir));
+    if r.clouds.x <= 0.0 {
+        return to_target(r, sky_light(r, dir, true));
+    }
+    // The sky is the air's light from as far as the eye sees: the clouds' shadows in the air
+    // below them take from it as from the fog's (`cloud_shafts`).
+    let shafts = cloud_shafts(r, dir, 1e30);
+    let a = through_clouds(r, Air(vec3<f32>(shafts), vec3<f32>(0.0)), dir, 1e30, shafts);
+    return to_target(r, sky_light(r, dir, true) * a.keep + a.light);
 }
 
 // The sky's light along unit `dir` with its sun disc, behind the clouds.
@@ -167,7 +174,7 @@ fn sky_clouded(r: RenderUniforms, dir: vec3<f32>) -> vec3<f32> {
     if r.clouds.x <= 0.0 {
         return sky;
     }
-    let a = through_clouds(r, Air(vec3<f32>(1.0), vec3<f32>(0.0)), dir, 1e30);
+    let a = through_clouds(r, Air(vec3<f32>(1.0), vec3<f32>(0.0)), dir, 1e30, 1.0);
     return sky * a.keep + a.light;
 }
 
@@ -186,15 +193,16 @@ fn cloud_none() -> CloudLight {
 }
 
 // `a`, the air along unit `dir` to `far`, with the clouds on that stretch: they hide what is
-// behind them, and the air in front of them takes their light as it takes the terrain's.
-fn through_clouds(r: RenderUniforms, a: Air, dir: vec3<f32>, far: f32) -> Air {
+// behind them, and the air in front of them takes their light as it takes the terrain's, of
+// which the light shafts leave `shafts` (`cloud_shafts`).
+fn through_clouds(r: RenderUniforms, a: Air, dir: vec3<f32>, far: f32, shafts: f32) -> Air {
     let c = clouds_along(r, dir, far);
     if c.keep >= 1.0 {
         return a;
     }
     let air = sky_light(r, normalize(vec3<f32>(dir.x, max(dir.y, 0.0), dir.z)), false);
     let k = exp(-r.fog.rgb * c.dist);
-    return Air(a.keep * c.keep, a.light * c.keep + c.light * k + air * (1.0 - k) * (1.0 - c.keep));
+    return Air(a.keep * c.keep, a.light * c.keep + c.light * k + air * (1.0 - k) * (1.0 - c.keep) * shafts);
 }
 
 // What the air between the eye and `world` does to light from there: the colour seen is
@@ -229,7 +237,12 @@ fn air_at(r: RenderUniforms, world: vec3<f32>) -> Air {
         out.light = air * (1.0 - keep);
     }
     if r.clouds.x > 0.0 {
-        out = through_clouds(r, out, dir, d);
+        var shafts = 1.0;
+        if !clear {
+            shafts = cloud_shafts(r, dir, d);
+            out.light *= shafts;
+        }
+        out = through_clouds(r, out, dir, d, shafts);
     }
     return out;
 }

@@ -42,6 +42,12 @@ pub struct Clouds {
     /// (`false`) every pixel every frame, as the reference and the other methods do. Not a
     /// row of the table either.
     pub reproject: bool,
+    /// Light shafts: the clouds' shadows in the air below their base take the sun's share of
+    /// the air's light there (`cloud_shafts` in `wgsl/clouds.wgsl`), so sunlit air between
+    /// shadowed air shows as beams, brightest towards the sun; the fog sets how strong (clear
+    /// air shows none). On by default; `false` draws the air as if it were all sunlit. Not a
+    /// row of the table.
+    pub shafts: bool,
 }
 
 impl Default for Clouds {
@@ -54,6 +60,7 @@ impl Default for Clouds {
             kind: 0.7,
             steps: STEPS,
             reproject: true,
+            shafts: true,
         }
     }
 }

@@ -46,6 +46,9 @@ pub struct CloudRow {
     pub shade_ms: [Option<f64>; 3],
     /// The clouds' image's median GPU time (its march and carry), and on a frame after a cut.
     pub image_ms: [Option<f64>; 2],
+    /// The frame through the image without light shafts ([`Clouds::shafts`] off), ms: what
+    /// the shafts cost is `frame_ms[1]` less this.
+    pub unshafted_ms: Option<f64>,
     /// FLIP against the full march at [`DOUBLED`] steps of the converged frame marched fully
     /// at [`STEPS`] and at [`REFERENCE_STEPS`] steps, and through the image at [`STEPS`] (None:
     /// not measured on this view).
@@ -178,6 +181,13 @@ pub fn run(
         },
         ..cloudy
     };
+    let unshafted = WorldParams {
+        clouds: Clouds {
+            shafts: false,
+            ..cloudy.clouds
+        },
+        ..cloudy
+    };
     let mut list: Vec<Measured> = cloud_views(params, size)
         .into_iter()
         .map(|(n, v, h)| (n, v, Some(h), None, true))
@@ -212,11 +222,13 @@ pub fn run(
         let on = cost(gpu, how, (&at(&cloudy, *hour, *seed), false), view)?;
         let every = cost(gpu, how, (&at(&full, *hour, *seed), false), view)?;
         let cut = cost(gpu, how, (&at(&cloudy, *hour, *seed), true), view)?;
+        let plain = cost(gpu, how, (&at(&unshafted, *hour, *seed), false), view)?;
         let r = CloudRow {
             view: name.clone(),
             frame_ms: [off[0], on[0], every[0]],
             shade_ms: [off[1], on[1], every[1]],
             image_ms: [on[2], cut[2]],
+            unshafted_ms: plain[0],
             flip: [None; 3],
         };
         row(&r)?;
@@ -237,6 +249,7 @@ pub fn run(
             frame_ms: [None; 3],
             shade_ms: [None; 3],
             image_ms: [None; 2],
+            unshafted_ms: None,
             flip: [
                 Some(flip(&limit, &steps(STEPS, &full)?)),
                 Some(flip(&limit, &steps(REFERENCE_STEPS, &full)?)),
@@ -255,11 +268,11 @@ pub fn header(device: &str, size: (u32, u32)) -> String {
         "# relief bench --world endless --only clouds on {device} at {}x{}: the default frame \
          (visibility, 1 sample, compute raster, temporal on) without clouds, with them through \
          the image (one pixel in 16 marched a frame) and marched along every pixel (full); the \
-         image's pass, and on a frame after a cut; FLIP of the still frame ({CONVERGED} frames) \
+         image's pass, and on a frame after a cut; what the light shafts add; FLIP of the still frame ({CONVERGED} frames) \
          marched fully at {STEPS} and {REFERENCE_STEPS} steps and through the image at {STEPS} \
          against the full march at {DOUBLED}\nview,frame_off_ms,frame_on_ms,frame_full_ms,\
          shade_off_ms,shade_on_ms,shade_full_ms,image_ms,image_cut_ms,clouds_ms,\
-         clouds_full_ms,flip_{STEPS},flip_{REFERENCE_STEPS},flip_image\n",
+         clouds_full_ms,shafts_ms,flip_{STEPS},flip_{REFERENCE_STEPS},flip_image\n",
         size.0, size.1
     )
 }
@@ -272,6 +285,11 @@ fn cell(x: Option<f64>, digits: usize) -> String {
 /// marched fully (2).
 fn added(r: &CloudRow, i: usize) -> Option<f64> {
     Some(r.frame_ms[i]? - r.frame_ms[0]?)
+}
+
+/// What the light shafts add to the frame through the image, where measured.
+fn shafts(r: &CloudRow) -> Option<f64> {
+    Some(r.frame_ms[1]? - r.unshafted_ms?)
 }
 
 /// One row of the CSV.
@@ -287,6 +305,7 @@ pub fn line(r: &CloudRow) -> String {
         r.image_ms[1],
         added(r, 1),
         added(r, 2),
+        shafts(r),
         r.flip[0],
         r.flip[1],
         r.flip[2],
@@ -306,6 +325,7 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
     let (full, full_worst) = stats(rows.iter().filter_map(|r| added(r, 2)).collect());
     let (cut, cut_worst) = stats(rows.iter().filter_map(|r| r.image_ms[1]).collect());
     let (frame, frame_worst) = stats(rows.iter().filter_map(|r| r.frame_ms[1]).collect());
+    let (shaft, shaft_worst) = stats(rows.iter().filter_map(shafts).collect());
     let worst_flip = |i: usize| {
         let worst = rows.iter().filter_map(|r| r.flip[i]).reduce(f64::max);
         worst.map_or_else(|| "not measured".to_owned(), |w| format!("{w:.4}"))
@@ -315,12 +335,13 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
             "clouds: {} views; through the image they add {} ms median, {cost_worst:.3} worst \
              (marched fully: {} median, {full_worst:.3} worst); the frame with them {} ms \
              median, {frame_worst:.3} worst; the image after a cut {} ms median, \
-             {cut_worst:.3} worst",
+             {cut_worst:.3} worst; the light shafts {} ms median, {shaft_worst:.3} worst",
             rows.iter().filter(|r| r.frame_ms[0].is_some()).count(),
             cell(cost, 3),
             cell(full, 3),
             cell(frame, 3),
             cell(cut, 3),
+            cell(shaft, 3),
         ),
         format!(
             "clouds: FLIP against the full march at {DOUBLED} steps, worst: {} marched fully \

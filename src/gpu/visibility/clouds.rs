@@ -31,7 +31,7 @@ pub const SHADOW_TEXELS: u32 = 512;
 /// Metres a texel of the shadows' map.
 pub const SHADOW_TEXEL_M: f64 = 64.0;
 /// The shadows' map: the light that reaches the clouds' base from the sun.
-const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 /// The pixel of a block each frame marches, by frame: a 4x4 Bayer matrix's order.
 const ORDER: [[u32; 2]; 16] = [
     [0, 0],

@@ -298,7 +298,12 @@ fn cloud_uniforms(
     let c = &params.clouds;
     u.clouds = [c.coverage, c.base, c.top, c.kind];
     u.cloud_origin = Clouds::origin(eye, params.wind.velocity() * params.clock);
-    u.cloud_march = [eye.y as f32, c.steps.max(1) as f32, 0.5, 0.0];
+    u.cloud_march = [
+        eye.y as f32,
+        c.steps.max(1) as f32,
+        0.5,
+        f32::from(u8::from(c.shafts)),
+    ];
     let seen = SkyLight::new(c.sun_direction(light.sun_dir), above);
     u.cloud_sun = [seen.sun[0], seen.sun[1], seen.sun[2], 0.0];
     let grey = 0.6 * c.coverage * c.coverage;

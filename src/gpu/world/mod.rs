@@ -253,8 +253,11 @@ impl World {
             let module = shader::module(device, "relief:world:shader", &source);
             // Compute too: the visibility method's compute raster places the same vertices.
             let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
-            let map_entries =
-                crate::gpu::props_map::PropsMap::entries(wgpu::ShaderStages::FRAGMENT);
+            // The props' shade map: the terrain's shading, and the grass's scatter (compute),
+            // which lights each blade with the props' shade at its root.
+            let map_entries = crate::gpu::props_map::PropsMap::entries(
+                wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+            );
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:world:bind-group-layout"),
                 entries: &[
