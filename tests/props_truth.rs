@@ -244,6 +244,13 @@ fn the_props_shadows_agree_with_f64_rays_towards_the_sun() {
     assert!(agree * 100 >= sampled * 99, "{agree} of {sampled}");
 }
 
+/// From 1.7 m over a meadow towards the sun, where standing stones' shadows fall over the
+/// grass: the view of the grass tests below.
+fn meadow_towards_the_sun(size: (u32, u32)) -> relief::WorldView {
+    let eye = DVec3::new(2740.0, 1111.7, -3000.0);
+    relief::WorldView::look_at(eye, DVec3::new(2770.0, 1107.7, -2990.0), 0.9, size)
+}
+
 /// The reference's blades of grass take the props' shadows (`--method reference` with grass and
 /// props), as the frame's grass does (its pass also cuts the blades inside a prop, by the test
 /// the frame's cut makes: `no_grass_grows_inside_a_prop`). Where the marching method's frame
@@ -257,9 +264,7 @@ fn the_references_grass_takes_the_props_shadows() {
     let size = (96, 54);
     let mut on = params(true);
     on.grass.on = true;
-    // From 1.7 m over a meadow towards the sun: standing stones' shadows fall over the grass.
-    let eye = DVec3::new(2740.0, 1111.7, -3000.0);
-    let v = relief::WorldView::look_at(eye, DVec3::new(2770.0, 1107.7, -2990.0), 0.9, size);
+    let v = meadow_towards_the_sun(size);
     let mut w = world(&gpu, on);
     headless::render_world_image(&gpu, &mut w, &v, size, headless::TILE, None).unwrap();
     let hits = w.props_hits(&gpu.device, &gpu.queue).unwrap().unwrap();
@@ -324,8 +329,7 @@ fn the_overlays_grass_takes_the_props_shadows() {
     let size = (96, 54);
     let mut on = params(true);
     on.grass.on = true;
-    let eye = DVec3::new(2740.0, 1111.7, -3000.0);
-    let v = relief::WorldView::look_at(eye, DVec3::new(2770.0, 1107.7, -2990.0), 0.9, size);
+    let v = meadow_towards_the_sun(size);
     let image = |p: WorldParams, config: relief::MethodConfig| {
         let mut w = world_drawn(&gpu, p, config);
         let rgba = headless::render_world_image(&gpu, &mut w, &v, size, headless::TILE, None)
