@@ -15,7 +15,7 @@ pub const CLOUD_PERIOD: f64 = 40960.0;
 pub const STEPS: u32 = 48;
 /// Steps the reference takes (docs/results/clouds.md: doubling them changes its frame by less
 /// than the goal).
-pub const REFERENCE_STEPS: u32 = 256;
+pub const REFERENCE_STEPS: u32 = 1024;
 /// How much faster than the shapes the detail drifts: the clouds' edges change as they go.
 pub const DETAIL_DRIFT: f64 = 1.5;
 /// The planet's radius, metres (`EARTH_RADIUS` in the shader): the layer curves with it.

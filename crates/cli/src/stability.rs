@@ -313,6 +313,40 @@ pub fn stability(
             Box::new(move || stability::props::props_chart(&rows, &dir.join("props"))),
         ));
     }
+    if on(Axis::Clouds) {
+        let options = sweeps.clouds.clone();
+        println!(
+            "the clouds' image under a moving eye: turns of {:?} degrees a second from {}{}, at noon, {} frames measured after {}, each against the same frame with every pixel's clouds marched; one still frame of {} of the clouds' views at {:?} steps against {}; {}x{}",
+            options.turns,
+            if options.turn_views > 1 { "the valley view and inside the layer" } else { "the valley view" },
+            if options.flight { " and the fly-through" } else { "" },
+            options.frames,
+            options.warm,
+            options.still_views,
+            options.steps,
+            relief_eval::bench_clouds::DOUBLED,
+            options.size.0,
+            options.size.1,
+        );
+        restart(
+            options.turn_views.min(2) * options.turns.len()
+                + usize::from(options.flight)
+                + options.still_views * options.steps.len(),
+        );
+        let rows = stability::clouds::clouds(&gpu, &world, &options, |done, _| {
+            bar.set_position(done as u64)
+        })?;
+        bar.finish_and_clear();
+        print!("{}", stability::clouds::clouds_table(&rows));
+        let csv = stability::clouds::clouds_csv(&rows, &device, &backend);
+        let title =
+            format!("relief: the clouds' image against a full march on {device} ({backend})");
+        outputs.push((
+            "clouds.csv",
+            csv,
+            Box::new(move || stability::clouds::clouds_chart(&rows, (&title, &dir.join("clouds")))),
+        ));
+    }
     let names: Vec<&str> = outputs.iter().map(|o| o.0).collect();
     let mut outputs = outputs.into_iter();
     let Some((first, csv, charts)) = outputs.next() else {

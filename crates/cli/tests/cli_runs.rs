@@ -344,6 +344,9 @@ fn tiny_sweeps() -> relief_eval::stability::Sweeps {
     s.grass.frames = 1;
     s.grass.warm = 1;
     s.grass.distance = Some(8.0);
+    s.clouds.size = (48, 27);
+    s.clouds.warm = 2;
+    s.clouds.frames = 2;
     s
 }
 
@@ -361,6 +364,9 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
     assert_eq!(
         files_in(&dir),
         [
+            "clouds.csv",
+            "clouds.png",
+            "clouds.svg",
             "detail.csv",
             "detail.png",
             "detail.svg",
@@ -418,6 +424,23 @@ fn stability_writes_every_axis_csv_and_charts_and_refuses_what_it_sweeps() {
             .count()
     };
     assert_eq!(lines("shadow.csv"), 1 + 3);
+    // The clouds: a turn through the image against the full march (they differ: the image is
+    // half the frame's size and marched one pixel in 16), and a still frame's banding.
+    let clouds = std::fs::read_to_string(dir.join("clouds.csv")).unwrap();
+    let rows: Vec<&str> = clouds.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{clouds}");
+    assert!(
+        rows[0].starts_with("turn valley-up-noon,90,deg/s,2,"),
+        "{clouds}"
+    );
+    assert!(
+        rows[1].starts_with("still valley-up-noon,48,steps,1,"),
+        "{clouds}"
+    );
+    for row in rows {
+        let flip: f64 = row.split(',').nth(4).unwrap().parse().unwrap();
+        assert!(flip > 0.0 && flip < 0.25, "{row}");
+    }
     assert_eq!(lines("motion.csv"), 1 + 4);
     assert_eq!(lines("temporal.csv"), 1 + 1);
     // The grass: a walk over the meadow and standing in a gale, against the grass reference.

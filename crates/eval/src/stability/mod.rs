@@ -44,8 +44,13 @@
 //! against roughness and the smooth union's radius, the step budget against distance, and pops
 //! at the screen-size cut-off.
 //!
+//! The eleventh is the clouds' image under a moving eye ([`clouds`]), on the endless world:
+//! each frame against a full march of that frame, and a still frame's banding against the
+//! march's steps.
+//!
 //! Each is an [`Axis`], by the name `relief stability --axis` takes.
 
+pub mod clouds;
 pub mod detail;
 pub mod distance;
 pub mod grass;
@@ -95,6 +100,8 @@ pub struct Sweeps {
     pub detail: detail::DetailOptions,
     /// Grass under a moving eye.
     pub grass: grass::GrassOptions,
+    /// The clouds' image under a moving eye.
+    pub clouds: clouds::CloudOptions,
     /// The side in texels of the storage-precision axis.
     pub storage_side: u32,
 }
@@ -113,6 +120,7 @@ impl Sweeps {
             temporal: temporal::TemporalOptions::full(),
             detail: detail::DetailOptions::full(),
             grass: grass::GrassOptions::full(),
+            clouds: clouds::CloudOptions::full(),
             storage_side: STORAGE_SIZE,
         }
     }
@@ -131,6 +139,7 @@ impl Sweeps {
             temporal: temporal::TemporalOptions::quick(),
             detail: detail::DetailOptions::quick(),
             grass: grass::GrassOptions::quick(),
+            clouds: clouds::CloudOptions::quick(),
             storage_side: 256,
         }
     }
@@ -161,11 +170,13 @@ pub enum Axis {
     Grass,
     /// Marching the props' fields, on their f64 twin ([`props`]).
     Props,
+    /// The clouds' image under a moving eye, against a full march ([`clouds`]).
+    Clouds,
 }
 
 impl Axis {
     /// Every axis, in the order `relief stability` runs them.
-    pub const ALL: [Axis; 11] = [
+    pub const ALL: [Axis; 12] = [
         Axis::Grazing,
         Axis::WorldGrazing,
         Axis::Shadow,
@@ -177,6 +188,7 @@ impl Axis {
         Axis::Temporal,
         Axis::Grass,
         Axis::Props,
+        Axis::Clouds,
     ];
 
     /// Its name on the command line (`--axis`).
@@ -193,6 +205,7 @@ impl Axis {
             Axis::Temporal => "temporal",
             Axis::Grass => "grass",
             Axis::Props => "props",
+            Axis::Clouds => "clouds",
         }
     }
 

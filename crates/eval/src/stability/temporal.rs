@@ -237,7 +237,7 @@ fn measure(
 }
 
 /// Each pixel's luma less the reference's, in 8-bit sRGB levels (times 1000, as integers).
-fn luma_error(truth: &[u8], image: &[u8]) -> Vec<i32> {
+pub(super) fn luma_error(truth: &[u8], image: &[u8]) -> Vec<i32> {
     let luma = |p: &[u8]| 213 * i32::from(p[0]) + 715 * i32::from(p[1]) + 72 * i32::from(p[2]);
     truth
         .chunks_exact(3)
@@ -247,14 +247,14 @@ fn luma_error(truth: &[u8], image: &[u8]) -> Vec<i32> {
 }
 
 /// The mean of `|b - a|` over pixels, in 8-bit levels.
-fn mean_abs_change(a: &[i32], b: &[i32]) -> f64 {
+pub(super) fn mean_abs_change(a: &[i32], b: &[i32]) -> f64 {
     let sum: i64 = a.iter().zip(b).map(|(a, b)| i64::from((b - a).abs())).sum();
     sum as f64 / 1000.0 / a.len().max(1) as f64
 }
 
 /// The share of pixels `with` is more than [`GHOST_LEVELS`] farther from `truth` than
 /// `without` is, in some channel.
-fn ghosted(truth: &[u8], with: &[u8], without: &[u8]) -> f64 {
+pub(super) fn ghosted(truth: &[u8], with: &[u8], without: &[u8]) -> f64 {
     let far = |a: u8, b: u8| (i32::from(a) - i32::from(b)).abs();
     let pixels = truth.len() / 3;
     let ghosts = (0..pixels)
