@@ -14,10 +14,14 @@
 //! ([`REFERENCE_STEPS`]), and through the image at [`relief::world::clouds::STEPS`], is
 //! compared by FLIP with the full march at twice the reference's steps ([`DOUBLED`]): the
 //! march's error against its own limit, what doubling the reference's steps changes (the
-//! issue's bound: under 0.002), and the image's error.
+//! issue's bound: under 0.002), and the image's error. Last, the image's still frame against
+//! the reference cast itself (`--method reference`: [`REFERENCE_SIDE`]² rays a pixel, each
+//! marching the clouds at [`REFERENCE_STEPS`]), and the same frame without clouds against the
+//! reference without them (what the terrain's method leaves, which the first includes), both
+//! without grass (the grass reference casts every blade, which the clouds do not need).
 
 use crate::bench::{measure, Options};
-use crate::bench_temporal::method;
+use crate::bench_temporal::{method, reference, REFERENCE_SIDE};
 use crate::metrics::{image_error, median, rgb};
 use crate::views::{random_views, views, LandscapeView};
 use glam::DVec3;
@@ -51,9 +55,11 @@ pub struct CloudRow {
     /// the shafts cost is `frame_ms[1]` less this.
     pub unshafted_ms: Option<f64>,
     /// FLIP against the full march at [`DOUBLED`] steps of the converged frame marched fully
-    /// at [`STEPS`] and at [`REFERENCE_STEPS`] steps, and through the image at [`STEPS`] (None:
-    /// not measured on this view).
-    pub flip: [Option<f64>; 3],
+    /// at [`STEPS`] and at [`REFERENCE_STEPS`] steps, and through the image at [`STEPS`]; then,
+    /// without grass, of the image's converged frame against the reference cast, and of the
+    /// converged frame without clouds against the reference without them (None: not measured
+    /// on this view).
+    pub flip: [Option<f64>; 5],
 }
 
 /// The clouds' own views of `params`' world at `size` and the hours they are seen at: the
@@ -230,7 +236,7 @@ pub fn run(
             shade_ms: [off[1], on[1], every[1]],
             image_ms: [on[2], cut[2]],
             unshafted_ms: plain[0],
-            flip: [None; 3],
+            flip: [None; 5],
         };
         row(&r)?;
         rows.push(r);
@@ -245,6 +251,16 @@ pub fn run(
             converged(gpu, &target, &p, view)
         };
         let limit = steps(DOUBLED, &full)?;
+        // Against the reference cast, without grass.
+        let cast = |p: &WorldParams| -> Result<(Vec<u8>, Vec<u8>)> {
+            let p = at(&p.without_grass(), *hour, *seed);
+            Ok((
+                reference(gpu, &p, view, REFERENCE_SIDE)?,
+                converged(gpu, &target, &p, view)?,
+            ))
+        };
+        let (truth, image) = cast(&cloudy)?;
+        let (bare_truth, bare_image) = cast(&bare)?;
         let r = CloudRow {
             view: name.clone(),
             frame_ms: [None; 3],
@@ -255,6 +271,8 @@ pub fn run(
                 Some(flip(&limit, &steps(STEPS, &full)?)),
                 Some(flip(&limit, &steps(REFERENCE_STEPS, &full)?)),
                 Some(flip(&limit, &steps(STEPS, &cloudy)?)),
+                Some(flip(&truth, &image)),
+                Some(flip(&bare_truth, &bare_image)),
             ],
         };
         row(&r)?;
@@ -271,9 +289,12 @@ pub fn header(device: &str, size: (u32, u32)) -> String {
          the image (one pixel in 16 marched a frame) and marched along every pixel (full); the \
          image's pass, and on a frame after a cut; what the light shafts add; FLIP of the still frame ({CONVERGED} frames) \
          marched fully at {STEPS} and {REFERENCE_STEPS} steps and through the image at {STEPS} \
-         against the full march at {DOUBLED}\nview,frame_off_ms,frame_on_ms,frame_full_ms,\
+         against the full march at {DOUBLED}; without grass, the image's against the reference \
+         cast ({REFERENCE_SIDE}x{REFERENCE_SIDE} rays a pixel, {REFERENCE_STEPS} steps) and the \
+         frame without clouds against the reference without them\nview,frame_off_ms,frame_on_ms,frame_full_ms,\
          shade_off_ms,shade_on_ms,shade_full_ms,image_ms,image_cut_ms,clouds_ms,\
-         clouds_full_ms,shafts_ms,flip_{STEPS},flip_{REFERENCE_STEPS},flip_image\n",
+         clouds_full_ms,shafts_ms,flip_{STEPS},flip_{REFERENCE_STEPS},flip_image,\
+         flip_image_vs_reference,flip_bare_vs_reference\n",
         size.0, size.1
     )
 }
@@ -310,6 +331,8 @@ pub fn line(r: &CloudRow) -> String {
         r.flip[0],
         r.flip[1],
         r.flip[2],
+        r.flip[3],
+        r.flip[4],
     ];
     let cells: Vec<String> = cells.iter().map(|c| cell(*c, 4)).collect();
     format!("{},{}\n", r.view, cells.join(","))
@@ -350,6 +373,12 @@ pub fn summary(rows: &[CloudRow]) -> Vec<String> {
             worst_flip(0),
             worst_flip(1),
             worst_flip(2)
+        ),
+        format!(
+            "clouds: FLIP against the reference cast (no grass), worst: {} through the image, \
+             {} without clouds",
+            worst_flip(3),
+            worst_flip(4)
         ),
     ]
 }

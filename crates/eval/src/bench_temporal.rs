@@ -88,7 +88,12 @@ pub fn reference_side(quick: bool) -> u32 {
     }
 }
 
-fn reference(gpu: &Gpu, params: &WorldParams, view: &WorldView, side: u32) -> Result<Vec<u8>> {
+pub(crate) fn reference(
+    gpu: &Gpu,
+    params: &WorldParams,
+    view: &WorldView,
+    side: u32,
+) -> Result<Vec<u8>> {
     let shading = Shading::default();
     let image = render_world_rays_at(gpu, params, &shading, view, Method::Reference, side, None)?;
     Ok(rgb(&image.rgba))
