@@ -245,9 +245,10 @@ impl Choice {
 /// A frame's draw in milliseconds from its timings: the host's render pass or the pass that
 /// wrote the frame without one ([`Slot::Present`]), and the visibility method's (or the
 /// hybrid's) raster, clouds' image, shading and temporal resolve passes, the grass's scatter
-/// before it and its blades' raster. `None` where neither was timed.
+/// before it and its blades' raster, the props' passes and the shafts' shadow-height map.
+/// `None` where neither was timed.
 pub fn draw_ms(t: &Timings) -> Option<f64> {
-    let [render, present, raster, clouds, shade, resolve, grass, blades, props, shadows, march] = [
+    let slots = [
         Slot::Render,
         Slot::Present,
         Slot::Raster,
@@ -259,17 +260,11 @@ pub fn draw_ms(t: &Timings) -> Option<f64> {
         Slot::Props,
         Slot::PropShadows,
         Slot::March,
+        Slot::AirShadow,
     ]
     .map(|s| t[s as usize]);
-    render.or(present)?;
-    Some(
-        [
-            render, present, raster, clouds, shade, resolve, grass, blades, props, shadows, march,
-        ]
-        .iter()
-        .flatten()
-        .sum(),
-    )
+    t[Slot::Render as usize].or(t[Slot::Present as usize])?;
+    Some(slots.iter().flatten().sum())
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
 // part of: shade
-// import: clouds_seen
+// import: clouds_seen, terrain_air
 // Clouds (src/world/clouds.rs): a layer of 3-D density between a base and a top altitude,
 // marched along each view ray in `air_at` and `sky_pixel` (shade.wgsl), so every method that
 // shades through the air draws them, and towards the sun for their shadows on everything lit.
@@ -359,15 +359,17 @@ fn cloud_sun(r: RenderUniforms) -> vec3<f32> {
 }
 
 // Light shafts: how much of the air's light along unit `dir` out to `far` (1e30: the sky)
-// is left where the clouds' shadows lie in the air below their base (1: none; shadowed air
-// scatters no sunlight). `cloud_shaft_steps` points of the stretch below the base out to
-// SHAFT_FAR (12 reads of the shadows' map where the clouds' image keeps one, else 6 marches of
-// one sample), each weighted by the air's light from there (fog.g exp(-fog.g t) dt over all of
-// it out to `far`), read the light the clouds let through (`cloud_shadow_air`) where their sun
-// ray meets the base within SHAFT_REACH; the sun's share of the
-// air's light grows from SHAFT_SIDE across the sun's direction to SHAFT_SIDE + SHAFT_TOWARDS
-// towards it, so the shafts show brightest towards the sun, and away from it as darker beams.
-// Off (1) without clouds, without fog, or where `cloud_march.w` is 0 (`Clouds::shafts`).
+// is left where the clouds' and the terrain's shadows lie in the air below the clouds' base
+// (1: none; shadowed air scatters no sunlight). Points of the stretch below the base out to
+// SHAFT_FAR, each weighted by the air's light from there (fog.g exp(-fog.g t) dt over all of it
+// out to `far`), read the light the clouds let through (`cloud_shadow_air`, at
+// `cloud_shaft_steps` of them: 12 reads of the shadows' map where the clouds' image keeps one,
+// else 6 marches of one sample) where their sun ray meets the base within SHAFT_REACH, times
+// the light the terrain lets through (`terrain_air_margin` at `terrain_air_points` of them:
+// terrain_air.wgsl, or the module's stand-in); the sun's share of the air's light grows from
+// SHAFT_SIDE across the sun's direction to SHAFT_SIDE + SHAFT_TOWARDS towards it, so the shafts
+// show brightest towards the sun, and away from it as darker beams. Off (1) without clouds,
+// without fog, or where `cloud_march.w` is 0 (`Clouds::shafts`).
 const SHAFT_FAR: f32 = 8000.0;
 // How far from the eye (horizontally) a point's sun ray may meet the base for its shadow to
 // count: within the clouds' image's shadows' map (16 km each way) with a margin, so the image
@@ -375,6 +377,26 @@ const SHAFT_FAR: f32 = 8000.0;
 const SHAFT_REACH: f32 = 15000.0;
 const SHAFT_SIDE: f32 = 0.4;
 const SHAFT_TOWARDS: f32 = 0.5;
+// The terrain's shadows in the air (`terrain_air_margin`) fade out as the sun sets, over its
+// last AIR_SUN_FADE radians (1 degree): below the horizon the planet shadows all the air alike,
+// which the sky's dusk colours already show.
+const AIR_SUN_FADE: f32 = 0.01745;
+
+// The lit share of a stretch along which the terrain's margin (`terrain_air_margin`: above 0
+// lit) runs linearly from `a` to `b`; where it does not change, the share a point of that
+// margin sees (`terrain_air_step`: the edge's penumbra).
+fn air_lit_along(a: f32, b: f32) -> f32 {
+    if a == b {
+        return terrain_air_step(a);
+    }
+    if a >= 0.0 && b >= 0.0 {
+        return 1.0;
+    }
+    if a <= 0.0 && b <= 0.0 {
+        return 0.0;
+    }
+    return max(a, b) / abs(a - b);
+}
 
 fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
     let sigma = r.fog.g;
@@ -399,21 +421,70 @@ fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
     if t1 <= t0 {
         return 1.0;
     }
+    // The clouds' shadow at `cloud_shaft_steps` points, the terrain's at `terrain_air_points`
+    // (a whole multiple of those, and at least as many), each cloud's point standing for the
+    // terrain's in its stretch.
     let steps = cloud_shaft_steps();
-    let dt = (t1 - t0) / f32(steps);
+    let per = max(terrain_air_points() / steps, 1u);
+    let points = steps * per;
+    let dc = (t1 - t0) / f32(steps);
+    let dt = dc / f32(per);
     // A pixel's own offset, decorrelated from the clouds' march's, moved by the frame's seed.
     let bits = bitcast<vec3<u32>>(dir);
     let jitter = fract(f32(cloud_hash(bits.y, bits.z, bits.x ^ 0x5bd1e995u) >> 8u) / 16777216.0 + r.cloud_march.z);
     var lost = 0.0;
     let s = cloud_sun(r);
-    for (var i = 0u; i < steps; i++) {
+    // The terrain's shadow: point i stands for the stretch [t0 + i dt, t0 + (i + 1) dt] it lies
+    // in, of which the part in shadow is read off its margin (`terrain_air_margin`) interpolated
+    // linearly towards its neighbours' to the stretch's ends (the first's and the last's outer
+    // ends take its own): a shadow's edge between two points shades part of each, wherever the
+    // frame's offset puts them, rather than all of one or none.
+    let terrain = smoothstep(0.0, AIR_SUN_FADE, r.sun_elevation);
+    var cloud = 1.0;
+    var m_last = 0.0;
+    var m_now = 0.0;
+    var c_now = 1.0;
+    var t_now = 0.0;
+    for (var i = 0u; i <= points; i++) {
+        var m = 0.0;
         let t = t0 + (f32(i) + jitter) * dt;
-        let rel = dir * t;
-        // Where the point's sun ray meets the base, from the eye: past SHAFT_REACH, no shadow.
-        let base = rel.xz + s.xz * (max(c.base - (c.eye + rel.y), 0.0) / s.y);
-        if dot(base, base) < SHAFT_REACH * SHAFT_REACH {
-            lost += (1.0 - cloud_shadow_air(r, rel)) * exp(-sigma * t);
+        if i < points {
+            if i % per == 0u {
+                let rel = dir * (t0 + (f32(i / per) + jitter) * dc);
+                // Where the point's sun ray meets the base, from the eye: past SHAFT_REACH, no
+                // shadow.
+                let base = rel.xz + s.xz * (max(c.base - (c.eye + rel.y), 0.0) / s.y);
+                cloud = 1.0;
+                if dot(base, base) < SHAFT_REACH * SHAFT_REACH {
+                    cloud = cloud_shadow_air(r, rel);
+                }
+            }
+            if terrain > 0.0 {
+                m = terrain_air_margin(r, dir * t);
+            }
         }
+        if i > 0u {
+            // The last point, now that its neighbours are known.
+            var lit = c_now;
+            if terrain > 0.0 {
+                var start = m_now;
+                if i > 1u {
+                    start = mix(m_last, m_now, 1.0 - jitter);
+                }
+                var end = m_now;
+                if i < points {
+                    end = mix(m_now, m, 1.0 - jitter);
+                }
+                let share = jitter * air_lit_along(start, m_now)
+                    + (1.0 - jitter) * air_lit_along(m_now, end);
+                lit *= 1.0 - terrain * (1.0 - share);
+            }
+            lost += (1.0 - lit) * exp(-sigma * t_now);
+        }
+        m_last = m_now;
+        m_now = m;
+        c_now = cloud;
+        t_now = t;
     }
     // Of the air's light out to `far`, 1 - exp(-sigma far), the part lost.
     lost *= sigma * dt / max(1.0 - exp(-sigma * far), 1e-6);

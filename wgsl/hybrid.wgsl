@@ -1,4 +1,5 @@
 // import: shade, world_rays, march, vis_common, props_map
+// with: terrain_air_map
 // The hybrid method (src/gpu/visibility.rs, the endless world): the clipmap mesh, each level's
 // vertices raised by a bound on how far the continuous surface rises above that level's mesh
 // (clipmap::level_raise), is rasterised by the visibility method's raster pass. Where a

@@ -84,6 +84,10 @@ struct RenderUniforms {
     cloud_origin: vec4<f32>,
     cloud_march: vec4<f32>,
     cloud_sun: vec4<f32>,
+    // The terrain's shadow-height map for the light shafts (terrain_air_map.wgsl): the
+    // camera-relative x and z of its first corner, its texel (metres), its texels a side (0:
+    // none baked, the air lit).
+    air_shadow: vec4<f32>,
 }
 
 // World width of the tile (x and z span [-WORLD_SIZE/2, WORLD_SIZE/2]); see crate::WORLD_SIZE.

@@ -1,4 +1,5 @@
 // import: shade, fullscreen
+// with: terrain_air_map
 // The sky pass: one full-screen triangle at the far plane (depth 1), drawn after the terrain
 // with a less-or-equal depth test, so it fills exactly the pixels nothing nearer covered (or
 // before the terrain where the host's pass has no depth). Each pixel shows `sky_pixel` (from

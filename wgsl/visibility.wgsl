@@ -1,4 +1,5 @@
 // import: world, vis_common, composite, grass_blade, props_look
+// with: terrain_air_map
 // The visibility method (src/gpu/visibility.rs): the raster pass (world.wgsl's `vs_samples`
 // and `fs_attributes`, or depth alone for the tile) leaves each MSAA sample's depth and, for the
 // endless world, its surface attributes; this compute pass shades every sample with the

@@ -1,4 +1,5 @@
 // import: shade, level_texel, props_map
+// with: terrain_air_map
 // The endless world's render pass: the clipmap's patches (src/clipmap.rs) drawn as instances
 // of one indexed (patch+1)^2 grid, displaced by the levels' baked heights, in camera-relative
 // coordinates; shaded per pixel from the baked gradient by shade.wgsl (composed before this).

@@ -1,4 +1,5 @@
 // import: world_rays, rays
+// with: terrain_air_rays
 // The endless world's ray casters' bindings (src/gpu/raymarch.rs), composed after
 // world_rays.wgsl, whose functions read `r` and `ray`.
 

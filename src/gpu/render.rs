@@ -110,6 +110,10 @@ pub struct RenderUniforms {
     /// The sun's linear light at the cloud layer's middle (which sees a sun a little below
     /// the ground's horizon); w unused.
     pub cloud_sun: [f32; 4],
+    /// The terrain's shadow-height map for the light shafts (`wgsl/terrain_air_map.wgsl`,
+    /// [`crate::gpu::air_shadow`]): the camera-relative x and z of its first corner, its texel
+    /// (metres) and its texels a side (0: the frame bakes none, and the air is lit).
+    pub air_shadow: [f32; 4],
 }
 
 fn linear(c: [f32; 3], k: f32) -> [f32; 4] {
@@ -171,6 +175,7 @@ impl RenderUniforms {
             cloud_origin: [0.0; 4],
             cloud_march: [0.0; 4],
             cloud_sun: [0.0; 4],
+            air_shadow: [0.0; 4],
         };
         // The tile's sun keeps the shading's colour: only the sky follows its elevation.
         u.set_sky(

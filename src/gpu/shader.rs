@@ -7,7 +7,10 @@
 //! A file that calls functions another file defines (the compute raster's `keep`, the march's
 //! caster) says so in a line `// part of: ...`: it is composed only into those files' modules.
 //! Every other file is a module of its own ([`modules`]), and the tests validate each one
-//! composed, listed from `wgsl/` on disk.
+//! composed, listed from `wgsl/` on disk. A stand-in (a file whose first line is
+//! `// instead of: x`) replaces `x` in the modules whose own file names it in a line
+//! `// with: ...` (the terrain's shadow in the air: the default sees none, the modules that
+//! can tell take the shadow-height map or a march), and in [`source_for`]'s clouds.
 
 macro_rules! wgsl_files {
     ($($name:ident),* $(,)?) => {
@@ -17,6 +20,7 @@ macro_rules! wgsl_files {
 
 /// Every file of `wgsl/`, by name (without `.wgsl`), with its text.
 pub const FILES: &[(&str, &str)] = &wgsl_files![
+    air_shadow,
     bake,
     blit,
     blog,
@@ -60,6 +64,9 @@ pub const FILES: &[(&str, &str)] = &wgsl_files![
     shade,
     sky,
     temporal,
+    terrain_air,
+    terrain_air_map,
+    terrain_air_rays,
     test_box,
     vis_common,
     visibility,
@@ -129,7 +136,25 @@ pub fn source(name: &str) -> String {
     }
     let mut out = Vec::new();
     visit(name, &mut Vec::new(), &mut Vec::new(), &mut out);
-    out.join("\n")
+    let mut whole = out.join("\n");
+    // The stand-ins the module's own file asks for (`// with:`), each for its first
+    // `// instead of:` file.
+    for stand_in in header(file(name).unwrap_or(""), "with") {
+        let text = file(stand_in).unwrap_or_else(|| panic!("{name} takes no wgsl/{stand_in}.wgsl"));
+        let replaced = header(text, "instead of");
+        let old = replaced.first().and_then(|r| file(r));
+        let old = old.filter(|old| whole.contains(old));
+        let old = old
+            .unwrap_or_else(|| panic!("{name} takes {stand_in}, but has none of what it replaces"));
+        whole = whole.replacen(old, text, 1);
+    }
+    whole
+}
+
+/// The stand-ins a module's own file asks for (its `// with:` line).
+#[cfg(test)]
+pub fn with(name: &str) -> Vec<&'static str> {
+    file(name).map_or_else(Vec::new, |text| header(text, "with"))
 }
 
 /// Which clouds a module is built with ([`source_for`]).

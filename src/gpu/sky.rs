@@ -14,16 +14,21 @@ pub(crate) struct SkyPass {
 }
 
 impl SkyPass {
-    /// A sky pass reading the render uniforms in `uniforms`.
-    pub fn new(device: &wgpu::Device, targets: &Targets, uniforms: &wgpu::Buffer) -> Self {
+    /// A sky pass reading the render uniforms in `uniforms` and the light shafts' `air_shadow`
+    /// map.
+    pub fn new(
+        device: &wgpu::Device,
+        targets: &Targets,
+        (uniforms, air_shadow): (&wgpu::Buffer, &super::air_shadow::AirShadow),
+    ) -> Self {
         let module =
             super::shader::module(device, "relief:sky:shader", &super::shader::source("sky"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:sky:bind-group-layout"),
-            entries: &[super::uniform_entry::<RenderUniforms>(
-                0,
-                wgpu::ShaderStages::FRAGMENT,
-            )],
+            entries: &[
+                super::uniform_entry::<RenderUniforms>(0, wgpu::ShaderStages::FRAGMENT),
+                super::air_shadow::AirShadow::entry(wgpu::ShaderStages::FRAGMENT),
+            ],
         });
         // Depth 1 passes only where the depth buffer still holds its clear value.
         let pipeline = super::render_pipeline(
@@ -37,10 +42,13 @@ impl SkyPass {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:sky:bind-group"),
             layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniforms.as_entire_binding(),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniforms.as_entire_binding(),
+                },
+                air_shadow.binding(),
+            ],
         });
         Self {
             pipeline,

@@ -41,11 +41,14 @@ pub enum Slot {
     /// The clouds' image (the visibility method's, where the temporal service runs): a
     /// fraction of its pixels marched, the others carried over from the last frame.
     Clouds = 14,
+    /// The terrain's shadow-height map for the light shafts, baked whole on every frame that
+    /// draws shafts.
+    AirShadow = 15,
 }
 
 impl Slot {
     /// All slots, in order.
-    pub const ALL: [Slot; 15] = [
+    pub const ALL: [Slot; 16] = [
         Slot::Bake,
         Slot::Normals,
         Slot::Render,
@@ -61,6 +64,7 @@ impl Slot {
         Slot::PropShadows,
         Slot::March,
         Slot::Clouds,
+        Slot::AirShadow,
     ];
 
     /// The slot's name as printed.
@@ -81,6 +85,7 @@ impl Slot {
             Slot::March => "march",
             Slot::PropShadows => "props-shadows",
             Slot::Clouds => "clouds",
+            Slot::AirShadow => "air-shadow",
         }
     }
 }

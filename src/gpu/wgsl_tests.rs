@@ -111,6 +111,34 @@ fn a_stand_in_validates_in_every_module_its_file_is_in_and_changes_only_that() {
 }
 
 #[test]
+fn a_module_takes_the_stand_ins_its_own_file_names() {
+    // `// with:` (shader::source): the shading of the mesh, the visibility and hybrid methods
+    // and the sky reads the light shafts' shadow-height map, the ray casters march the terrain
+    // for it; every other module with the clouds sees no terrain in the air (the default), and
+    // a module importing one that names a stand-in does not take it.
+    let default = shader::file("terrain_air").unwrap();
+    let mut taken = Vec::new();
+    for (name, source) in shader::modules() {
+        let with = shader::with(name);
+        for stand_in in &with {
+            assert!(source.contains(shader::file(stand_in).unwrap()), "{name}");
+            assert_eq!(shader::instead_of(stand_in), ["terrain_air"], "{stand_in}");
+            assert!(!source.contains(default), "{name}");
+            taken.push(name);
+        }
+        if with.is_empty() && source.contains(shader::file("clouds").unwrap()) {
+            assert!(source.contains(default), "{name}");
+        }
+    }
+    taken.sort_unstable();
+    assert_eq!(
+        taken,
+        ["hybrid", "sky", "visibility", "world", "world_rays_io"]
+    );
+    assert!(shader::source("props_march").contains(default));
+}
+
+#[test]
 fn a_part_alone_does_not_validate() {
     // What `// part of:` claims: the file calls what only its wholes define.
     for (name, _) in shader::FILES {
@@ -270,6 +298,7 @@ fn uniform_structs_match_wgsl() {
         ("cloud_origin", offset_of!(RenderUniforms, cloud_origin)),
         ("cloud_march", offset_of!(RenderUniforms, cloud_march)),
         ("cloud_sun", offset_of!(RenderUniforms, cloud_sun)),
+        ("air_shadow", offset_of!(RenderUniforms, air_shadow)),
     ] {
         assert_eq!(offset(&m, name), rust, "RenderUniforms.{name}");
     }

@@ -112,6 +112,8 @@ pub(crate) struct WorldBindings<'a> {
     pub tile_sampler: &'a wgpu::Sampler,
     /// The props' shade map (`wgsl/props_map.wgsl`).
     pub props_map: &'a crate::gpu::props_map::PropsMap,
+    /// The light shafts' shadow-height map (`wgsl/terrain_air_map.wgsl`).
+    pub air_shadow: &'a crate::gpu::air_shadow::AirShadow,
     /// The world's patch instances (the compute raster reads them).
     pub instances: &'a wgpu::Buffer,
 }
@@ -279,6 +281,7 @@ impl Visibility {
             props::hit_entry(c),
         ];
         entries.extend(super::props_map::PropsMap::entries(c));
+        entries.push(super::air_shadow::AirShadow::entry(c));
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
@@ -615,6 +618,7 @@ impl Visibility {
             entries.push(entry(19, raster.depth(device, size).as_entire_binding()));
         }
         entries.extend(world.props_map.bindings(false));
+        entries.push(world.air_shadow.binding());
         if let Some(clouds) = &mut self.clouds {
             entries.extend(clouds.bind(device, size, world.render));
         }

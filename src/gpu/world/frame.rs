@@ -175,10 +175,22 @@ impl World {
                     u.props_map_levels = crate::gpu::props_map::LEVELS as u32;
                     u.props_map = crate::gpu::props_map::placement(eye);
                 }
+                // The terrain's shadows in the air, where the frame draws shafts (the map's
+                // bake follows).
+                if crate::gpu::air_shadow::drawn(&u) {
+                    u.air_shadow = crate::gpu::air_shadow::placement(eye);
+                }
                 u
             }
         };
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
+        self.air_shadow_sun = (uniforms.air_shadow[3] > 0.0).then(|| {
+            Vec3::new(
+                uniforms.sun_dir[0],
+                uniforms.sun_dir[1],
+                uniforms.sun_dir[2],
+            )
+        });
         if let Some(history) = &self.mesh_history {
             history.write_uniforms(queue, &uniforms);
         }

@@ -64,11 +64,12 @@ pub(super) struct MeshHistory {
 
 impl MeshHistory {
     /// The passes for a world drawn by `module` with the bind group `layout` into the host's
-    /// `targets` (`tile`: the seed blog's tile's fragment shader).
+    /// `targets` (`tile`: the seed blog's tile's fragment shader), its sky's shafts reading
+    /// `air_shadow`.
     pub fn new(
         device: &wgpu::Device,
         (module, layout): (&wgpu::ShaderModule, &wgpu::BindGroupLayout),
-        targets: &Targets,
+        (targets, air_shadow): (&Targets, &crate::gpu::air_shadow::AirShadow),
         tile: bool,
     ) -> Self {
         let own_targets = Targets {
@@ -80,7 +81,7 @@ impl MeshHistory {
         let uniforms =
             crate::gpu::uniform_buffer::<RenderUniforms>(device, "relief:mesh-history:render");
         let pipeline = mesh_pipeline(device, (layout, module), &own_targets, tile);
-        let sky = crate::gpu::sky::SkyPass::new(device, &own_targets, &uniforms);
+        let sky = crate::gpu::sky::SkyPass::new(device, &own_targets, (&uniforms, air_shadow));
         let history_module = shader::module(
             device,
             "relief:mesh-history:shader",
@@ -414,7 +415,12 @@ impl World {
         if self.mesh_history.is_none() {
             let tile = self.tile.is_some();
             let built = scoped(device, || {
-                MeshHistory::new(device, (&self.module, &self.layout), &self.targets, tile)
+                MeshHistory::new(
+                    device,
+                    (&self.module, &self.layout),
+                    (&self.targets, &self.air_shadow),
+                    tile,
+                )
             })?;
             self.mesh_history = Some(built);
         }
@@ -440,7 +446,11 @@ impl World {
                 &self.layout,
                 (render, &self.world_uniforms),
                 (&self.texture, &self.light.texture),
-                (&self.tile_textures, self.props_map.bindings(false)),
+                (
+                    &self.tile_textures,
+                    self.props_map.bindings(false),
+                    self.air_shadow.binding(),
+                ),
             )
         });
         let [whole, subs] = self.instance_counts;

@@ -157,6 +157,10 @@ pub struct World {
     /// The props' shade map the overlay's methods shade the terrain with (a texel a level until
     /// the overlay first draws).
     props_map: crate::gpu::props_map::PropsMap,
+    /// The terrain's shadow-height map the light shafts read (a texel for the tile), and the
+    /// sun the frame bakes it for, where it draws shafts.
+    air_shadow: crate::gpu::air_shadow::AirShadow,
+    air_shadow_sun: Option<Vec3>,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -277,6 +281,8 @@ impl World {
                     // through this group (the world's compute passes bind it unread).
                     map_entries[0],
                     map_entries[1],
+                    // And the shafts' shadow-height map.
+                    crate::gpu::air_shadow::AirShadow::entry(wgpu::ShaderStages::FRAGMENT),
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
@@ -286,12 +292,24 @@ impl World {
                 super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
             let tile_textures = TileTextures::new(device, &crate::gpu::Textures::new(device, 1));
             let props_map = crate::gpu::props_map::PropsMap::new(device);
+            let air_shadow = crate::gpu::air_shadow::AirShadow::new(
+                device,
+                if tile.is_some() {
+                    1
+                } else {
+                    crate::gpu::air_shadow::TEXELS
+                },
+            );
             let bind_group = bind(
                 device,
                 &layout,
                 (&render_uniforms, &world_uniforms),
                 (&texture, &light.texture),
-                (&tile_textures, props_map.bindings(false)),
+                (
+                    &tile_textures,
+                    props_map.bindings(false),
+                    air_shadow.binding(),
+                ),
             );
             let (indices, index_counts) = patch_indices(device, &map);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
@@ -325,7 +343,7 @@ impl World {
                 layout,
                 bind_group_unmapped: bind_group.clone(),
                 bind_group,
-                sky: super::sky::SkyPass::new(device, &targets, &render_uniforms),
+                sky: super::sky::SkyPass::new(device, &targets, (&render_uniforms, &air_shadow)),
                 kept: Vec::new(),
                 render_uniforms,
                 world_uniforms,
@@ -363,6 +381,8 @@ impl World {
                 props_scene: crate::props::Scene::default(),
                 props_overlay: None,
                 props_map,
+                air_shadow,
+                air_shadow_sun: None,
             }
         })
     }
@@ -384,7 +404,11 @@ impl World {
             }
             None => scoped(device, || {
                 let pipeline = mesh_pipeline(device, (&self.layout, &self.module), &targets, tile);
-                let sky = super::sky::SkyPass::new(device, &targets, &self.render_uniforms);
+                let sky = super::sky::SkyPass::new(
+                    device,
+                    &targets,
+                    (&self.render_uniforms, &self.air_shadow),
+                );
                 (pipeline, sky)
             })?,
         };
@@ -570,6 +594,13 @@ impl World {
         }
     }
 
+    /// GPU memory of the light shafts' shadow-height map, bytes, where the last frame drew the
+    /// terrain's shadows in the air (clouds with their shafts, fog, the sun up); `None` where it
+    /// did not (the map is then never read, and a world without clouds holds it unused).
+    pub fn shafts_bytes(&self) -> Option<u64> {
+        self.air_shadow_sun.map(|_| self.air_shadow.bytes())
+    }
+
     /// The level layout (for tests and tools).
     pub fn clipmap(&self) -> &Clipmap {
         &self.map
@@ -676,7 +707,11 @@ impl World {
                 &self.layout,
                 (&self.render_uniforms, &self.world_uniforms),
                 (&self.texture, &self.light.texture),
-                (&self.tile_textures, self.props_map.bindings(empty)),
+                (
+                    &self.tile_textures,
+                    self.props_map.bindings(empty),
+                    self.air_shadow.binding(),
+                ),
             )
         };
         self.bind_group = group(false);
@@ -756,6 +791,18 @@ impl World {
         let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
         self.write_uniforms(queue, view);
+        if let Some(sun) = self.air_shadow_sun {
+            self.air_shadow.encode(
+                (device, queue, encoder),
+                (
+                    &self.world_uniforms,
+                    &resources::array_view(&self.texture),
+                    &resources::array_view(&self.light.texture),
+                ),
+                (view.eye, sun),
+                timer,
+            );
+        }
         self.encode_grass(device, queue, encoder, view, timer);
         self.encode_props((device, queue, encoder), (view, &unjittered), timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {

@@ -143,7 +143,11 @@ pub(super) fn bind(
     layout: &wgpu::BindGroupLayout,
     (render, world): (&wgpu::Buffer, &wgpu::Buffer),
     (texture, light): (&wgpu::Texture, &wgpu::Texture),
-    (tile, props_map): (&TileTextures, [wgpu::BindGroupEntry<'_>; 2]),
+    (tile, props_map, air_shadow): (
+        &TileTextures,
+        [wgpu::BindGroupEntry<'_>; 2],
+        wgpu::BindGroupEntry<'_>,
+    ),
 ) -> wgpu::BindGroup {
     let [map, map_sampler] = props_map;
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -180,6 +184,7 @@ pub(super) fn bind(
             },
             map,
             map_sampler,
+            air_shadow,
         ],
     })
 }
