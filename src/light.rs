@@ -80,12 +80,51 @@ pub fn lit_beyond(
     slope: f64,
     (near, max_distance): (f64, f64),
 ) -> bool {
+    let y0 = land.height_at(x, z);
+    lit_from(
+        land,
+        (x, y0, z),
+        (azimuth, elevation),
+        slope,
+        (near, max_distance),
+    )
+}
+
+/// Whether the point (x, y, z) of the air sees the centre of the sun past the continuous
+/// surface within `max_distance` metres horizontally: [`lit_by_ray`]'s f64 ray from the point
+/// itself, the truth the light shafts' shadow-height map is measured against (a point under
+/// the surface sees none).
+pub fn air_lit_by_ray(
+    land: &Landscape,
+    (x, y, z): (f64, f64, f64),
+    (azimuth, elevation): (f64, f64),
+    slope: f64,
+    max_distance: f64,
+) -> bool {
+    y >= land.height_at(x, z)
+        && lit_from(
+            land,
+            (x, y, z),
+            (azimuth, elevation),
+            slope,
+            (0.0, max_distance),
+        )
+}
+
+/// The f64 ray towards the sun from (x, y0, z), for occluders from `near` to `max_distance`
+/// metres along it.
+fn lit_from(
+    land: &Landscape,
+    (x, y0, z): (f64, f64, f64),
+    (azimuth, elevation): (f64, f64),
+    slope: f64,
+    (near, max_distance): (f64, f64),
+) -> bool {
     if elevation <= 0.0 {
         return false;
     }
     let (dx, dz) = (azimuth.sin(), -azimuth.cos());
     let (ce, se) = (elevation.cos(), elevation.sin());
-    let y0 = land.height_at(x, z);
     let top = land.peak_height;
     // How fast the clearance can shrink per metre along the ray.
     let rate = slope * ce - se;

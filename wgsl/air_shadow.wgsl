@@ -8,7 +8,7 @@
 // air at (x, y) sees the sun where y >= S(x), exactly for a height field. The light shafts read
 // it (terrain_air_map.wgsl). Marched towards the sun from the texel's centre, in steps that
 // grow with the distance (a cone, as the light bake's: world_light.wgsl), each reading the
-// coarsest level whose spacing is within the step and whose square holds the point, until
+// coarsest level whose spacing is within half the step and whose square holds the point, until
 // nothing farther could rise above S (the line at e from S passes the peak) or no level holds
 // the point. What a step leaves out is a ridge narrower than it: S comes out low there, by
 // what that ridge stands above the samples beside it.
@@ -26,13 +26,34 @@ struct AirShadowBake {
 }
 
 @group(0) @binding(41) var<uniform> air_bake: AirShadowBake;
-@group(0) @binding(42) var air_shadow_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(42) var air_shadow_out: texture_storage_2d<rgba16float, write>;
 
 // What `air_level_height` found: the height (metres) and the level it was read from.
 struct AirHeight {
     height: f32,
     level: u32,
     found: bool,
+}
+
+// Level `lv`'s height (0 to 1) at `p` (its samples from its first), bilinearly: the texels'
+// heights alone (world.wgsl's `sample_level` unpacks their slopes and colour too).
+fn air_level_bilinear(lv: Level, p: vec2<f32>) -> f32 {
+    let p0 = floor(p);
+    let t = p - p0;
+    let cells = vec2<i32>(i32(w.cells));
+    let c0 = clamp(vec2<i32>(p0), vec2<i32>(0), cells);
+    let c1 = min(c0 + vec2<i32>(1), cells);
+    // The texels' places in the toroidal texture: one modulo a side, the next texel wraps by
+    // hand (the side is the level's cells plus one, no power of two).
+    let a = (lv.origin_mod + vec2<u32>(c0)) % vec2<u32>(w.side);
+    var b = a + vec2<u32>(c1 - c0);
+    b = select(b, b - vec2<u32>(w.side), b >= vec2<u32>(w.side));
+    let l = i32(lv.layer);
+    let h00 = level_texel_height(textureLoad(level_tex, vec2<i32>(a), l, 0).x);
+    let h10 = level_texel_height(textureLoad(level_tex, vec2<i32>(i32(b.x), i32(a.y)), l, 0).x);
+    let h01 = level_texel_height(textureLoad(level_tex, vec2<i32>(i32(a.x), i32(b.y)), l, 0).x);
+    let h11 = level_texel_height(textureLoad(level_tex, vec2<i32>(b), l, 0).x);
+    return mix(mix(h00, h10, t.x), mix(h01, h11, t.x), t.y);
 }
 
 // The height of the drawn levels at camera-relative `xz`, from the coarsest level from `start`
@@ -50,7 +71,7 @@ fn air_level_height(xz: vec2<f32>, start: u32, step: f32) -> AirHeight {
         }
         let p = (f - vec2<f32>(lv.origin_rel)) / f32(1u << lv.shift);
         if all(p >= vec2<f32>(0.0)) && all(p <= vec2<f32>(f32(w.cells))) {
-            out.height = sample_level(lv, p, false).x * w.peak;
+            out.height = air_level_bilinear(lv, p) * w.peak;
             out.level = l;
             out.found = true;
             return out;
@@ -79,7 +100,9 @@ fn bake_air_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
             break;
         }
         let step = max(0.5 * air_bake.texel, t * growth);
-        let at = air_level_height(x + t * air_bake.sun, j, step);
+        // A level of half the step's spacing (the default landscape's map comes out nearer
+        // the truth than with the step's own: tests/shafts.rs).
+        let at = air_level_height(x + t * air_bake.sun, j, 0.5 * step);
         if !at.found {
             break;
         }

@@ -381,6 +381,9 @@ const SHAFT_TOWARDS: f32 = 0.5;
 // last AIR_SUN_FADE radians (1 degree): below the horizon the planet shadows all the air alike,
 // which the sky's dusk colours already show.
 const AIR_SUN_FADE: f32 = 0.01745;
+// The terrain's points along a shaft's stretch need be no closer than this (metres), ten of the
+// shadow-height map's texels: its shadows' edges are interpolated between them.
+const AIR_SPACING: f32 = 340.0;
 
 // The lit share of a stretch along which the terrain's margin (`terrain_air_margin`: above 0
 // lit) runs linearly from `a` to `b`; where it does not change, the share a point of that
@@ -421,11 +424,13 @@ fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
     if t1 <= t0 {
         return 1.0;
     }
-    // The clouds' shadow at `cloud_shaft_steps` points, the terrain's at `terrain_air_points`
-    // (a whole multiple of those, and at least as many), each cloud's point standing for the
-    // terrain's in its stretch.
+    // The clouds' shadow at `cloud_shaft_steps` points, the terrain's at up to
+    // `terrain_air_points` (a whole multiple of those, and at least as many), no closer than
+    // needed to space them AIR_SPACING apart, each cloud's point standing for the terrain's in
+    // its stretch.
     let steps = cloud_shaft_steps();
-    let per = max(terrain_air_points() / steps, 1u);
+    let most = max(terrain_air_points() / steps, 1u);
+    let per = clamp(u32(ceil((t1 - t0) / (f32(steps) * AIR_SPACING))), 1u, most);
     let points = steps * per;
     let dc = (t1 - t0) / f32(steps);
     let dt = dc / f32(per);
@@ -437,9 +442,16 @@ fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
     // The terrain's shadow: point i stands for the stretch [t0 + i dt, t0 + (i + 1) dt] it lies
     // in, of which the part in shadow is read off its margin (`terrain_air_margin`) interpolated
     // linearly towards its neighbours' to the stretch's ends (the first's and the last's outer
-    // ends take its own): a shadow's edge between two points shades part of each, wherever the
-    // frame's offset puts them, rather than all of one or none.
+    // ends towards the margins at t0 and t1 themselves): a shadow's edge between two points
+    // shades part of each, wherever the frame's offset puts them, rather than all of one or
+    // none, and the air next to the eye counts, whose light the fog keeps most of.
     let terrain = smoothstep(0.0, AIR_SUN_FADE, r.sun_elevation);
+    var m_start = 0.0;
+    var m_end = 0.0;
+    if terrain > 0.0 {
+        m_start = terrain_air_margin(r, dir * t0);
+        m_end = terrain_air_margin(r, dir * t1);
+    }
     var cloud = 1.0;
     var m_last = 0.0;
     var m_now = 0.0;
@@ -467,11 +479,11 @@ fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
             // The last point, now that its neighbours are known.
             var lit = c_now;
             if terrain > 0.0 {
-                var start = m_now;
+                var start = m_start;
                 if i > 1u {
                     start = mix(m_last, m_now, 1.0 - jitter);
                 }
-                var end = m_now;
+                var end = m_end;
                 if i < points {
                     end = mix(m_now, m, 1.0 - jitter);
                 }

@@ -25,10 +25,14 @@ pub const TEXEL_M: f64 = 32.0;
 /// air are faded out below one degree (`AIR_SUN_FADE`), and a lower sun's march would run on
 /// for hundreds of kilometres.
 const LOWEST_SUN: f64 = 0.00873;
-/// Steps per doubling of the distance in the bake's march (the light bake's too).
-const STEPS_PER_DOUBLING: f32 = crate::light::STEPS_PER_DOUBLING;
-/// Altitudes, metres.
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Steps per doubling of the distance in the bake's march: half the light bake's (its shadows'
+/// edges on the ground are sharp, the air's are read between points a few hundred metres
+/// apart).
+const STEPS_PER_DOUBLING: f32 = 8.0;
+/// Altitudes, metres, in the first channel: a half float is good to a metre or two at the
+/// heights terrain reaches, and is filtered (one sample a read) and written (a storage format)
+/// in core WebGPU, where a 32-bit float is not filtered.
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// Mirrors `AirShadowBake` in `wgsl/air_shadow.wgsl`.
 #[repr(C)]
@@ -47,8 +51,13 @@ pub(crate) struct AirShadowBake {
 pub(crate) struct AirShadow {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
+    /// Bilinear, clamped to the map's edge.
+    sampler: wgpu::Sampler,
     uniforms: wgpu::Buffer,
     pass: Option<(wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
+    /// What the map was last baked for: the bake's uniforms but their corner, the eye's texel
+    /// (its world index) and the levels' bakes so far.
+    baked: Option<(AirShadowBake, [i64; 2], u64)>,
 }
 
 /// The camera-relative x and z of the map's first corner for the eye at world `eye`: the
@@ -96,28 +105,51 @@ impl AirShadow {
             "relief:air-shadow",
             (side, side),
             FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
         );
         Self {
             view: texture.create_view(&Default::default()),
             texture,
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("relief:air-shadow:sampler"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
             uniforms: super::uniform_buffer::<AirShadowBake>(device, "relief:air-shadow:bake"),
             pass: None,
+            baked: None,
         }
     }
 
-    /// The layout entry of the map as the shading reads it (`air_shadow_map` at 39), for the
-    /// stages `visibility`.
-    pub(crate) fn entry(visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-        super::texture_entry(39, visibility, false)
+    /// The layout entries of the map and its sampler as the shading reads them
+    /// (`air_shadow_map` at 39, `air_shadow_sampler` at 40), for the stages `visibility`.
+    pub(crate) fn entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 2] {
+        [
+            super::texture_entry(39, visibility, true),
+            wgpu::BindGroupLayoutEntry {
+                binding: 40,
+                visibility,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ]
     }
 
-    /// The bind group entry of [`AirShadow::entry`].
-    pub(crate) fn binding(&self) -> wgpu::BindGroupEntry<'_> {
-        wgpu::BindGroupEntry {
-            binding: 39,
-            resource: wgpu::BindingResource::TextureView(&self.view),
-        }
+    /// The bind group entries of [`AirShadow::entries`].
+    pub(crate) fn bindings(&self) -> [wgpu::BindGroupEntry<'_>; 2] {
+        [
+            wgpu::BindGroupEntry {
+                binding: 39,
+                resource: wgpu::BindingResource::TextureView(&self.view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 40,
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            },
+        ]
     }
 
     /// GPU memory of the map, bytes.
@@ -127,19 +159,35 @@ impl AirShadow {
     }
 
     /// Records the map's bake for the eye at world `eye` and the sun towards unit `sun`, from
-    /// the levels of the world's uniforms `world` and textures `levels` (heights) and `light`;
-    /// timed as [`Slot::AirShadow`]. Nothing where the map is a texel.
+    /// the levels of the world's uniforms `world` and heights `levels`, where any of them
+    /// changed since the last bake: the sun, the eye's texel, or the levels
+    /// (`levels_baked`: how many bakes of theirs the world has recorded); timed as
+    /// [`Slot::AirShadow`]. Nothing where the map is a texel.
     pub(crate) fn encode(
         &mut self,
         (device, queue, encoder): (&wgpu::Device, &wgpu::Queue, &mut wgpu::CommandEncoder),
-        (world, levels, light): (&wgpu::Buffer, &wgpu::TextureView, &wgpu::TextureView),
-        (eye, sun): (DVec3, Vec3),
+        (world, levels): (&wgpu::Buffer, &wgpu::TextureView),
+        (eye, sun, levels_baked): (DVec3, Vec3, u64),
         timer: Option<&GpuTimer>,
     ) {
         if self.texture.width() != TEXELS {
             return;
         }
         let u = bake_uniforms(placement(eye), sun);
+        // The corner moves with the eye within its texel: the eye's texel is what the map
+        // depends on.
+        let key = (
+            AirShadowBake {
+                origin: [0.0; 2],
+                ..u
+            },
+            [eye.x, eye.z].map(|e| (e / TEXEL_M).floor() as i64),
+            levels_baked,
+        );
+        if self.baked == Some(key) {
+            return;
+        }
+        self.baked = Some(key);
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u));
         let (layout, pipeline) = self.pass.get_or_insert_with(|| pass(device));
         use wgpu::BindingResource::TextureView;
@@ -150,7 +198,6 @@ impl AirShadow {
             entries: &[
                 entry(1, world.as_entire_binding()),
                 entry(2, TextureView(levels)),
-                entry(3, TextureView(light)),
                 entry(41, self.uniforms.as_entire_binding()),
                 entry(42, TextureView(&self.view)),
             ],
@@ -164,13 +211,58 @@ impl AirShadow {
         let n = TEXELS.div_ceil(super::WORKGROUP);
         pass.dispatch_workgroups(n, n, 1);
     }
+
+    /// The next frame that draws shafts bakes the map whole (a new world's levels).
+    pub(crate) fn forget(&mut self) {
+        self.baked = None;
+    }
+
+    /// The map as last baked (`None` where none was): its altitudes, metres, row by row (x
+    /// along a row, z from row to row), from the texel whose corner is at world x and z
+    /// `corner`.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(crate) fn read(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> crate::error::Result<Option<ShaftsMap>> {
+        let Some((_, texel, _)) = self.baked else {
+            return Ok(None);
+        };
+        let bytes = super::headless::read_texture(device, queue, &self.texture)?;
+        let altitudes = bytes
+            .chunks_exact(8)
+            .map(|t| half::f16::from_le_bytes([t[0], t[1]]).to_f32())
+            .collect();
+        let half = f64::from(TEXELS / 2);
+        Ok(Some(ShaftsMap {
+            altitudes,
+            corner: texel.map(|i| (i as f64 - half) * TEXEL_M),
+            texel: TEXEL_M,
+            side: TEXELS,
+        }))
+    }
+}
+
+/// The light shafts' shadow-height map as read back ([`crate::World::shafts_map`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShaftsMap {
+    /// Per texel, the altitude (metres) below which the air over its centre lies in the
+    /// terrain's shadow; `side` rows of `side`, x along a row, z from row to row.
+    pub altitudes: Vec<f32>,
+    /// World x and z of the first texel's corner, metres.
+    pub corner: [f64; 2],
+    /// A texel's side, metres.
+    pub texel: f64,
+    /// Texels on a side.
+    pub side: u32,
 }
 
 /// The bake's layout and pipeline (`bake_air_shadow`).
 fn pass(device: &wgpu::Device) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
     let c = wgpu::ShaderStages::COMPUTE;
-    let array = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
+    let levels = wgpu::BindGroupLayoutEntry {
+        binding: 2,
         visibility: c,
         ty: wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Uint,
@@ -183,8 +275,7 @@ fn pass(device: &wgpu::Device) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline)
         label: Some("relief:air-shadow:layout"),
         entries: &[
             super::uniform_entry::<super::world::WorldUniforms>(1, c),
-            array(2),
-            array(3),
+            levels,
             super::uniform_entry::<AirShadowBake>(41, c),
             super::storage_entry(42, FORMAT),
         ],

@@ -1,7 +1,7 @@
 //! The GPU core: [`Terrain`], a middleware that bakes into its own textures and draws into the
 //! host's render pass. One file per pass; this file holds what they share.
 
-pub(crate) mod air_shadow;
+pub mod air_shadow;
 pub(crate) mod bake;
 pub mod blit;
 pub mod blog;

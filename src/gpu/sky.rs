@@ -23,11 +23,14 @@ impl SkyPass {
     ) -> Self {
         let module =
             super::shader::module(device, "relief:sky:shader", &super::shader::source("sky"));
+        let air = super::air_shadow::AirShadow::entries(wgpu::ShaderStages::FRAGMENT);
+        let [map, map_sampler] = air_shadow.bindings();
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("relief:sky:bind-group-layout"),
             entries: &[
                 super::uniform_entry::<RenderUniforms>(0, wgpu::ShaderStages::FRAGMENT),
-                super::air_shadow::AirShadow::entry(wgpu::ShaderStages::FRAGMENT),
+                air[0],
+                air[1],
             ],
         });
         // Depth 1 passes only where the depth buffer still holds its clear value.
@@ -47,7 +50,8 @@ impl SkyPass {
                     binding: 0,
                     resource: uniforms.as_entire_binding(),
                 },
-                air_shadow.binding(),
+                map,
+                map_sampler,
             ],
         });
         Self {

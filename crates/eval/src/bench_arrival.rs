@@ -67,6 +67,9 @@ pub struct ArrivalFrame {
     pub bake_ms: Option<f64>,
     /// The light bake's share, ms.
     pub light_ms: Option<f64>,
+    /// The light shafts' shadow-height map's share (where the frame draws shafts and the sun,
+    /// the eye's texel or the levels changed), ms.
+    pub shafts_ms: Option<f64>,
     /// Texels whose heights it baked.
     pub texels_baked: u64,
     /// Texels it lit.
@@ -180,6 +183,7 @@ pub fn run(
                 gpu_ms: times.map(|t| t.iter().flatten().sum()),
                 bake_ms: slot(Slot::Bake),
                 light_ms: slot(Slot::Light),
+                shafts_ms: slot(Slot::AirShadow),
                 texels_baked,
                 light_texels: stats.light_texels,
                 pending: world.pending_texels(),
@@ -209,16 +213,17 @@ pub fn csv(frames: &[ArrivalFrame], device: &str, size: (u32, u32)) -> String {
         size.0, size.1
     );
     out.push_str(
-        "method,frame,gpu_ms,bake_ms,light_ms,texels_baked,light_texels,pending,since_start_ms,sun_turned,phase\n",
+        "method,frame,gpu_ms,bake_ms,light_ms,shafts_ms,texels_baked,light_texels,pending,since_start_ms,sun_turned,phase\n",
     );
     for f in frames {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{:.1},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{:.1},{},{}\n",
             f.method,
             f.frame,
             opt(f.gpu_ms),
             opt(f.bake_ms),
             opt(f.light_ms),
+            opt(f.shafts_ms),
             f.texels_baked,
             f.light_texels,
             f.pending,
@@ -293,13 +298,21 @@ fn day_summary(day: &[&ArrivalFrame]) -> Option<String> {
     let light = median(day.iter().filter_map(|f| f.light_ms).collect())?;
     let worst = day.iter().filter_map(|f| f.light_ms).fold(0.0, f64::max);
     let gpu = median(day.iter().filter_map(|f| f.gpu_ms).collect()).unwrap_or(f64::NAN);
+    // The shafts' map, where the frame draws them (clouds, fog): baked again each frame the
+    // sun moves.
+    let shafts = median(day.iter().filter_map(|f| f.shafts_ms).collect())
+        .map(|m| {
+            let worst = day.iter().filter_map(|f| f.shafts_ms).fold(0.0, f64::max);
+            format!(", the shafts' map {m:.2} ms (worst {worst:.2})")
+        })
+        .unwrap_or_default();
     let texels = median(day.iter().map(|f| f.light_texels as f64).collect()).unwrap_or(0.0);
     let round = day.last().map_or(0, |f| f.round_texels) as f64;
     let frames = round / texels.max(1.0);
     // The day moves 24 h / (DAY_LENGTH s x 60 frames) a frame; shadows lag at most two rounds.
     let minutes = 2.0 * frames * 24.0 * 60.0 / (f64::from(DAY_LENGTH) * 60.0);
     Some(format!(
-        "light {light:.2} ms a frame (worst {worst:.2}), frame {gpu:.2} ms, a relight round \
-         {frames:.0} frames (shadows at most {minutes:.0} min of the day behind)"
+        "light {light:.2} ms a frame (worst {worst:.2}){shafts}, frame {gpu:.2} ms, a relight \
+         round {frames:.0} frames (shadows at most {minutes:.0} min of the day behind)"
     ))
 }

@@ -281,7 +281,7 @@ impl Visibility {
             props::hit_entry(c),
         ];
         entries.extend(super::props_map::PropsMap::entries(c));
-        entries.push(super::air_shadow::AirShadow::entry(c));
+        entries.extend(super::air_shadow::AirShadow::entries(c));
         if hybrid {
             entries.push(super::uniform_entry::<WorldRayUniforms>(18, c));
         }
@@ -618,7 +618,7 @@ impl Visibility {
             entries.push(entry(19, raster.depth(device, size).as_entire_binding()));
         }
         entries.extend(world.props_map.bindings(false));
-        entries.push(world.air_shadow.binding());
+        entries.extend(world.air_shadow.bindings());
         if let Some(clouds) = &mut self.clouds {
             entries.extend(clouds.bind(device, size, world.render));
         }

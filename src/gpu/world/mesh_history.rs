@@ -449,7 +449,7 @@ impl World {
                 (
                     &self.tile_textures,
                     self.props_map.bindings(false),
-                    self.air_shadow.binding(),
+                    self.air_shadow.bindings(),
                 ),
             )
         });

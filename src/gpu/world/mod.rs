@@ -161,6 +161,9 @@ pub struct World {
     /// sun the frame bakes it for, where it draws shafts.
     air_shadow: crate::gpu::air_shadow::AirShadow,
     air_shadow_sun: Option<Vec3>,
+    /// Frames whose bake of the levels' heights baked texels: the map is baked again after
+    /// one.
+    level_bakes: u64,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -262,6 +265,8 @@ impl World {
             let map_entries = crate::gpu::props_map::PropsMap::entries(
                 wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
             );
+            let air_entries =
+                crate::gpu::air_shadow::AirShadow::entries(wgpu::ShaderStages::FRAGMENT);
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:world:bind-group-layout"),
                 entries: &[
@@ -282,7 +287,8 @@ impl World {
                     map_entries[0],
                     map_entries[1],
                     // And the shafts' shadow-height map.
-                    crate::gpu::air_shadow::AirShadow::entry(wgpu::ShaderStages::FRAGMENT),
+                    air_entries[0],
+                    air_entries[1],
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
@@ -308,7 +314,7 @@ impl World {
                 (
                     &tile_textures,
                     props_map.bindings(false),
-                    air_shadow.binding(),
+                    air_shadow.bindings(),
                 ),
             );
             let (indices, index_counts) = patch_indices(device, &map);
@@ -383,6 +389,7 @@ impl World {
                 props_map,
                 air_shadow,
                 air_shadow_sun: None,
+                level_bakes: 0,
             }
         })
     }
@@ -601,6 +608,18 @@ impl World {
         self.air_shadow_sun.map(|_| self.air_shadow.bytes())
     }
 
+    /// The light shafts' shadow-height map as the last frame that drew the terrain's shadows in
+    /// the air left it (`None` where no frame has): where the air stands in the terrain's shadow,
+    /// for tests and tools (its truth is [`crate::light::air_lit_by_ray`]).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn shafts_map(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Option<crate::gpu::air_shadow::ShaftsMap>> {
+        self.air_shadow.read(device, queue)
+    }
+
     /// The level layout (for tests and tools).
     pub fn clipmap(&self) -> &Clipmap {
         &self.map
@@ -710,7 +729,7 @@ impl World {
                 (
                     &self.tile_textures,
                     self.props_map.bindings(empty),
-                    self.air_shadow.binding(),
+                    self.air_shadow.bindings(),
                 ),
             )
         };
@@ -722,6 +741,7 @@ impl World {
         if params != self.params {
             self.reset_history("parameters");
             self.props_map.forget();
+            self.air_shadow.forget();
         }
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =
@@ -790,16 +810,13 @@ impl World {
         let jittered = self.jittered(view);
         let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
+        self.level_bakes += u64::from(texels > 0);
         self.write_uniforms(queue, view);
         if let Some(sun) = self.air_shadow_sun {
             self.air_shadow.encode(
                 (device, queue, encoder),
-                (
-                    &self.world_uniforms,
-                    &resources::array_view(&self.texture),
-                    &resources::array_view(&self.light.texture),
-                ),
-                (view.eye, sun),
+                (&self.world_uniforms, &resources::array_view(&self.texture)),
+                (view.eye, sun, self.level_bakes),
                 timer,
             );
         }

@@ -146,10 +146,11 @@ pub(super) fn bind(
     (tile, props_map, air_shadow): (
         &TileTextures,
         [wgpu::BindGroupEntry<'_>; 2],
-        wgpu::BindGroupEntry<'_>,
+        [wgpu::BindGroupEntry<'_>; 2],
     ),
 ) -> wgpu::BindGroup {
     let [map, map_sampler] = props_map;
+    let [air, air_sampler] = air_shadow;
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("relief:world:bind-group"),
         layout,
@@ -184,7 +185,8 @@ pub(super) fn bind(
             },
             map,
             map_sampler,
-            air_shadow,
+            air,
+            air_sampler,
         ],
     })
 }
