@@ -48,18 +48,6 @@ fn hidden_share(
     hidden * sigma / (1.0 - (-sigma * far).exp())
 }
 
-/// A low sun behind the small world's ridges (150 m at most), thick haze, and a cloud layer so
-/// high that its shadows reach no point of the shafts (their sun rays meet its base some
-/// 180 km away, past the 15 km the shafts look): turning the shafts off leaves only the
-/// terrain's part to take away. Seen from above the ridges, looking towards the sun and down,
-/// so that some pixels' rays run through the ridges' shadows and others stay in lit air above
-/// them. For the forward mesh (its fragment shader reads the shadow-height map) and the
-/// visibility method (its compute shading does), every sixth pixel each way: those whose rays
-/// the f64 rays find wholly lit (under 0.2% of their air's light hidden) must keep every
-/// channel within 1/255 in 98% of cases (the map's 32 m texels and a pixel's few points let an
-/// edge near a ray blur onto it), and those with over 15% hidden must come out darker by at
-/// least 2/255 in some channel in 95% (a share of 40% to 90% of the air's light is lost there,
-/// on pixels the haze makes mostly air).
 /// An 8-bit sRGB value in linear light.
 fn srgb_to_linear(v: u8) -> f64 {
     let c = f64::from(v) / 255.0;
@@ -77,6 +65,21 @@ fn srgb_to_linear(v: u8) -> f64 {
 /// between the two.
 const EDGE: f64 = 20.0;
 
+/// A low sun behind the small world's ridges (150 m at most), thick haze, and a cloud layer so
+/// high that its shadows reach no point of the shafts (their sun rays meet its base some
+/// 180 km away, past the 15 km the shafts look): turning the shafts off leaves only the
+/// terrain's part to take away. Seen from a valley in a ridge's shadow looking up towards the
+/// sun, and from the sunlit air above the ridges looking towards it and down; for the forward
+/// mesh (its fragment shader and the sky pass read the shadow-height map) and the visibility
+/// method (its compute shading does), every sixth pixel each way, judged by f64 rays from
+/// points of its ray with the shadow's edge moved by `EDGE` either way: a ray wholly lit
+/// (under 0.2% of its air's light hidden, the edge lowered) keeps every channel within 1/255
+/// (98% of them); one whose hidden air is over 8% of the pixel's light (the edge raised) comes
+/// out darker by 2/255 or more (95%); and a sky pixel (the air's light alone, 1 - share x lost
+/// of it left in linear light) loses what the f64 rays say within the edge's band and 0.02
+/// (95%). What this cannot tell is a map a few hundred metres off or marched the wrong way
+/// (both pass it, tried by hand: these views' shadows are broad): that is
+/// `the_shadow_height_map_agrees_with_the_f64_twin`'s.
 #[test]
 #[ignore = "slow: eight frames on lavapipe and some 40,000 f64 sun rays (about 90 s)"]
 fn the_terrains_shadows_in_the_air_darken_the_pixels_f64_rays_say_they_hide_and_no_others() {

@@ -439,67 +439,47 @@ fn cloud_shafts(r: RenderUniforms, dir: vec3<f32>, far: f32) -> f32 {
     let jitter = fract(f32(cloud_hash(bits.y, bits.z, bits.x ^ 0x5bd1e995u) >> 8u) / 16777216.0 + r.cloud_march.z);
     var lost = 0.0;
     let s = cloud_sun(r);
-    // The terrain's shadow: point i stands for the stretch [t0 + i dt, t0 + (i + 1) dt] it lies
-    // in, of which the part in shadow is read off its margin (`terrain_air_margin`) interpolated
-    // linearly towards its neighbours' to the stretch's ends (the first's and the last's outer
-    // ends towards the margins at t0 and t1 themselves): a shadow's edge between two points
-    // shades part of each, wherever the frame's offset puts them, rather than all of one or
-    // none, and the air next to the eye counts, whose light the fog keeps most of.
+    // The stretch in `points` pieces, their ends offset by the pixel's jitter (the first from
+    // t0, the last to t1). The clouds' shadow is read at each `per` pieces' first end (as the
+    // clouds' points always were: the stretch's `steps` parts, offset by the jitter); the
+    // terrain's lit share of a piece is read off the margins at its ends (`terrain_air_margin`),
+    // linearly between them: a shadow's edge inside a piece shades part of it, and the air at
+    // the eye, whose light the fog keeps most of, counts.
     let terrain = smoothstep(0.0, AIR_SUN_FADE, r.sun_elevation);
-    var m_start = 0.0;
-    var m_end = 0.0;
-    if terrain > 0.0 {
-        m_start = terrain_air_margin(r, dir * t0);
-        m_end = terrain_air_margin(r, dir * t1);
-    }
-    var cloud = 1.0;
+    var t_last = t0;
     var m_last = 0.0;
-    var m_now = 0.0;
-    var c_now = 1.0;
-    var t_now = 0.0;
-    for (var i = 0u; i <= points; i++) {
-        var m = 0.0;
-        let t = t0 + (f32(i) + jitter) * dt;
-        if i < points {
-            if i % per == 0u {
-                let rel = dir * (t0 + (f32(i / per) + jitter) * dc);
-                // Where the point's sun ray meets the base, from the eye: past SHAFT_REACH, no
-                // shadow.
-                let base = rel.xz + s.xz * (max(c.base - (c.eye + rel.y), 0.0) / s.y);
-                cloud = 1.0;
-                if dot(base, base) < SHAFT_REACH * SHAFT_REACH {
-                    cloud = cloud_shadow_air(r, rel);
-                }
-            }
-            if terrain > 0.0 {
-                m = terrain_air_margin(r, dir * t);
-            }
-        }
-        if i > 0u {
-            // The last point, now that its neighbours are known.
-            var lit = c_now;
-            if terrain > 0.0 {
-                var start = m_start;
-                if i > 1u {
-                    start = mix(m_last, m_now, 1.0 - jitter);
-                }
-                var end = m_end;
-                if i < points {
-                    end = mix(m_now, m, 1.0 - jitter);
-                }
-                let share = jitter * air_lit_along(start, m_now)
-                    + (1.0 - jitter) * air_lit_along(m_now, end);
-                lit *= 1.0 - terrain * (1.0 - share);
-            }
-            lost += (1.0 - lit) * exp(-sigma * t_now);
-        }
-        m_last = m_now;
-        m_now = m;
-        c_now = cloud;
-        t_now = t;
+    if terrain > 0.0 {
+        m_last = terrain_air_margin(r, dir * t0);
     }
+    for (var i = 0u; i < steps; i++) {
+        let rel = dir * (t0 + (f32(i) + jitter) * dc);
+        // Where the point's sun ray meets the base, from the eye: past SHAFT_REACH, no shadow.
+        let base = rel.xz + s.xz * (max(c.base - (c.eye + rel.y), 0.0) / s.y);
+        var cloud = 1.0;
+        if dot(base, base) < SHAFT_REACH * SHAFT_REACH {
+            cloud = cloud_shadow_air(r, rel);
+        }
+        // The cloud's point's `per` pieces, the last one's end at t1 (where it lies past it).
+        for (var k = 0u; k < per; k++) {
+            let t = min(t0 + (f32(i * per + k) + jitter) * dt, t1);
+            var lit = cloud;
+            if terrain > 0.0 {
+                let m = terrain_air_margin(r, dir * t);
+                lit *= 1.0 - terrain * (1.0 - air_lit_along(m_last, m));
+                m_last = m;
+            }
+            lost += (1.0 - lit) * exp(-sigma * 0.5 * (t_last + t)) * (t - t_last);
+            t_last = t;
+        }
+    }
+    // The last piece, to t1.
+    var lit = 1.0;
+    if terrain > 0.0 {
+        lit = 1.0 - terrain * (1.0 - air_lit_along(m_last, terrain_air_margin(r, dir * t1)));
+    }
+    lost += (1.0 - lit) * exp(-sigma * 0.5 * (t_last + t1)) * (t1 - t_last);
     // Of the air's light out to `far`, 1 - exp(-sigma far), the part lost.
-    lost *= sigma * dt / max(1.0 - exp(-sigma * far), 1e-6);
+    lost *= sigma / max(1.0 - exp(-sigma * far), 1e-6);
     let mu = max(dot(dir, r.sun_dir.xyz), 0.0);
     let share = SHAFT_SIDE + SHAFT_TOWARDS * (mu * mu) * (mu * mu);
     return 1.0 - share * min(lost, 1.0);

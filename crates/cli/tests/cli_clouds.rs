@@ -214,17 +214,31 @@ fn cloud_shadows_move_by_the_wind_times_the_clock_and_stand_still_without_it() {
     };
     let clear = frame("clear", &["--cloud-coverage", "0"]);
     // `--stats` says how much of the layer a frame marched, and in how many steps: with
-    // clouds only.
-    let stats = |coverage: &str| {
-        let args = ["--no-grass", "--stats", "--cloud-coverage", coverage];
+    // clouds only; and the memory of the light shafts' shadow-height map, where the frame
+    // draws the terrain's shadows in the air (clouds with the default haze), not in clear air.
+    let stats = |coverage: &str, fog: &str| {
+        let args = [
+            "--no-grass",
+            "--stats",
+            "--cloud-coverage",
+            coverage,
+            "--fog",
+            fog,
+        ];
         render_sized(&dir, "stats", (32, 18), &args).1
     };
-    let cloudy_stats = stats("0.5");
+    let cloudy_stats = stats("0.5", "0.03");
     assert!(
         cloudy_stats.contains("cloud_march_fraction 1\ncloud_steps 48\n"),
         "{cloudy_stats}"
     );
-    assert!(!stats("0").contains("cloud_"), "stats without clouds");
+    assert!(cloudy_stats.contains("shafts_mib 2.0\n"), "{cloudy_stats}");
+    let bare = stats("0", "0.03");
+    assert!(
+        !bare.contains("cloud_") && !bare.contains("shafts_"),
+        "{bare}"
+    );
+    assert!(!stats("0.5", "0").contains("shafts_"), "stats in clear air");
     let cloudy = |name: &str, speed: &str, clock: &str| {
         let args = [
             "--cloud-coverage",

@@ -184,7 +184,7 @@ impl World {
             }
         };
         queue.write_buffer(&self.render_uniforms, 0, bytemuck::bytes_of(&uniforms));
-        self.air_shadow_sun = (uniforms.air_shadow[3] > 0.0).then(|| {
+        self.shafts.sun = (uniforms.air_shadow[3] > 0.0).then(|| {
             Vec3::new(
                 uniforms.sun_dir[0],
                 uniforms.sun_dir[1],

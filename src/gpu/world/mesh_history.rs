@@ -418,7 +418,7 @@ impl World {
                 MeshHistory::new(
                     device,
                     (&self.module, &self.layout),
-                    (&self.targets, &self.air_shadow),
+                    (&self.targets, &self.shafts.map),
                     tile,
                 )
             })?;
@@ -449,7 +449,7 @@ impl World {
                 (
                     &self.tile_textures,
                     self.props_map.bindings(false),
-                    self.air_shadow.bindings(),
+                    &self.shafts.map,
                 ),
             )
         });

@@ -11,6 +11,7 @@ mod grass;
 mod mesh_history;
 mod props;
 mod resources;
+mod shafts;
 mod temporal;
 mod vis_frame;
 
@@ -157,13 +158,8 @@ pub struct World {
     /// The props' shade map the overlay's methods shade the terrain with (a texel a level until
     /// the overlay first draws).
     props_map: crate::gpu::props_map::PropsMap,
-    /// The terrain's shadow-height map the light shafts read (a texel for the tile), and the
-    /// sun the frame bakes it for, where it draws shafts.
-    air_shadow: crate::gpu::air_shadow::AirShadow,
-    air_shadow_sun: Option<Vec3>,
-    /// Frames whose bake of the levels' heights baked texels: the map is baked again after
-    /// one.
-    level_bakes: u64,
+    /// The light shafts' shadow-height map and what it is baked for.
+    shafts: shafts::Shafts,
 }
 
 /// What makes a world the seed blog's tile: a bounded square of a periodic landscape, lit by
@@ -265,8 +261,7 @@ impl World {
             let map_entries = crate::gpu::props_map::PropsMap::entries(
                 wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
             );
-            let air_entries =
-                crate::gpu::air_shadow::AirShadow::entries(wgpu::ShaderStages::FRAGMENT);
+            let air = crate::gpu::air_shadow::AirShadow::entries(wgpu::ShaderStages::FRAGMENT);
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("relief:world:bind-group-layout"),
                 entries: &[
@@ -286,9 +281,9 @@ impl World {
                     // through this group (the world's compute passes bind it unread).
                     map_entries[0],
                     map_entries[1],
-                    // And the shafts' shadow-height map.
-                    air_entries[0],
-                    air_entries[1],
+                    // And the light shafts' shadow-height map.
+                    air[0],
+                    air[1],
                 ],
             });
             let pipeline = mesh_pipeline(device, (&layout, &module), &targets, tile.is_some());
@@ -298,24 +293,13 @@ impl World {
                 super::uniform_buffer::<WorldUniforms>(device, "relief:world:world-uniforms");
             let tile_textures = TileTextures::new(device, &crate::gpu::Textures::new(device, 1));
             let props_map = crate::gpu::props_map::PropsMap::new(device);
-            let air_shadow = crate::gpu::air_shadow::AirShadow::new(
-                device,
-                if tile.is_some() {
-                    1
-                } else {
-                    crate::gpu::air_shadow::TEXELS
-                },
-            );
+            let shafts = shafts::Shafts::new(device, tile.is_some());
             let bind_group = bind(
                 device,
                 &layout,
                 (&render_uniforms, &world_uniforms),
                 (&texture, &light.texture),
-                (
-                    &tile_textures,
-                    props_map.bindings(false),
-                    air_shadow.bindings(),
-                ),
+                (&tile_textures, props_map.bindings(false), &shafts.map),
             );
             let (indices, index_counts) = patch_indices(device, &map);
             let instances = device.create_buffer(&wgpu::BufferDescriptor {
@@ -349,7 +333,7 @@ impl World {
                 layout,
                 bind_group_unmapped: bind_group.clone(),
                 bind_group,
-                sky: super::sky::SkyPass::new(device, &targets, (&render_uniforms, &air_shadow)),
+                sky: super::sky::SkyPass::new(device, &targets, (&render_uniforms, &shafts.map)),
                 kept: Vec::new(),
                 render_uniforms,
                 world_uniforms,
@@ -387,9 +371,7 @@ impl World {
                 props_scene: crate::props::Scene::default(),
                 props_overlay: None,
                 props_map,
-                air_shadow,
-                air_shadow_sun: None,
-                level_bakes: 0,
+                shafts,
             }
         })
     }
@@ -414,7 +396,7 @@ impl World {
                 let sky = super::sky::SkyPass::new(
                     device,
                     &targets,
-                    (&self.render_uniforms, &self.air_shadow),
+                    (&self.render_uniforms, &self.shafts.map),
                 );
                 (pipeline, sky)
             })?,
@@ -601,25 +583,6 @@ impl World {
         }
     }
 
-    /// GPU memory of the light shafts' shadow-height map, bytes, where the last frame drew the
-    /// terrain's shadows in the air (clouds with their shafts, fog, the sun up); `None` where it
-    /// did not (the map is then never read, and a world without clouds holds it unused).
-    pub fn shafts_bytes(&self) -> Option<u64> {
-        self.air_shadow_sun.map(|_| self.air_shadow.bytes())
-    }
-
-    /// The light shafts' shadow-height map as the last frame that drew the terrain's shadows in
-    /// the air left it (`None` where no frame has): where the air stands in the terrain's shadow,
-    /// for tests and tools (its truth is [`crate::light::air_lit_by_ray`]).
-    #[cfg(not(target_arch = "wasm32"))]
-    pub fn shafts_map(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-    ) -> Result<Option<crate::gpu::air_shadow::ShaftsMap>> {
-        self.air_shadow.read(device, queue)
-    }
-
     /// The level layout (for tests and tools).
     pub fn clipmap(&self) -> &Clipmap {
         &self.map
@@ -729,7 +692,7 @@ impl World {
                 (
                     &self.tile_textures,
                     self.props_map.bindings(empty),
-                    self.air_shadow.bindings(),
+                    &self.shafts.map,
                 ),
             )
         };
@@ -741,7 +704,7 @@ impl World {
         if params != self.params {
             self.reset_history("parameters");
             self.props_map.forget();
-            self.air_shadow.forget();
+            self.shafts.map.forget();
         }
         // Shading alone (snow, AO, the sun, fog) changes no level: nothing to lay out or bake.
         let relayout =
@@ -810,16 +773,8 @@ impl World {
         let jittered = self.jittered(view);
         let view = &jittered;
         let texels = self.encode_bake_timed(device, queue, encoder, view, timer)?;
-        self.level_bakes += u64::from(texels > 0);
         self.write_uniforms(queue, view);
-        if let Some(sun) = self.air_shadow_sun {
-            self.air_shadow.encode(
-                (device, queue, encoder),
-                (&self.world_uniforms, &resources::array_view(&self.texture)),
-                (view.eye, sun, self.level_bakes),
-                timer,
-            );
-        }
+        self.encode_shafts((device, queue, encoder), (view, texels), timer);
         self.encode_grass(device, queue, encoder, view, timer);
         self.encode_props((device, queue, encoder), (view, &unjittered), timer);
         if matches!(self.method, Method::Visibility | Method::Hybrid) {

@@ -146,11 +146,11 @@ pub(super) fn bind(
     (tile, props_map, air_shadow): (
         &TileTextures,
         [wgpu::BindGroupEntry<'_>; 2],
-        [wgpu::BindGroupEntry<'_>; 2],
+        &crate::gpu::air_shadow::AirShadow,
     ),
 ) -> wgpu::BindGroup {
     let [map, map_sampler] = props_map;
-    let [air, air_sampler] = air_shadow;
+    let [air, air_sampler] = air_shadow.bindings();
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("relief:world:bind-group"),
         layout,

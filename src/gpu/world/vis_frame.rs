@@ -70,7 +70,7 @@ impl World {
             tile_normals: &self.tile_textures.normals,
             tile_sampler: &self.tile_textures.sampler,
             props_map: &self.props_map,
-            air_shadow: &self.air_shadow,
+            air_shadow: &self.shafts.map,
             instances: &self.instances,
         };
         let draw = |pass: &mut wgpu::RenderPass<'_>| {
