@@ -147,6 +147,50 @@ fn counts(device: &wgpu::Device) -> [isize; 5] {
     ]
 }
 
+/// The bytes of one buffer of wgpu-core's pool for validating indirect draws
+/// (`indirect_validation/draw.rs`, wgpu-core 30): each comes with a bind group, is made when
+/// a submission needs one while the pool's are still in flight, and is kept for later ones.
+const INDIRECT_POOL_BUFFER: isize = 1_048_560;
+
+/// Asserts that `now` holds what `before` held, or more of wgpu-core's indirect-validation
+/// pool and nothing else: how many submissions were in flight at once depends on the
+/// machine's speed (CI's run once held two more such buffers than the warm-up had made), a
+/// leak of ours does not.
+fn assert_no_leak(now: [isize; 5], before: [isize; 5]) {
+    let pool = now[0] - before[0];
+    let pooled = [
+        before[0] + pool,
+        before[1],
+        before[2] + pool,
+        before[3] + pool * INDIRECT_POOL_BUFFER,
+        before[4],
+    ];
+    assert!(
+        pool >= 0 && now == pooled,
+        "GPU resources leaked: {now:?} held now, {before:?} before \
+         (buffers, views, bind groups, buffer bytes, texture bytes)"
+    );
+}
+
+#[test]
+fn the_leak_check_forgives_only_the_indirect_pool() {
+    let before = [21, 56, 14, 42_538_564, 2_436_352];
+    // CI's reading: two more buffers of the pool, each with its bind group.
+    assert_no_leak([23, 56, 16, 44_635_684, 2_436_352], before);
+    assert_no_leak(before, before);
+    let leaks = [
+        [22, 56, 14, 42_538_564 + INDIRECT_POOL_BUFFER, 2_436_352],
+        [22, 56, 15, 42_538_564 + 4096, 2_436_352],
+        [21, 57, 14, 42_538_564, 2_436_352],
+        [21, 56, 14, 42_538_564, 2_436_352 + 4096],
+        [20, 56, 13, 42_538_564 - INDIRECT_POOL_BUFFER, 2_436_352],
+    ];
+    for now in leaks {
+        let caught = std::panic::catch_unwind(|| assert_no_leak(now, before));
+        assert!(caught.is_err(), "{now:?} passed");
+    }
+}
+
 /// The GPU the stress tests run on: a device whose uncaptured errors are collected, the
 /// targets, and a small colour and depth attachment for them.
 struct Setup {
@@ -359,7 +403,7 @@ fn a_thousand_random_changes_leave_no_trace() {
         let (a, r, m) = run(100, &mut terrain, &mut camera, &mut rng);
         (applied, refused, moves) = (applied + a, refused + r, moves + m);
         let (counts, rss) = at_start(&mut terrain, &camera);
-        assert_eq!(counts, counts0, "GPU resources leaked");
+        assert_no_leak(counts, counts0);
         readings.push(rss);
     }
     eprintln!("1000 steps: {applied} changes applied, {refused} refused, {moves} camera moves");
@@ -542,7 +586,7 @@ fn random_views_and_changes_of_the_endless_world_leave_no_trace() {
     assert!(frame(&mut world, &sane));
     settle();
     let counts1 = counts(&device);
-    assert_eq!(counts1, counts0, "GPU resources leaked");
+    assert_no_leak(counts1, counts0);
     let errors = uncaptured.lock().unwrap();
     assert!(errors.is_empty(), "uncaptured wgpu errors: {errors:?}");
 }

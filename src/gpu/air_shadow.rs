@@ -8,8 +8,9 @@
 //! there less `t` times the tangent of the sun's elevation. The air at a point sees the sun
 //! where it stands above that, exactly for a height field: a mountain's shadow in the haze is a
 //! read a point. The square reaches as far as the shafts' points do (`SHAFT_FAR`,
-//! `wgsl/clouds.wgsl`), and is baked whole on every frame that draws shafts, after the frame's
-//! uniforms: it follows the eye, the sun of a running day and the levels as they arrive. The
+//! `wgsl/clouds.wgsl`), and is baked whole, after the frame's uniforms, on a frame that draws
+//! shafts where the sun, the eye's texel or the levels changed since the last bake: it follows
+//! the eye, the sun of a running day and the levels as they arrive. The
 //! ray casters (the reference) march the continuous surface from each point instead
 //! (`wgsl/terrain_air_rays.wgsl`).
 
@@ -217,30 +218,13 @@ impl AirShadow {
         self.baked = None;
     }
 
-    /// The map as last baked (`None` where none was): its altitudes, metres, row by row (x
-    /// along a row, z from row to row), from the texel whose corner is at world x and z
-    /// `corner`.
+    /// The map's texture and the eye's texel it was last baked around (`None` where it never
+    /// was), for [`ShaftsMap::unpack`].
     #[cfg(not(target_arch = "wasm32"))]
-    pub(crate) fn read(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-    ) -> crate::error::Result<Option<ShaftsMap>> {
-        let Some((_, texel, _)) = self.baked else {
-            return Ok(None);
-        };
-        let bytes = super::headless::read_texture(device, queue, &self.texture)?;
-        let altitudes = bytes
-            .chunks_exact(8)
-            .map(|t| half::f16::from_le_bytes([t[0], t[1]]).to_f32())
-            .collect();
-        let half = f64::from(TEXELS / 2);
-        Ok(Some(ShaftsMap {
-            altitudes,
-            corner: texel.map(|i| (i as f64 - half) * TEXEL_M),
-            texel: TEXEL_M,
-            side: TEXELS,
-        }))
+    pub(crate) fn baked(&self) -> Option<(&wgpu::Texture, [i64; 2])> {
+        self.baked
+            .as_ref()
+            .map(|(_, texel, _)| (&self.texture, *texel))
     }
 }
 
@@ -256,6 +240,25 @@ pub struct ShaftsMap {
     pub texel: f64,
     /// Texels on a side.
     pub side: u32,
+}
+
+impl ShaftsMap {
+    /// The map from its texture's bytes (rgba16float, rows tightly packed; the altitude in
+    /// red) as baked around the eye's `texel`.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(crate) fn unpack(bytes: &[u8], texel: [i64; 2]) -> Self {
+        let altitudes = bytes
+            .chunks_exact(8)
+            .map(|t| half::f16::from_le_bytes([t[0], t[1]]).to_f32())
+            .collect();
+        let half = f64::from(TEXELS / 2);
+        Self {
+            altitudes,
+            corner: texel.map(|i| (i as f64 - half) * TEXEL_M),
+            texel: TEXEL_M,
+            side: TEXELS,
+        }
+    }
 }
 
 /// The bake's layout and pipeline (`bake_air_shadow`).
@@ -274,7 +277,7 @@ fn pass(device: &wgpu::Device) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline)
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("relief:air-shadow:layout"),
         entries: &[
-            super::uniform_entry::<super::world::WorldUniforms>(1, c),
+            super::uniform_entry::<super::uniforms::WorldUniforms>(1, c),
             levels,
             super::uniform_entry::<AirShadowBake>(41, c),
             super::storage_entry(42, FORMAT),

@@ -183,9 +183,10 @@ pub(super) fn run_endless(
                     "method_texture_mib {:.1}",
                     relief::gpu::world::mib(world.method_bytes())
                 );
-                if let Some(bytes) = world.shafts_bytes() {
-                    println!("shafts_mib {:.1}", relief::gpu::world::mib(bytes));
-                }
+                println!(
+                    "shafts_mib {:.1}",
+                    relief::gpu::world::mib(world.shafts_bytes())
+                );
                 if let Some(counts) = world.grass_counts(&gpu.device, &gpu.queue) {
                     let [considered, kept, drawn, triangles] = counts?;
                     println!("grass_blades_considered {considered}");

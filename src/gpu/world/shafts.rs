@@ -47,11 +47,11 @@ impl World {
         }
     }
 
-    /// GPU memory of the light shafts' shadow-height map, bytes, where the last frame drew the
-    /// terrain's shadows in the air (clouds with their shafts, fog, the sun up); `None` where it
-    /// did not (the map is then never read, and a world without clouds holds it unused).
-    pub fn shafts_bytes(&self) -> Option<u64> {
-        self.shafts.sun.map(|_| self.shafts.map.bytes())
+    /// GPU memory of the light shafts' shadow-height map, bytes: 2 MiB for the endless world,
+    /// held whether or not its frames draw the terrain's shadows in the air (clouds with their
+    /// shafts, fog, the sun up; only those frames bake it), one texel for the tile.
+    pub fn shafts_bytes(&self) -> u64 {
+        self.shafts.map.bytes()
     }
 
     /// The light shafts' shadow-height map as the last frame that drew the terrain's shadows in
@@ -63,6 +63,10 @@ impl World {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Result<Option<ShaftsMap>> {
-        self.shafts.map.read(device, queue)
+        let Some((texture, texel)) = self.shafts.map.baked() else {
+            return Ok(None);
+        };
+        let bytes = crate::gpu::headless::read_texture(device, queue, texture)?;
+        Ok(Some(ShaftsMap::unpack(&bytes, texel)))
     }
 }
