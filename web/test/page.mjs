@@ -262,6 +262,37 @@ await withBrowser(webgpu, async (browser) => {
 });
 
 await withBrowser(webgpu, async (browser) => {
+  // The running day on the page (`day_length`, N): a day in 60 s from 9:00 in the endless
+  // world; over 20 s of the page's clock the hour in the canvas's title (winit's alt
+  // attribute) moves on and frames keep
+  // coming, each relighting what its budget allows. The frame rate and the hours it ran on
+  // SwiftShader (a CPU: not what a GPU's browser measures) go to metrics.txt and
+  // docs/results/day.md.
+  const errors6 = [];
+  const d = await openPage(browser, `${base}/index.html?${ENDLESS}&time_of_day=9&day_length=60`, errors6);
+  await waitFrames(d, 1, 300000);
+  const hourOf = (t) => (t.match(/ at (\d\d):(\d\d)/) || []).slice(1).map(Number);
+  const read = () => d.evaluate(() => ({
+    title: document.getElementById("relief")?.getAttribute("alt") || "", frames: Number(document.body.dataset.frames || 0), t: performance.now(),
+  }));
+  const a = await read();
+  await d.waitForTimeout(20000);
+  const b = await read();
+  const [h0, m0] = hourOf(a.title);
+  const [h1, m1] = hourOf(b.title);
+  const ran = ((h1 * 60 + m1) - (h0 * 60 + m0) + 1440) % 1440;
+  const seconds = (b.t - a.t) / 1000;
+  const fps = (b.frames - a.frames) / seconds;
+  const derror = await d.evaluate(() => document.body.dataset.error || "");
+  fs.appendFileSync(path.join(out, "metrics.txt"),
+    `day_frames_a_second ${fps.toFixed(2)}\nday_minutes_in_20s ${ran}\n`);
+  // 20 s of a 60 s day is 8 hours; the title shows the hour of the last frame drawn.
+  check(b.frames > a.frames + 2 && ran >= 60 && ran <= 9 * 60 && derror === "" && errors6.length === 0,
+    `a running day on the page: ${hourOf(a.title).join(":")} -> ${hourOf(b.title).join(":")} (${ran} minutes of the day) in ${seconds.toFixed(1)} s, ${fps.toFixed(2)} frames a second on SwiftShader (error: ${derror || errors6.join(" | ") || "none"})`);
+  await d.close();
+});
+
+await withBrowser(webgpu, async (browser) => {
   // The endless world: its own controls, the camera in the URL, and flying with the keys.
   const errors = [];
   const page = await openPage(browser, `${base}/index.html?${ENDLESS}`, errors);

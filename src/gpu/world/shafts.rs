@@ -3,7 +3,9 @@
 //! and read back for tests and tools.
 
 use super::*;
-use crate::gpu::air_shadow::{AirShadow, ShaftsMap, TEXELS};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::gpu::air_shadow::ShaftsMap;
+use crate::gpu::air_shadow::{AirShadow, TEXELS};
 
 /// The light shafts' shadow-height map a world holds (whole for the endless world, a texel for
 /// the tile, which has no clouds, so draws no shafts, yet binds it) and what it is baked for.
