@@ -264,16 +264,7 @@ impl ShaftsMap {
 /// The bake's layout and pipeline (`bake_air_shadow`).
 fn pass(device: &wgpu::Device) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
     let c = wgpu::ShaderStages::COMPUTE;
-    let levels = wgpu::BindGroupLayoutEntry {
-        binding: 2,
-        visibility: c,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Uint,
-            view_dimension: wgpu::TextureViewDimension::D2Array,
-            multisampled: false,
-        },
-        count: None,
-    };
+    let levels = super::array_texture_entry(2, c, wgpu::TextureSampleType::Uint);
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("relief:air-shadow:layout"),
         entries: &[

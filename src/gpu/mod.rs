@@ -59,9 +59,9 @@ pub fn render_samples(method: crate::Method) -> u32 {
 pub use render::RenderUniforms;
 pub use util::clear_color;
 pub(crate) use util::{
-    blended_pipeline, compute_pipeline, dispatch_square, fullscreen_pipeline, render_pipeline,
-    slot_buffer, storage_buffer_entry, storage_entry, terrain_pipeline, texel_bytes, texture_2d,
-    texture_entry, uniform_buffer, uniform_entry, write_slots,
+    array_texture_entry, blended_pipeline, compute_pipeline, dispatch_square, fullscreen_pipeline,
+    render_pipeline, slot_buffer, storage_buffer_entry, storage_entry, terrain_pipeline,
+    texel_bytes, texture_2d, texture_entry, uniform_buffer, uniform_entry, write_slots,
 };
 
 use crate::camera::View;

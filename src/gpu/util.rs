@@ -94,6 +94,25 @@ pub(crate) fn fullscreen_pipeline(
     })
 }
 
+/// A bind group layout entry for a sampled 2-D array texture, not multisampled (the levels'
+/// arrays: their packed heights are `Uint`).
+pub(crate) fn array_texture_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    sample_type: wgpu::TextureSampleType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
 pub(crate) fn texture_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,

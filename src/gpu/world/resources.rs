@@ -118,16 +118,11 @@ pub(super) fn array_entry(
     binding: u32,
     sample_type: wgpu::TextureSampleType,
 ) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
+    crate::gpu::array_texture_entry(
         binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2Array,
-            multisampled: false,
-        },
-        count: None,
-    }
+        wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        sample_type,
+    )
 }
 
 pub(super) fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
