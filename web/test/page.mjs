@@ -263,7 +263,7 @@ await withBrowser(webgpu, async (browser) => {
 
 await withBrowser(webgpu, async (browser) => {
   // The running day on the page (`day_length`, N): a day in 60 s from 9:00 in the endless
-  // world; over 20 s of the page's clock the hour in the canvas's title (winit's alt
+  // world; over 30 s of the page's clock the hour in the canvas's title (winit's alt
   // attribute) moves on and frames keep
   // coming, each relighting what its budget allows. The frame rate and the hours it ran on
   // SwiftShader (a CPU: not what a GPU's browser measures) go to metrics.txt and
@@ -276,8 +276,12 @@ await withBrowser(webgpu, async (browser) => {
     title: document.getElementById("relief")?.getAttribute("alt") || "", frames: Number(document.body.dataset.frames || 0), t: performance.now(),
   }));
   const a = await read();
-  await d.waitForTimeout(20000);
+  await d.waitForTimeout(30000);
   const b = await read();
+  // Still coming once the arrival's bake and the history's settling frames are over (they
+  // stopped after 22 frames when the redraw forgot the running day).
+  await d.waitForTimeout(8000);
+  const c = await read();
   const [h0, m0] = hourOf(a.title);
   const [h1, m1] = hourOf(b.title);
   const ran = ((h1 * 60 + m1) - (h0 * 60 + m0) + 1440) % 1440;
@@ -285,10 +289,11 @@ await withBrowser(webgpu, async (browser) => {
   const fps = (b.frames - a.frames) / seconds;
   const derror = await d.evaluate(() => document.body.dataset.error || "");
   fs.appendFileSync(path.join(out, "metrics.txt"),
-    `day_frames_a_second ${fps.toFixed(2)}\nday_minutes_in_20s ${ran}\n`);
-  // 20 s of a 60 s day is 8 hours; the title shows the hour of the last frame drawn.
-  check(b.frames > a.frames + 2 && ran >= 60 && ran <= 9 * 60 && derror === "" && errors6.length === 0,
-    `a running day on the page: ${hourOf(a.title).join(":")} -> ${hourOf(b.title).join(":")} (${ran} minutes of the day) in ${seconds.toFixed(1)} s, ${fps.toFixed(2)} frames a second on SwiftShader (error: ${derror || errors6.join(" | ") || "none"})`);
+    `day_frames_a_second ${fps.toFixed(2)}\nday_minutes_in_30s ${ran}\n`);
+  // 30 s of a 60 s day is 12 hours; the title shows the hour of the last frame drawn, and a
+  // slower machine's frames may come seconds apart (two frames and half an hour at least).
+  check(b.frames >= a.frames + 2 && c.frames > b.frames && ran >= 30 && ran <= 13 * 60 && derror === "" && errors6.length === 0,
+    `a running day on the page: ${hourOf(a.title).join(":")} -> ${hourOf(b.title).join(":")} (${ran} minutes of the day) in ${seconds.toFixed(1)} s, ${fps.toFixed(2)} frames a second on SwiftShader, frames ${a.frames} -> ${b.frames} -> ${c.frames} 8 s on (error: ${derror || errors6.join(" | ") || "none"})`);
   await d.close();
 });
 

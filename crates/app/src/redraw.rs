@@ -139,9 +139,12 @@ impl App {
             }
         }
         // A minimised window is not drawn until it is restored (a resize event). Levels
-        // waiting on a bake (over the per-frame budget) keep frames coming until they are in.
+        // waiting on a bake (over the per-frame budget) keep frames coming until they are in,
+        // and a running day for as long as it runs (as `App::animating` says).
         let animating = match self.fly {
-            Some(_) => !self.held.is_empty() || self.path.is_some(),
+            Some(_) => {
+                !self.held.is_empty() || self.path.is_some() || crate::day::day_runs(&self.options)
+            }
             None => self.options.animating(),
         } || match &s.world {
             Some(w) => w.pending_texels() > 0,
