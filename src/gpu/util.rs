@@ -101,12 +101,25 @@ pub(crate) fn array_texture_entry(
     visibility: wgpu::ShaderStages,
     sample_type: wgpu::TextureSampleType,
 ) -> wgpu::BindGroupLayoutEntry {
+    sampled_entry(
+        (binding, visibility),
+        sample_type,
+        wgpu::TextureViewDimension::D2Array,
+    )
+}
+
+/// A sampled texture's layout entry, not multisampled.
+fn sampled_entry(
+    (binding, visibility): (u32, wgpu::ShaderStages),
+    sample_type: wgpu::TextureSampleType,
+    view_dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
         ty: wgpu::BindingType::Texture {
             sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2Array,
+            view_dimension,
             multisampled: false,
         },
         count: None,
@@ -118,16 +131,11 @@ pub(crate) fn texture_entry(
     visibility: wgpu::ShaderStages,
     filterable: bool,
 ) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
+    sampled_entry(
+        (binding, visibility),
+        wgpu::TextureSampleType::Float { filterable },
+        wgpu::TextureViewDimension::D2,
+    )
 }
 
 /// Bytes of one texel of an uncompressed `format`.

@@ -79,15 +79,9 @@ impl App {
             _ => String::new(),
         }
     }
-
-    /// Whether the sun runs through the day (frames must keep coming).
-    pub(crate) fn day_running(&self) -> bool {
-        day_runs(&self.options)
-    }
 }
 
-/// Whether `options` run the sun through the day: the one test of it, for [`App::day_running`]
-/// and for the redraw that asks for the next frame while the app's state is borrowed.
+/// Whether `options` run the sun through the day (frames must keep coming: `moving`).
 pub(crate) fn day_runs(options: &crate::options::AppOptions) -> bool {
     options.world.is_some_and(|(w, _)| w.sky.day_length > 0.0)
 }

@@ -109,6 +109,22 @@ pub enum UserEvent {
     FrameDone,
 }
 
+/// Whether the view moves by itself or by the user's hand, so that frames must keep coming:
+/// the tile scrolling (no fly camera), a key held, the path followed, or the day running. With
+/// [`State::baking`], what [`App::animating`] and the redraw ask (the redraw while it holds
+/// the state, hence the fields one by one).
+fn moving(
+    fly: &Option<FlyCamera>,
+    held: &HashSet<KeyCode>,
+    path: &Option<(PathCamera, f64)>,
+    options: &options::AppOptions,
+) -> bool {
+    match fly {
+        Some(_) => !held.is_empty() || path.is_some() || day::day_runs(options),
+        None => options.animating(),
+    }
+}
+
 /// Whether a wgpu error is only the echo of a lost device (which is reported on its own).
 fn after_loss(message: &str) -> bool {
     let m = message.to_ascii_lowercase();
@@ -306,18 +322,11 @@ impl App {
         Ok(())
     }
 
-    /// Whether frames must keep coming: the tile scrolling, or the fly camera moving.
+    /// Whether frames must keep coming: levels waiting on a bake, the tile scrolling, the fly
+    /// camera moving, or the day running.
     fn animating(&self) -> bool {
-        // Levels still waiting on a bake (over the per-frame budget) need more frames.
-        let baking = self.state.as_ref().is_some_and(|s| match &s.world {
-            Some(w) => w.pending_texels() > 0,
-            None => s.terrain.pending_texels() > 0,
-        });
-        baking
-            || match self.fly {
-                Some(_) => !self.held.is_empty() || self.path.is_some() || self.day_running(),
-                None => self.options.animating(),
-            }
+        self.state.as_ref().is_some_and(State::baking)
+            || moving(&self.fly, &self.held, &self.path, &self.options)
     }
 
     fn keep_camera_above(&mut self) {

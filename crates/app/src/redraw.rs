@@ -141,15 +141,8 @@ impl App {
         // A minimised window is not drawn until it is restored (a resize event). Levels
         // waiting on a bake (over the per-frame budget) keep frames coming until they are in,
         // and a running day for as long as it runs (as `App::animating` says).
-        let animating = match self.fly {
-            Some(_) => {
-                !self.held.is_empty() || self.path.is_some() || crate::day::day_runs(&self.options)
-            }
-            None => self.options.animating(),
-        } || match &s.world {
-            Some(w) => w.pending_texels() > 0,
-            None => s.terrain.pending_texels() > 0,
-        };
+        let animating =
+            crate::moving(&self.fly, &self.held, &self.path, &self.options) || s.baking();
         // A history still filling after a change (the temporal service's) keeps a few more
         // frames coming, then the window idles.
         let filling = self.fly.is_some() && self.options.temporal && self.options.method.is_mesh();

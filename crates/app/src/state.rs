@@ -113,6 +113,14 @@ struct RayCast {
 }
 
 impl State {
+    /// Whether levels wait on a bake (over the per-frame budget): frames must keep coming.
+    pub(crate) fn baking(&self) -> bool {
+        match &self.world {
+            Some(w) => w.pending_texels() > 0,
+            None => self.terrain.pending_texels() > 0,
+        }
+    }
+
     /// Creates the surface, device and terrain for `window`. wgpu errors nobody captures and
     /// the loss of the device reach the app through `proxy` as events.
     pub async fn new(
