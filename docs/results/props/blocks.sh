@@ -5,6 +5,8 @@
 # blocks' points lie within 10% of its own distance) against the build before (.devbin/relief-base:
 # 2x2 blocks, each pixel its own block's). The full benchmark on eight views with props in view,
 # NVIDIA H200, 1920x1080; rows in blocks-before.csv, blocks-agree.csv and blocks-always.csv.
+# .devbin/relief-new was each of the two builds in turn (the second run in a later call, the
+# base not run again there).
 # (A first pass with --quick, lavapipe's size, timed too noisily to read: 2-5x between two runs
 # of the same build.)
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
