@@ -8,8 +8,13 @@
 // point, its vertices placed as world.wgsl's `place` places them, morph and the hybrid's raise
 // included). A kept blade is appended to `blades` for the draw (grass_draw.wgsl, or the compute
 // raster's raster_blades.wgsl) with its level of detail: its segments by its length on screen,
-// and a blade narrower than a pixel widened to one and thinned to keep the cover. A workgroup's
-// block of cells is skipped whole where it lies outside the distance or the view.
+// and a blade narrower than a pixel widened to one and thinned to keep the cover. A first pass
+// (`cull`, a thread a block of 8 x 8 cells) counts the cells each block holds within the
+// distance and lists the blocks that can show a blade (inside the distance and the view);
+// `cull_finish` writes the scatter's indirect dispatch, a workgroup a listed block, so a block
+// outside the view costs one thread, not a workgroup of 64 (on lavapipe the whole square's
+// workgroups took over a second a frame at the default density, a view from high up keeping
+// none).
 
 struct GrassFrame {
     g: GrassUniforms,
@@ -40,7 +45,8 @@ struct GrassFrame {
 // `blade_motion`).
 @group(1) @binding(1) var<storage, read_write> blades: array<vec4<f32>>;
 // Blades considered (cells the square holds within the distance), kept, appended, drawn (the
-// appended clamped to the capacity by `finish`), and the triangles of those appended.
+// appended clamped to the capacity by `finish`), the triangles of those appended, those in the
+// compute raster's list, and the blocks `cull` listed.
 @group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>, 8>;
 // The indirect draw's arguments: vertices, instances, first vertex, first instance; then the
 // compute raster's indirect dispatch of a thread a triangle of `triangles`
@@ -49,6 +55,15 @@ struct GrassFrame {
 // The compute raster's list of the kept blades' triangles: the blade's number times 8 plus the
 // triangle's in its strip. A triangle past the list's end is not drawn.
 @group(1) @binding(4) var<storage, read_write> triangles: array<u32>;
+// The blocks `cull` found can show a blade, a word each: the block's column, and its row times
+// 65536 (the square spans at most 801 blocks a side); counts[6] says how many.
+@group(1) @binding(5) var<storage, read_write> blocks: array<u32>;
+// The scatter's indirect dispatch, written by `cull_finish`: a workgroup a listed block, in rows
+// of at most MAX_GROUPS.
+@group(2) @binding(0) var<storage, read_write> scatter_args: array<u32, 4>;
+
+// The most workgroups a dispatch has along x (WebGPU's limit, maxComputeWorkgroupsPerDimension).
+const MAX_GROUPS: u32 = 65535u;
 
 // Vertices of a blade (grass_draw.wgsl): a strip of four segments and a tip.
 const BLADE_VERTICES: u32 = 9u;
@@ -104,12 +119,10 @@ fn pixels_per_metre(cw: f32) -> f32 {
     return 0.5 * gf.pixels_high * focal / cw;
 }
 
-// Whether the workgroup's block can show a blade; its counts of cells considered, blades kept
-// and their triangles; and where its blades and triangles begin in `blades` and `triangles`:
-// one global atomic a workgroup for each (an atomic a blade cost the scatter more than the list
-// of triangles saves the raster).
-var<workgroup> block_visible: u32;
-var<workgroup> block_counts: array<atomic<u32>, 3>;
+// The workgroup's block's counts of blades kept and their triangles, and where its blades and
+// triangles begin in `blades` and `triangles`: one global atomic a workgroup for each (an atomic
+// a blade cost the scatter more than the list of triangles saves the raster).
+var<workgroup> block_counts: array<atomic<u32>, 2>;
 var<workgroup> block_base: vec2<u32>;
 
 // A cell's blade where it is kept: as the draw reads it (the layout of `blades`), and its
@@ -123,46 +136,100 @@ struct Kept {
 // A triangle of the list whose blade was not stored (past the capacity): skipped.
 const NO_TRIANGLE: u32 = 0xffffffffu;
 
+// Blocks of 8 x 8 cells across the square.
+fn blocks_across() -> u32 {
+    return (gf.side + 7u) / 8u;
+}
+
+// A thread a block of the square: counts its cells within the draw distance (considered, culled
+// or not: each holds a blade) and lists the block where it can show a blade.
+@compute @workgroup_size(64)
+fn cull(@builtin(global_invocation_id) id: vec3<u32>) {
+    let across = blocks_across();
+    if id.x >= across * across {
+        return;
+    }
+    let group = vec2<u32>(id.x % across, id.x / across);
+    let half = i32(gf.side / 2u);
+    // The rectangle of the block's cells' centres: all 64 within the distance, or none, or
+    // (a block across the circle or the square's edge) counted a cell at a time; a loop in
+    // every thread cost lavapipe more than the scatter.
+    let lo = (vec2<f32>(vec2<i32>(group * 8u) - vec2<i32>(half)) + 0.5) * gf.g.cell - gf.eye_in_cell;
+    let hi = lo + 7.0 * gf.g.cell;
+    let near = max(max(lo, -hi), vec2<f32>(0.0));
+    let far = max(abs(lo), abs(hi));
+    let whole = group.x * 8u + 8u <= gf.side && group.y * 8u + 8u <= gf.side;
+    var considered = 0u;
+    if length(near) > gf.distance {
+        considered = 0u;
+    } else if whole && length(far) <= gf.distance {
+        considered = 64u;
+    } else {
+        for (var i = 0u; i < 64u; i++) {
+            let cell = group * 8u + vec2<u32>(i % 8u, i / 8u);
+            let rel_cell = vec2<i32>(cell) - vec2<i32>(half);
+            let centre = (vec2<f32>(rel_cell) + 0.5) * gf.g.cell - gf.eye_in_cell;
+            if cell.x < gf.side && cell.y < gf.side && length(centre) <= gf.distance {
+                considered += 1u;
+            }
+        }
+    }
+    if considered > 0u {
+        atomicAdd(&counts[0], considered);
+    }
+    if block_in_view(group) {
+        blocks[atomicAdd(&counts[6], 1u)] = group.x | (group.y << 16u);
+    }
+}
+
+// The scatter's dispatch: a workgroup a listed block.
+@compute @workgroup_size(1)
+fn cull_finish() {
+    let listed = atomicLoad(&counts[6]);
+    scatter_args[0] = min(listed, MAX_GROUPS);
+    scatter_args[1] = (listed + MAX_GROUPS - 1u) / MAX_GROUPS;
+    scatter_args[2] = 1u;
+    scatter_args[3] = 0u;
+}
+
+// A listed block's word, or NO_BLOCK past the list's end (the last row's rest).
+var<workgroup> block_word: u32;
+const NO_BLOCK: u32 = 0xffffffffu;
+
 @compute @workgroup_size(8, 8)
 fn scatter(
-    @builtin(global_invocation_id) id: vec3<u32>,
-    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_id) local: vec3<u32>,
+    @builtin(workgroup_id) workgroup: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
     if lane == 0u {
-        block_visible = u32(block_in_view(group.xy));
+        let listed = workgroup.y * MAX_GROUPS + workgroup.x;
+        block_word = select(NO_BLOCK, blocks[listed], listed < atomicLoad(&counts[6]));
     }
-    let visible = workgroupUniformLoad(&block_visible) != 0u;
+    let word = workgroupUniformLoad(&block_word);
+    if word == NO_BLOCK {
+        return;
+    }
+    let id = vec2<u32>(word & 0xffffu, word >> 16u) * 8u + local.xy;
     let half = i32(gf.side / 2u);
-    let rel_cell = vec2<i32>(id.xy) - vec2<i32>(half);
-    let in_square = id.x < gf.side && id.y < gf.side;
-    // Considered: the cells whose centre lies within the draw distance (each holds a blade),
-    // in blocks culled or not.
-    let centre = (vec2<f32>(rel_cell) + 0.5) * gf.g.cell - gf.eye_in_cell;
-    if in_square && length(centre) <= gf.distance {
-        atomicAdd(&block_counts[0], 1u);
-    }
+    let rel_cell = vec2<i32>(id) - vec2<i32>(half);
     var k = Kept();
-    if visible && in_square {
+    if id.x < gf.side && id.y < gf.side {
         k = scatter_cell(rel_cell);
     }
     var own = vec2<u32>(0u);
     if k.kept {
-        own = vec2<u32>(atomicAdd(&block_counts[1], 1u), atomicAdd(&block_counts[2], k.triangles));
+        own = vec2<u32>(atomicAdd(&block_counts[0], 1u), atomicAdd(&block_counts[1], k.triangles));
     }
     workgroupBarrier();
     if lane == 0u {
-        // The counters are shared by every workgroup: a block that keeps no blade (most of
-        // them: outside the view, or off the grass) leaves them alone.
-        let considered = atomicLoad(&block_counts[0]);
-        if considered > 0u {
-            atomicAdd(&counts[0], considered);
-        }
-        let kept = atomicLoad(&block_counts[1]);
+        // The counters are shared by every workgroup: a block that keeps no blade (off the
+        // grass) leaves them alone.
+        let kept = atomicLoad(&block_counts[0]);
         if kept > 0u {
             atomicAdd(&counts[1], kept);
             let first_blade = atomicAdd(&counts[2], kept);
-            block_base = vec2<u32>(first_blade, atomicAdd(&counts[4], atomicLoad(&block_counts[2])));
+            block_base = vec2<u32>(first_blade, atomicAdd(&counts[4], atomicLoad(&block_counts[1])));
         }
     }
     let base = workgroupUniformLoad(&block_base);

@@ -60,6 +60,19 @@ struct GrassFrame {
     gust_phase: [f32; 4],
 }
 
+/// Threads of a workgroup of the cull (`@workgroup_size` of `cull` in the WGSL): a block each.
+const CULL_GROUP: u32 = 64;
+
+/// Blocks of 8 x 8 cells in the square of cells the scatter spans for `grass`.
+fn block_count(grass: &Grass) -> u32 {
+    grass.side().div_ceil(super::WORKGROUP).pow(2)
+}
+
+/// Bytes of the cull's list of blocks for `grass`: a word a block.
+fn blocks_bytes(grass: &Grass) -> u64 {
+    u64::from(block_count(grass)) * 4
+}
+
 /// Blades the draw holds at most a frame: 64 bytes each, 32 MiB.
 pub const CAPACITY: u32 = 1 << 19;
 
@@ -75,17 +88,22 @@ pub const TRIANGLE_CAPACITY: u32 = 1 << 20;
 /// raster's dispatch of a thread a triangle of its list (16, at [`DISPATCH_OFFSET`]).
 const ARGS_BYTES: u64 = 32;
 /// Bytes of the scatter's counts: blades considered, kept, appended, drawn, the triangles of
-/// those kept, those in the compute raster's list, and 2 unused.
+/// those kept, those in the compute raster's list, the blocks the cull listed, and 1 unused.
 const COUNTS_BYTES: u64 = 32;
 const DISPATCH_OFFSET: u64 = 16;
+/// Bytes of the scatter's indirect dispatch, which the cull writes.
+const SCATTER_ARGS_BYTES: u64 = 16;
 
 /// The grass of the endless world on the GPU: the scatter pass that keeps each frame's blades
-/// (`wgsl/grass_scatter.wgsl`, reading the world's bind group for the drawn surface) and their
-/// draw (`wgsl/grass_draw.wgsl`), one indirect draw of a strip a blade.
+/// (`wgsl/grass_scatter.wgsl`, reading the world's bind group for the drawn surface), after a
+/// cull that lists the blocks of cells it runs on, and their draw (`wgsl/grass_draw.wgsl`), one
+/// indirect draw of a strip a blade.
 pub(crate) struct GrassPass {
     grass: Grass,
     /// The benchmark's peer, where it is drawn in relief's place ([`crate::grass::Peer`]).
     peer: Option<crate::grass::Peer>,
+    cull: wgpu::ComputePipeline,
+    cull_finish: wgpu::ComputePipeline,
     scatter: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     frame: wgpu::Buffer,
@@ -94,7 +112,12 @@ pub(crate) struct GrassPass {
     args: wgpu::Buffer,
     /// The compute raster's list of the blades' triangles ([`TRIANGLE_CAPACITY`]).
     triangles: wgpu::Buffer,
+    /// The scatter's indirect dispatch (a workgroup a listed block), which the cull writes: bound
+    /// in a group of its own, used by the cull's pass alone, as the scatter's pass dispatches
+    /// from it. (The list of blocks is bound in `scatter_group`.)
+    scatter_args: wgpu::Buffer,
     scatter_group: wgpu::BindGroup,
+    args_group: wgpu::BindGroup,
     draw_module: wgpu::ShaderModule,
     draw_layout: wgpu::BindGroupLayout,
     /// The draw's pipelines for the targets it drew into, and its bind groups for the
@@ -115,7 +138,12 @@ impl GrassPass {
                 super::storage_buffer_entry(2, false),
                 super::storage_buffer_entry(3, false),
                 super::storage_buffer_entry(4, false),
+                super::storage_buffer_entry(5, false),
             ],
+        });
+        let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("relief:grass:scatter-args-layout"),
+            entries: &[super::storage_buffer_entry(0, false)],
         });
         let module = super::shader::module(
             device,
@@ -127,10 +155,15 @@ impl GrassPass {
             bind_group_layouts: &[Some(world_layout), Some(&frame_layout)],
             immediate_size: 0,
         });
-        let pipeline = |entry: &str| {
+        let cull_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("relief:grass:cull-layout"),
+            bind_group_layouts: &[Some(world_layout), Some(&frame_layout), Some(&args_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str, layout: &wgpu::PipelineLayout| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some("relief:grass:scatter"),
-                layout: Some(&layout),
+                layout: Some(layout),
                 module: &module,
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
@@ -167,6 +200,20 @@ impl GrassPass {
             u64::from(TRIANGLE_CAPACITY) * 4,
             storage,
         );
+        let blocks = buffer("relief:grass:blocks", blocks_bytes(&grass), storage);
+        let scatter_args = buffer(
+            "relief:grass:scatter-args",
+            SCATTER_ARGS_BYTES,
+            storage | wgpu::BufferUsages::INDIRECT,
+        );
+        let args_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("relief:grass:scatter-args-group"),
+            layout: &args_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: scatter_args.as_entire_binding(),
+            }],
+        });
         let scatter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("relief:grass:frame-group"),
             layout: &frame_layout,
@@ -191,20 +238,28 @@ impl GrassPass {
                     binding: 4,
                     resource: triangles.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: blocks.as_entire_binding(),
+                },
             ],
         });
         let draw_layout = draw_layout(device);
         Self {
             grass,
             peer: None,
-            scatter: pipeline("scatter"),
-            finish: pipeline("finish"),
+            cull: pipeline("cull", &cull_layout),
+            cull_finish: pipeline("cull_finish", &cull_layout),
+            scatter: pipeline("scatter", &layout),
+            finish: pipeline("finish", &layout),
             frame,
             blades,
             counts,
             args,
             triangles,
+            scatter_args,
             scatter_group,
+            args_group,
             draw_module: draw_module(device),
             draw_layout,
             pipelines: Vec::new(),
@@ -232,6 +287,8 @@ impl GrassPass {
     pub fn bytes(&self) -> u64 {
         u64::from(CAPACITY) * BLADE_BYTES
             + u64::from(TRIANGLE_CAPACITY) * 4
+            + blocks_bytes(&self.grass)
+            + SCATTER_ARGS_BYTES
             + COUNTS_BYTES
             + ARGS_BYTES
             + std::mem::size_of::<GrassFrame>() as u64
@@ -271,15 +328,32 @@ impl GrassPass {
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
         encoder.clear_buffer(&self.counts, 0, None);
+        // The cull, in a pass of its own: the scatter's pass reads its arguments as an indirect
+        // dispatch, which a pass that binds them for writing cannot.
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief:grass:cull-pass"),
+                timestamp_writes: timer.map(|t| t.compute_begins(super::timing::Slot::Grass)),
+            });
+            pass.set_pipeline(&self.cull);
+            pass.set_bind_group(0, world, &[]);
+            pass.set_bind_group(1, &self.scatter_group, &[]);
+            pass.set_bind_group(2, &self.args_group, &[]);
+            pass.dispatch_workgroups(block_count(&self.grass).div_ceil(CULL_GROUP), 1, 1);
+            pass.set_pipeline(&self.cull_finish);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("relief:grass:scatter-pass"),
-            timestamp_writes: timer.map(|t| t.compute_writes(super::timing::Slot::Grass)),
+            timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
+                beginning_of_pass_write_index: None,
+                ..t.compute_writes(super::timing::Slot::Grass)
+            }),
         });
         pass.set_pipeline(&self.scatter);
         pass.set_bind_group(0, world, &[]);
         pass.set_bind_group(1, &self.scatter_group, &[]);
-        let groups = frame.side.div_ceil(super::WORKGROUP);
-        pass.dispatch_workgroups(groups, groups, 1);
+        pass.dispatch_workgroups_indirect(&self.scatter_args, 0);
         pass.set_pipeline(&self.finish);
         pass.dispatch_workgroups(1, 1, 1);
     }
