@@ -379,8 +379,9 @@ fn the_roots_stand_on_the_surface_the_mesh_draws() {
         .unwrap()
         .keeping_depth();
     target.render_world(&gpu, &mut world, &view, None).unwrap();
+    // Every blade kept: the order the scatter lists them in is no blade's property.
     let blades = world
-        .grass_blades(&gpu.device, &gpu.queue, 4000)
+        .grass_blades(&gpu.device, &gpu.queue, 1 << 19)
         .unwrap()
         .unwrap();
     let mut p = *world.params();
