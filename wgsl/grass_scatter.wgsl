@@ -153,16 +153,17 @@ fn cull(@builtin(global_invocation_id) id: vec3<u32>) {
     let half = i32(gf.side / 2u);
     // The rectangle of the block's cells' centres: all 64 within the distance, or none, or
     // (a block across the circle or the square's edge) counted a cell at a time; a loop in
-    // every thread cost lavapipe more than the scatter.
+    // every thread cost lavapipe more than the scatter. A block within a cell of the circle
+    // is counted a cell at a time too, so that rounding never tells the two ways apart.
     let lo = (vec2<f32>(vec2<i32>(group * 8u) - vec2<i32>(half)) + 0.5) * gf.g.cell - gf.eye_in_cell;
     let hi = lo + 7.0 * gf.g.cell;
     let near = max(max(lo, -hi), vec2<f32>(0.0));
     let far = max(abs(lo), abs(hi));
     let whole = group.x * 8u + 8u <= gf.side && group.y * 8u + 8u <= gf.side;
     var considered = 0u;
-    if length(near) > gf.distance {
+    if length(near) > gf.distance + gf.g.cell {
         considered = 0u;
-    } else if whole && length(far) <= gf.distance {
+    } else if whole && length(far) < gf.distance - gf.g.cell {
         considered = 64u;
     } else {
         for (var i = 0u; i < 64u; i++) {
